@@ -1,0 +1,101 @@
+#include "args.h"
+
+#include <errno.h>
+#include <math.h>
+#include <stdarg.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+
+void cli_error(const char *format, ...) {
+  va_list args;
+  va_start(args, format);
+  fputs("glint: ", stderr);
+  vfprintf(stderr, format, args);
+  fputc('\n', stderr);
+  va_end(args);
+}
+
+int arg_is(arg_cursor *c, const char *short_name, const char *long_name) {
+  const char *a = c->argv[c->i];
+  if (short_name && strncmp(a, short_name, 2) == 0 && a[0] == '-' &&
+      a[1] != '-') {
+    c->inline_v = a[2] ? a + 2 : NULL;
+    c->i++;
+    return 1;
+  }
+  if (long_name) {
+    size_t n = strlen(long_name);
+    if (strncmp(a, long_name, n) == 0 && (a[n] == '\0' || a[n] == '=')) {
+      c->inline_v = a[n] == '=' ? a + n + 1 : NULL;
+      c->i++;
+      return 1;
+    }
+  }
+  return 0;
+}
+
+const char *arg_value(arg_cursor *c, const char *option) {
+  if (c->inline_v)
+    return c->inline_v;
+  if (c->i < c->argc)
+    return c->argv[c->i++];
+  cli_error("%s needs a value", option);
+  return NULL;
+}
+
+int parse_int(const char *option, const char *text, long min, long max,
+              int *out) {
+  if (!text)
+    return -1;
+  char *end;
+  errno = 0;
+  long v = strtol(text, &end, 10);
+  if (end == text || *end != '\0' || errno == ERANGE) {
+    cli_error("%s: '%s' is not a whole number", option, text);
+    return -1;
+  }
+  if (v < min || v > max) {
+    cli_error("%s: %ld is outside %ld..%ld", option, v, min, max);
+    return -1;
+  }
+  *out = (int)v;
+  return 0;
+}
+
+int parse_double(const char *option, const char *text, double min,
+                 double *out) {
+  if (!text)
+    return -1;
+  char *end;
+  errno = 0;
+  double v = strtod(text, &end);
+  if (end == text || *end != '\0' || !isfinite(v)) {
+    cli_error("%s: '%s' is not a number", option, text);
+    return -1;
+  }
+  if (!(v > min)) {
+    cli_error("%s: %g must be greater than %g", option, v, min);
+    return -1;
+  }
+  *out = v;
+  return 0;
+}
+
+int split_list(char *text, char **items, int max) {
+  int n = 0;
+  for (char *p = text; *p;) {
+    char *comma = strchr(p, ',');
+    if (comma)
+      *comma = '\0';
+    if (*p) {
+      if (n == max)
+        return -1;
+      items[n++] = p;
+    }
+    if (!comma)
+      break;
+    p = comma + 1;
+  }
+  return n;
+}

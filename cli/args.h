@@ -1,0 +1,42 @@
+/* Small, strict command-line parsing: every number is checked in full, every
+ * problem becomes one message naming the option. */
+#ifndef GLINT_CLI_ARGS_H
+#define GLINT_CLI_ARGS_H
+
+#include <stddef.h>
+
+/* Exit statuses: bad arguments or input get 2 (SPEC of the CLI). */
+enum { EXIT_USAGE = 2 };
+
+typedef struct arg_cursor {
+  int argc;
+  char **argv;
+  int i;                /* next argument */
+  const char *inline_v; /* value after '=' or glued to a short option */
+} arg_cursor;
+
+/* If argv[i] is `-s`, `-sVALUE`, `--long` or `--long=VALUE` matching one of
+ * the names, consumes the option and returns 1. */
+int arg_is(arg_cursor *c, const char *short_name, const char *long_name);
+
+/* The option's value (inline or the next argument), or NULL after printing
+ * "glint: OPTION needs a value". */
+const char *arg_value(arg_cursor *c, const char *option);
+
+/* Whole numbers in [min, max]; on error prints one message and returns -1. */
+int parse_int(const char *option, const char *text, long min, long max,
+              int *out);
+int parse_double(const char *option, const char *text, double min, double *out);
+
+/* Prints "glint: <message>" to stderr. */
+void cli_error(const char *format, ...)
+#if defined(__GNUC__)
+    __attribute__((format(printf, 1, 2)))
+#endif
+    ;
+
+/* Splits a comma-separated list in place; returns the item count or -1 if
+ * there are more than max. */
+int split_list(char *text, char **items, int max);
+
+#endif

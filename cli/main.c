@@ -1,0 +1,45 @@
+/* glint: the command-line driver. It uses nothing but <glint.h>. */
+#include "args.h"
+#include "cli.h"
+
+#include <glint.h>
+
+#include <stdio.h>
+#include <string.h>
+
+static void usage(FILE *f) {
+  fputs("glint — a fast Whitted-style CPU ray tracer\n"
+        "\n"
+        "Usage:\n"
+        "  glint render [SCENE] [options]  render a built-in scene or a file\n"
+        "  glint bench [options]           time scenes x depths x backends\n"
+        "  glint --help                    this help\n"
+        "  glint --version                 the version\n"
+        "\n"
+        "Built-in scenes: whitted, giza, billiard, phong.\n"
+        "'glint render --help' and 'glint bench --help' list the options.\n",
+        f);
+}
+
+int main(int argc, char **argv) {
+  if (argc < 2) {
+    usage(stderr);
+    return EXIT_USAGE;
+  }
+  const char *cmd = argv[1];
+  if (strcmp(cmd, "--help") == 0 || strcmp(cmd, "-h") == 0 ||
+      strcmp(cmd, "help") == 0) {
+    usage(stdout);
+    return 0;
+  }
+  if (strcmp(cmd, "--version") == 0 || strcmp(cmd, "-V") == 0) {
+    printf("glint %s\n", glint_version());
+    return 0;
+  }
+  if (strcmp(cmd, "render") == 0)
+    return cmd_render(argc - 2, argv + 2);
+  if (strcmp(cmd, "bench") == 0)
+    return cmd_bench(argc - 2, argv + 2);
+  cli_error("unknown command '%s' (see glint --help)", cmd);
+  return EXIT_USAGE;
+}

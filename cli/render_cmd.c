@@ -1,0 +1,294 @@
+/* glint render [SCENE] [options] */
+#include "args.h"
+#include "cli.h"
+
+#include <glint.h>
+
+#include <signal.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+#include <sys/resource.h>
+#include <unistd.h>
+
+static void render_usage(FILE *f) {
+  fputs(
+      "Usage: glint render [SCENE] [options]\n"
+      "\n"
+      "Renders SCENE: a built-in scene (whitted, giza, billiard, phong; the\n"
+      "default is whitted) or a scene file (.nff or .json).\n"
+      "\n"
+      "Options:\n"
+      "  -o, --output FILE    image to write: .png, .bmp or .ppm\n"
+      "                       (default: SCENE.png)\n"
+      "  -W, --width N        image width in pixels (default: 640, or the\n"
+      "                       scene file's own)\n"
+      "  -H, --height N       image height in pixels (default: 480, or the\n"
+      "                       scene file's own)\n"
+      "  -d, --depth N        recursion depth, 1..64; 1 = local shading with\n"
+      "                       shadows (default: 5)\n"
+      "  -s, --spp N          samples per pixel, 1..4096 (default: 5)\n"
+      "  -b, --backend NAME   auto, scalar-float, scalar-double, sse, avx2,\n"
+      "                       avx512, stream, stream-sse, stream-avx2,\n"
+      "                       stream-avx512 (default: auto, the widest the\n"
+      "                       CPU supports)\n"
+      "  -t, --threads N      worker threads; 0 = all cores (default: 0)\n"
+      "      --math NAME      pow/exp in SIMD backends: minimax, fast,\n"
+      "                       taylor, exact (default: minimax)\n"
+      "      --no-newton      skip the Newton step after rcp (thesis fig. "
+      "5.7)\n"
+      "      --accel NAME     bvh or none (default: bvh)\n"
+      "      --gamma G        encode with gamma G (default: 1, linear)\n"
+      "  -q, --quiet          no progress bar and no summary line\n"
+      "      --stats          detailed statistics after rendering\n"
+      "  -h, --help           this help\n"
+      "\n"
+      "After rendering, one line gives the wall time, the rays traced and the\n"
+      "rate. Errors exit with status 2 and write no file.\n",
+      f);
+}
+
+typedef struct progress_state {
+  int last_percent;
+} progress_state;
+
+static int on_progress(void *user, double fraction) {
+  progress_state *p = user;
+  int percent = (int)(fraction * 100);
+  if (percent != p->last_percent) {
+    p->last_percent = percent;
+    int filled = percent * 40 / 100;
+    fprintf(stderr, "\r[%.*s%*s] %3d%%", filled,
+            "########################################", 40 - filled, "",
+            percent);
+    fflush(stderr);
+  }
+  return 0;
+}
+
+double cli_peak_rss_mib(void) {
+  struct rusage ru;
+  if (getrusage(RUSAGE_SELF, &ru) != 0)
+    return 0;
+  return (double)ru.ru_maxrss / 1024.0; /* Linux reports KiB */
+}
+
+glint_scene *cli_load_scene(const char *arg, char *stem,
+                            unsigned long stem_size) {
+  glint_error err;
+  glint_scene *scene = NULL;
+  int is_file = strchr(arg, '.') != NULL || strchr(arg, '/') != NULL;
+  glint_status st = is_file ? glint_scene_load(arg, &scene, &err)
+                            : glint_scene_builtin(arg, &scene, &err);
+  if (st) {
+    cli_error("%s", err.message);
+    return NULL;
+  }
+  /* The stem: the file's base name without its extension. */
+  const char *base = strrchr(arg, '/');
+  base = base ? base + 1 : arg;
+  snprintf(stem, stem_size, "%s", base);
+  char *dot = strrchr(stem, '.');
+  if (dot && dot != stem)
+    *dot = '\0';
+  return scene;
+}
+
+static double mega(uint64_t n) { return (double)n / 1e6; }
+
+static void print_stats(const glint_stats *s) {
+  uint64_t rays = s->primary_rays + s->secondary_rays + s->shadow_rays;
+  printf("  backend            %s, %d thread%s\n",
+         glint_backend_name(s->backend), s->threads,
+         s->threads == 1 ? "" : "s");
+  printf("  image              %dx%d, %d spp, depth %d\n", s->width, s->height,
+         s->spp, s->max_depth);
+  printf("  prepare            %.3f s (scene %.2f MiB)\n", s->prepare_seconds,
+         (double)s->scene_bytes / 1048576.0);
+  if (s->bvh_nodes)
+    printf("  bvh                %llu nodes, %.2f MiB, built in %.1f ms\n",
+           (unsigned long long)s->bvh_nodes, (double)s->bvh_bytes / 1048576.0,
+           s->bvh_build_seconds * 1e3);
+  printf("  render             %.3f s\n", s->render_seconds);
+  printf("  rays               %llu (%.2f Mrays/s)\n", (unsigned long long)rays,
+         s->render_seconds > 0 ? mega(rays) / s->render_seconds : 0.0);
+  printf("    primary          %llu\n", (unsigned long long)s->primary_rays);
+  printf("    reflected        %llu\n", (unsigned long long)s->reflected_rays);
+  printf("    refracted        %llu\n", (unsigned long long)s->refracted_rays);
+  printf("    shadow           %llu\n", (unsigned long long)s->shadow_rays);
+  printf("  total internal reflections %llu\n",
+         (unsigned long long)s->total_internal_reflections);
+  int width = glint_backend_width(s->backend);
+  if (s->beams) {
+    printf("  beams              %llu, %.2f sub-beams per beam\n",
+           (unsigned long long)s->beams,
+           (double)s->sub_beams / (double)s->beams);
+  }
+  if (s->packet_tests && width > 1)
+    printf("  lane utilisation   %.1f%% of %d lanes (%.2f active per packet "
+           "test)\n",
+           100.0 * (double)s->active_lanes / ((double)s->packet_tests * width),
+           width, (double)s->active_lanes / (double)s->packet_tests);
+  if (s->generations) {
+    printf("  generations        rays        packets   lane use\n");
+    for (int g = 0; g < s->generations && g < GLINT_STATS_MAX_GENERATIONS; g++)
+      printf("    %2d %19llu %14llu %9.1f%%\n", g,
+             (unsigned long long)s->gen_rays[g],
+             (unsigned long long)s->gen_packets[g],
+             s->gen_packets[g] ? 100.0 * (double)s->gen_active_lanes[g] /
+                                     ((double)s->gen_packets[g] * width)
+                               : 0.0);
+    printf("  stages             generation %.3f s, traversal %.3f s, "
+           "shading %.3f s, compaction %.3f s (summed over threads)\n",
+           s->stage_seconds[0], s->stage_seconds[1], s->stage_seconds[2],
+           s->stage_seconds[3]);
+    printf("  stream memory      %.2f MiB per thread\n",
+           (double)s->stream_bytes_per_thread / 1048576.0);
+  }
+  printf("  peak memory (RSS)  %.1f MiB\n", cli_peak_rss_mib());
+}
+
+int cmd_render(int argc, char **argv) {
+  const char *scene_arg = NULL, *output = NULL, *v;
+  int quiet = 0, want_stats = 0;
+  glint_render_settings rs;
+  glint_render_settings_default(&rs);
+  glint_error err;
+  arg_cursor c = {argc, argv, 0, NULL};
+  while (c.i < argc) {
+    const char *a = argv[c.i];
+    if (arg_is(&c, "-h", "--help")) {
+      render_usage(stdout);
+      return 0;
+    } else if (arg_is(&c, "-o", "--output")) {
+      if (!(output = arg_value(&c, "--output")))
+        return EXIT_USAGE;
+    } else if (arg_is(&c, "-W", "--width")) {
+      if (parse_int("--width", arg_value(&c, "--width"), 1, GLINT_MAX_DIMENSION,
+                    &rs.width))
+        return EXIT_USAGE;
+    } else if (arg_is(&c, "-H", "--height")) {
+      if (parse_int("--height", arg_value(&c, "--height"), 1,
+                    GLINT_MAX_DIMENSION, &rs.height))
+        return EXIT_USAGE;
+    } else if (arg_is(&c, "-d", "--depth")) {
+      if (parse_int("--depth", arg_value(&c, "--depth"), 1, GLINT_MAX_DEPTH,
+                    &rs.max_depth))
+        return EXIT_USAGE;
+    } else if (arg_is(&c, "-s", "--spp")) {
+      if (parse_int("--spp", arg_value(&c, "--spp"), 1, GLINT_MAX_SPP, &rs.spp))
+        return EXIT_USAGE;
+    } else if (arg_is(&c, "-t", "--threads")) {
+      if (parse_int("--threads", arg_value(&c, "--threads"), 0,
+                    GLINT_MAX_THREADS, &rs.threads))
+        return EXIT_USAGE;
+    } else if (arg_is(&c, "-b", "--backend")) {
+      if (!(v = arg_value(&c, "--backend")))
+        return EXIT_USAGE;
+      if (glint_backend_parse(v, &rs.backend, &err)) {
+        cli_error("--backend: %s", err.message);
+        return EXIT_USAGE;
+      }
+      if (!glint_backend_supported(rs.backend)) {
+        cli_error("backend '%s' is not supported on this CPU", v);
+        return EXIT_USAGE;
+      }
+    } else if (arg_is(&c, NULL, "--math")) {
+      if (!(v = arg_value(&c, "--math")))
+        return EXIT_USAGE;
+      if (glint_math_parse(v, &rs.math, &err)) {
+        cli_error("--math: %s", err.message);
+        return EXIT_USAGE;
+      }
+    } else if (arg_is(&c, NULL, "--no-newton")) {
+      rs.rcp_newton = 0;
+    } else if (arg_is(&c, NULL, "--accel")) {
+      if (!(v = arg_value(&c, "--accel")))
+        return EXIT_USAGE;
+      if (glint_accel_parse(v, &rs.accel, &err)) {
+        cli_error("--accel: %s", err.message);
+        return EXIT_USAGE;
+      }
+    } else if (arg_is(&c, NULL, "--gamma")) {
+      if (parse_double("--gamma", arg_value(&c, "--gamma"), 0, &rs.gamma))
+        return EXIT_USAGE;
+    } else if (arg_is(&c, "-q", "--quiet")) {
+      quiet = 1;
+    } else if (arg_is(&c, NULL, "--stats")) {
+      want_stats = 1;
+    } else if (a[0] == '-' && a[1] != '\0') {
+      cli_error("unknown option '%s' (see glint render --help)", a);
+      return EXIT_USAGE;
+    } else if (!scene_arg) {
+      scene_arg = a;
+      c.i++;
+    } else {
+      cli_error("more than one scene given ('%s' and '%s')", scene_arg, a);
+      return EXIT_USAGE;
+    }
+  }
+  if (!scene_arg)
+    scene_arg = "whitted";
+
+  char stem[256], default_output[300];
+  glint_scene *scene = cli_load_scene(scene_arg, stem, sizeof stem);
+  if (!scene)
+    return EXIT_USAGE;
+  if (!output) {
+    snprintf(default_output, sizeof default_output, "%s.png", stem);
+    output = default_output;
+  }
+  /* Refuse a bad output path before a long render, not after. */
+  if (glint_image_check_writable(output, &err)) {
+    cli_error("%s", err.message);
+    glint_scene_destroy(scene);
+    return EXIT_USAGE;
+  }
+
+  progress_state ps = {-1};
+  int show_progress = !quiet && isatty(STDERR_FILENO);
+  if (show_progress) {
+    rs.progress = on_progress;
+    rs.progress_user = &ps;
+  }
+  glint_image *image = NULL;
+  glint_stats stats;
+  glint_status st = glint_render(scene, &rs, &image, &stats, &err);
+  if (show_progress)
+    fputs("\r\033[K", stderr);
+  glint_scene_destroy(scene);
+  if (st) {
+    cli_error("%s", err.message);
+    return st == GLINT_E_MEMORY ? 1 : EXIT_USAGE;
+  }
+
+  /* Block termination signals while the file is written and renamed, so an
+   * interrupt cannot strand a temporary file; it takes effect right after. */
+  sigset_t block, old;
+  sigemptyset(&block);
+  sigaddset(&block, SIGINT);
+  sigaddset(&block, SIGTERM);
+  sigaddset(&block, SIGHUP);
+  sigprocmask(SIG_BLOCK, &block, &old);
+  st = glint_image_write(image, output, &err);
+  sigprocmask(SIG_SETMASK, &old, NULL);
+  glint_image_destroy(image);
+  if (st) {
+    cli_error("%s", err.message);
+    return EXIT_USAGE;
+  }
+
+  if (!quiet) {
+    uint64_t rays =
+        stats.primary_rays + stats.secondary_rays + stats.shadow_rays;
+    printf("%s: %dx%d, %s, %.3f s, %.2f M rays (%.2f M primary, %.2f M "
+           "secondary, %.2f M shadow), %.2f Mrays/s\n",
+           output, stats.width, stats.height, glint_backend_name(stats.backend),
+           stats.render_seconds, mega(rays), mega(stats.primary_rays),
+           mega(stats.secondary_rays), mega(stats.shadow_rays),
+           stats.render_seconds > 0 ? mega(rays) / stats.render_seconds : 0.0);
+  }
+  if (want_stats)
+    print_stats(&stats);
+  return 0;
+}

@@ -1,0 +1,335 @@
+/*
+ * glint — a fast Whitted-style CPU ray tracer.
+ *
+ * This is the library's only public header. Every object is behind an opaque
+ * handle with a `glint_` prefix; every fallible call returns a glint_status
+ * and, when the caller passes a glint_error, a readable message saying what
+ * went wrong (naming the file and line for scene files). The library keeps no
+ * global mutable state: two scenes rendered on two threads never interfere.
+ *
+ * The renderer implements the specification distilled from J. Kučera,
+ * "Ray-tracing using SSE" (FIT BUT Brno, 2010): the extended Phong (Whitted)
+ * model with shadows, reflection, refraction and Beer's law.
+ */
+#ifndef GLINT_H
+#define GLINT_H
+
+#include <stddef.h>
+#include <stdint.h>
+
+#ifdef __cplusplus
+extern "C" {
+#endif
+
+#define GLINT_VERSION_MAJOR 0
+#define GLINT_VERSION_MINOR 4
+#define GLINT_VERSION_PATCH 0
+
+/* "0.4.0": the version of the library actually linked. */
+const char *glint_version(void);
+
+/* ------------------------------------------------------------------------ */
+/* Errors                                                                   */
+/* ------------------------------------------------------------------------ */
+
+typedef enum glint_status {
+  GLINT_OK = 0,
+  GLINT_E_ARGUMENT,    /* a parameter is out of range or unknown */
+  GLINT_E_UNSUPPORTED, /* this CPU or build lacks what was asked for */
+  GLINT_E_IO,          /* a file could not be opened, read or written */
+  GLINT_E_PARSE,       /* a scene or mesh file is malformed */
+  GLINT_E_MEMORY,      /* an allocation failed */
+  GLINT_E_CANCELLED    /* the progress callback asked to stop */
+} glint_status;
+
+/* Filled by a failing call when the caller passes one; never required. */
+typedef struct glint_error {
+  glint_status status;
+  char message[1024];
+} glint_error;
+
+/* "argument", "unsupported", "io", "parse", "memory", "cancelled", "ok". */
+const char *glint_status_name(glint_status status);
+
+/* ------------------------------------------------------------------------ */
+/* Scenes                                                                   */
+/* ------------------------------------------------------------------------ */
+
+typedef struct glint_scene glint_scene;
+
+typedef struct glint_vec3 {
+  double x, y, z;
+} glint_vec3;
+
+/* A pinhole camera (SPEC §2): from, at, up and the horizontal field of view. */
+typedef struct glint_camera {
+  glint_vec3 from, at, up;
+  double fov_x_degrees;
+} glint_camera;
+
+typedef enum glint_texture {
+  GLINT_TEXTURE_NONE = 0,
+  /* A checkerboard on the plane through the two world axes least aligned with
+   * the surface normal (x and z for a floor): `odd` where
+   * floor(a/size) + floor(b/size) is odd, `even` elsewhere. */
+  GLINT_TEXTURE_CHECKER_PLANAR,
+  /* A 3-D checkerboard in object-local coordinates (a sphere's centre is the
+   * origin): `odd` where floor(x/size) + floor(y/size) + floor(z/size) is odd.
+   */
+  GLINT_TEXTURE_CHECKER_SOLID
+} glint_texture;
+
+/* The material of SPEC §4. Colours are linear RGB. */
+typedef struct glint_material {
+  glint_vec3 color; /* C, when untextured */
+  glint_texture texture;
+  glint_vec3 checker_odd, checker_even;
+  double checker_size;  /* edge of one checker cell, > 0 */
+  double ka, kd, ks, h; /* ambient, diffuse, highlight and its exponent */
+  double kr, kt, ior;   /* reflection, transmission, index of refraction */
+  glint_vec3 absorb;    /* Beer's law absorbance per unit length, per channel */
+} glint_material;
+
+/* White opaque matte: C = 1, ka = 0.1, kd = 0.9, everything else 0, ior 1. */
+void glint_material_default(glint_material *material);
+
+/* An empty scene: the default camera (from 0,0,10 at the origin, fov 60),
+ * 640x480, black background, white ambient light, no lights. */
+glint_status glint_scene_create(glint_scene **scene, glint_error *error);
+void glint_scene_destroy(glint_scene *scene);
+
+/* The thesis's scenes (SPEC §8): "whitted", "giza", "billiard", "phong". */
+size_t glint_builtin_scene_count(void);
+const char *glint_builtin_scene_name(size_t index);
+glint_status glint_scene_builtin(const char *name, glint_scene **scene,
+                                 glint_error *error);
+
+/* Loads a scene file, by extension: .nff (Eric Haines's Neutral File Format)
+ * or .json (glint's own format). Errors name the file and line (or JSON path).
+ */
+glint_status glint_scene_load(const char *path, glint_scene **scene,
+                              glint_error *error);
+
+glint_status glint_scene_set_camera(glint_scene *scene,
+                                    const glint_camera *camera,
+                                    glint_error *error);
+glint_status glint_scene_set_resolution(glint_scene *scene, int width,
+                                        int height, glint_error *error);
+glint_status glint_scene_set_background(glint_scene *scene, glint_vec3 color,
+                                        glint_error *error);
+glint_status glint_scene_set_ambient(glint_scene *scene, glint_vec3 color,
+                                     glint_error *error);
+glint_status glint_scene_add_light(glint_scene *scene, glint_vec3 position,
+                                   glint_vec3 color, glint_error *error);
+
+/* Materials are referred to by the index this returns. */
+glint_status glint_scene_add_material(glint_scene *scene,
+                                      const glint_material *material,
+                                      uint32_t *material_id,
+                                      glint_error *error);
+
+/* Primitives. Each call adds one object; beams split per object (SPEC §6). */
+glint_status glint_scene_add_sphere(glint_scene *scene, glint_vec3 center,
+                                    double radius, uint32_t material_id,
+                                    glint_error *error);
+/* The plane through `point` with normal `normal` (need not be unit length). */
+glint_status glint_scene_add_plane(glint_scene *scene, glint_vec3 normal,
+                                   glint_vec3 point, uint32_t material_id,
+                                   glint_error *error);
+/* Front side: a, b, c counter-clockwise. Triangles are visible from both
+ * sides; the side matters for refraction (entering or leaving). */
+glint_status glint_scene_add_triangle(glint_scene *scene, glint_vec3 a,
+                                      glint_vec3 b, glint_vec3 c,
+                                      uint32_t material_id, glint_error *error);
+/* An open cylinder or cone (no end caps) from `base` to `apex`. */
+glint_status glint_scene_add_cone(glint_scene *scene, glint_vec3 base,
+                                  double base_radius, glint_vec3 apex,
+                                  double apex_radius, uint32_t material_id,
+                                  glint_error *error);
+
+/* A triangle mesh as one object. `normals` (per vertex, may be NULL) gives
+ * smooth shading by interpolation. Indices are 3 per triangle. */
+typedef struct glint_mesh {
+  const glint_vec3 *positions;
+  const glint_vec3 *normals;
+  size_t vertex_count;
+  const uint32_t *indices;
+  size_t triangle_count;
+} glint_mesh;
+glint_status glint_scene_add_mesh(glint_scene *scene, const glint_mesh *mesh,
+                                  uint32_t material_id, glint_error *error);
+
+/* Loads an OBJ or PLY file (optionally .gz-compressed) as one mesh object,
+ * scaled by `scale` and then moved by `translate`. */
+glint_status glint_scene_add_mesh_file(glint_scene *scene, const char *path,
+                                       double scale, glint_vec3 translate,
+                                       uint32_t material_id,
+                                       glint_error *error);
+
+/* What a scene holds. */
+typedef struct glint_scene_info {
+  glint_camera camera;
+  int width, height; /* the scene's own resolution */
+  glint_vec3 background, ambient;
+  size_t lights, materials, objects;
+  size_t spheres, planes, triangles, cones;
+} glint_scene_info;
+void glint_scene_get_info(const glint_scene *scene, glint_scene_info *info);
+
+/* ------------------------------------------------------------------------ */
+/* Images                                                                   */
+/* ------------------------------------------------------------------------ */
+
+/* An 8-bit RGB image, rows top to bottom. */
+typedef struct glint_image glint_image;
+
+glint_status glint_image_create(int width, int height, glint_image **image,
+                                glint_error *error);
+void glint_image_destroy(glint_image *image);
+int glint_image_width(const glint_image *image);
+int glint_image_height(const glint_image *image);
+/* width*height*3 bytes, R G B, top row first. */
+uint8_t *glint_image_pixels(glint_image *image);
+const uint8_t *glint_image_pixels_const(const glint_image *image);
+
+typedef enum glint_image_format {
+  GLINT_FORMAT_UNKNOWN = 0,
+  GLINT_FORMAT_PNG,
+  GLINT_FORMAT_BMP, /* 24-bit, the thesis's output */
+  GLINT_FORMAT_PPM  /* binary P6 */
+} glint_image_format;
+
+/* By the extension (.png, .bmp, .ppm; case-insensitive). */
+glint_image_format glint_image_format_from_path(const char *path);
+
+/* Checks that `path` has a known extension and that its folder accepts a new
+ * file, without leaving anything behind. Call it before a long render. */
+glint_status glint_image_check_writable(const char *path, glint_error *error);
+
+/* Writes atomically: into a temporary file beside `path`, then renamed over
+ * it. A failure leaves any existing file untouched and no partial file. */
+glint_status glint_image_write(const glint_image *image, const char *path,
+                               glint_error *error);
+glint_status glint_image_read(const char *path, glint_image **image,
+                              glint_error *error);
+
+/* Peak signal-to-noise ratio in dB over all channels; INFINITY when equal,
+ * a negative value when the sizes differ. */
+double glint_image_psnr(const glint_image *a, const glint_image *b);
+
+/* ------------------------------------------------------------------------ */
+/* Rendering                                                                */
+/* ------------------------------------------------------------------------ */
+
+typedef enum glint_backend {
+  GLINT_BACKEND_AUTO = 0,      /* the fastest this CPU supports */
+  GLINT_BACKEND_SCALAR_FLOAT,  /* one ray at a time, float: the reference */
+  GLINT_BACKEND_SCALAR_DOUBLE, /* one ray at a time, double */
+  GLINT_BACKEND_SSE,           /* 4-wide beams (SPEC §6) */
+  GLINT_BACKEND_AVX2,          /* 8-wide beams */
+  GLINT_BACKEND_AVX512,        /* 16-wide beams */
+  GLINT_BACKEND_STREAM,        /* ray streams, widest ISA */
+  GLINT_BACKEND_STREAM_SSE,
+  GLINT_BACKEND_STREAM_AVX2,
+  GLINT_BACKEND_STREAM_AVX512,
+  GLINT_BACKEND_COUNT
+} glint_backend;
+
+const char *glint_backend_name(glint_backend backend);
+glint_status glint_backend_parse(const char *name, glint_backend *backend,
+                                 glint_error *error);
+/* Whether this CPU (and this build) can run it. */
+int glint_backend_supported(glint_backend backend);
+/* AUTO and STREAM to the concrete backend they stand for on this CPU. */
+glint_backend glint_backend_resolve(glint_backend backend);
+/* Lanes per packet: 1 for scalar backends. */
+int glint_backend_width(glint_backend backend);
+
+/* pow and exp in the SIMD backends (SPEC §7). Scalar backends use libm. */
+typedef enum glint_math {
+  GLINT_MATH_MINIMAX = 0, /* Remez minimax polynomials: the default */
+  GLINT_MATH_FAST,        /* IEEE-754 bit manipulation: fast, coarse */
+  GLINT_MATH_TAYLOR,      /* Taylor polynomials of lower degree */
+  GLINT_MATH_EXACT,       /* libm, lane by lane: the reference */
+  GLINT_MATH_COUNT
+} glint_math;
+const char *glint_math_name(glint_math math);
+glint_status glint_math_parse(const char *name, glint_math *math,
+                              glint_error *error);
+
+typedef enum glint_accel {
+  GLINT_ACCEL_BVH = 0, /* binned-SAH bounding volume hierarchy */
+  GLINT_ACCEL_NONE     /* every ray against every object: the thesis */
+} glint_accel;
+const char *glint_accel_name(glint_accel accel);
+glint_status glint_accel_parse(const char *name, glint_accel *accel,
+                               glint_error *error);
+
+/* Documented limits: anything beyond is rejected with GLINT_E_ARGUMENT. */
+#define GLINT_MAX_DEPTH 64
+#define GLINT_MAX_SPP 4096
+#define GLINT_MAX_DIMENSION 16384
+#define GLINT_MAX_THREADS 1024
+
+/* Called after each finished tile with the fraction done; may be called from
+ * any worker thread, but never by two at once. Return non-zero to cancel. */
+typedef int (*glint_progress_fn)(void *user, double fraction);
+
+typedef struct glint_render_settings {
+  int width, height; /* 0: the scene's own resolution */
+  int max_depth;     /* 1 = local shading with shadows; default 5 */
+  int spp;           /* samples per pixel; default 5 (SPEC §5) */
+  glint_backend backend;
+  glint_math math;
+  int rcp_newton; /* 1: refine rcp by a Newton step (eq. 3.1); 0: the
+                     thesis's figure 5.7 without it */
+  glint_accel accel;
+  int threads;  /* 0: all cores */
+  double gamma; /* 1: linear output (the default); else c^(1/gamma) */
+  glint_progress_fn progress;
+  void *progress_user;
+} glint_render_settings;
+
+void glint_render_settings_default(glint_render_settings *settings);
+
+#define GLINT_STATS_MAX_GENERATIONS 16
+
+/* What one render did. Counts are exact; times are wall-clock seconds. */
+typedef struct glint_stats {
+  glint_backend backend; /* the concrete backend that ran */
+  int width, height, spp, max_depth, threads;
+  double prepare_seconds; /* scene conversion and acceleration build */
+  double render_seconds;  /* tracing and shading, all tiles */
+  uint64_t primary_rays, secondary_rays, shadow_rays;
+  uint64_t reflected_rays, refracted_rays, total_internal_reflections;
+  /* Acceleration structure. */
+  uint64_t bvh_nodes, bvh_bytes;
+  double bvh_build_seconds;
+  uint64_t scene_bytes; /* prepared geometry, materials and BVH */
+  /* Packet backends: beams traced, sub-beams they split into, and the
+   * active lanes over all packet intersection tests (divide by
+   * packet_tests * width for the lane utilisation). */
+  uint64_t beams, sub_beams, packet_tests, active_lanes;
+  /* Stream backends, per generation (0 = primary rays). */
+  int generations;
+  uint64_t gen_rays[GLINT_STATS_MAX_GENERATIONS];
+  uint64_t gen_packets[GLINT_STATS_MAX_GENERATIONS];
+  uint64_t gen_active_lanes[GLINT_STATS_MAX_GENERATIONS];
+  double stage_seconds[4]; /* generation, traversal, shading, compaction */
+  uint64_t stream_bytes_per_thread;
+} glint_stats;
+
+/* Renders `scene` into a new image. `stats` may be NULL. */
+glint_status glint_render(const glint_scene *scene,
+                          const glint_render_settings *settings,
+                          glint_image **image, glint_stats *stats,
+                          glint_error *error);
+
+/* Cores the renderer would use for threads = 0. */
+int glint_cpu_count(void);
+
+#ifdef __cplusplus
+}
+#endif
+
+#endif /* GLINT_H */

@@ -1,0 +1,51 @@
+#include "core/cpu.h"
+
+#include "glint.h"
+
+#include <unistd.h>
+
+#if defined(__x86_64__) || defined(__i386__)
+#include <cpuid.h>
+
+static unsigned long long xgetbv0(void) {
+  unsigned int eax, edx;
+  __asm__ volatile("xgetbv" : "=a"(eax), "=d"(edx) : "c"(0));
+  return ((unsigned long long)edx << 32) | eax;
+}
+
+void glint_cpu_detect(glint_cpu_features *f) {
+  unsigned int a, b, c, d;
+  f->sse41 = f->avx2 = f->avx512 = 0;
+  if (!__get_cpuid(1, &a, &b, &c, &d))
+    return;
+  f->sse41 = (c >> 19) & 1;
+  int fma = (c >> 12) & 1, osxsave = (c >> 27) & 1, avx = (c >> 28) & 1;
+  if (!osxsave || !avx)
+    return;
+  unsigned long long xcr0 = xgetbv0();
+  int ymm_saved = (xcr0 & 0x6) == 0x6;
+  int zmm_saved = (xcr0 & 0xe6) == 0xe6;
+  if (__get_cpuid_max(0, 0) < 7)
+    return;
+  __cpuid_count(7, 0, a, b, c, d);
+  int avx2 = (b >> 5) & 1;
+  int avx512f = (b >> 16) & 1, avx512dq = (b >> 17) & 1;
+  int avx512bw = (b >> 30) & 1, avx512vl = (b >> 31) & 1;
+  f->avx2 = avx2 && fma && ymm_saved;
+  f->avx512 =
+      f->avx2 && avx512f && avx512dq && avx512bw && avx512vl && zmm_saved;
+}
+#else
+void glint_cpu_detect(glint_cpu_features *f) {
+  f->sse41 = f->avx2 = f->avx512 = 0;
+}
+#endif
+
+int glint_cpu_count(void) {
+  long n = sysconf(_SC_NPROCESSORS_ONLN);
+  if (n < 1)
+    return 1;
+  if (n > GLINT_MAX_THREADS)
+    return GLINT_MAX_THREADS;
+  return (int)n;
+}

@@ -1,0 +1,189 @@
+/* Images in memory, format dispatch by extension, and the atomic write: the
+ * encoder writes a temporary file in the destination folder, which is flushed,
+ * synced and renamed over the destination only when complete. A failure or an
+ * interruption never leaves a partial image or destroys an existing one. */
+#include "image/image.h"
+
+#include "core/error.h"
+
+#include <errno.h>
+#include <fcntl.h>
+#include <math.h>
+#include <stdlib.h>
+#include <string.h>
+#include <strings.h>
+#include <sys/stat.h>
+#include <unistd.h>
+
+glint_status glint_image_create(int w, int h, glint_image **out,
+                                glint_error *error) {
+  if (w < 1 || h < 1 || w > GLINT_MAX_DIMENSION || h > GLINT_MAX_DIMENSION)
+    return glint_fail(error, GLINT_E_ARGUMENT,
+                      "image size %dx%d is outside 1..%d", w, h,
+                      GLINT_MAX_DIMENSION);
+  glint_image *im = malloc(sizeof *im);
+  uint8_t *rgb = calloc((size_t)w * (size_t)h, 3);
+  if (!im || !rgb) {
+    free(im);
+    free(rgb);
+    return glint_fail(error, GLINT_E_MEMORY, "out of memory for a %dx%d image",
+                      w, h);
+  }
+  im->width = w;
+  im->height = h;
+  im->rgb = rgb;
+  *out = im;
+  return GLINT_OK;
+}
+
+void glint_image_destroy(glint_image *im) {
+  if (im) {
+    free(im->rgb);
+    free(im);
+  }
+}
+
+int glint_image_width(const glint_image *im) { return im->width; }
+int glint_image_height(const glint_image *im) { return im->height; }
+uint8_t *glint_image_pixels(glint_image *im) { return im->rgb; }
+const uint8_t *glint_image_pixels_const(const glint_image *im) {
+  return im->rgb;
+}
+
+glint_image_format glint_image_format_from_path(const char *path) {
+  const char *slash = strrchr(path, '/');
+  const char *dot = strrchr(slash ? slash : path, '.');
+  if (!dot)
+    return GLINT_FORMAT_UNKNOWN;
+  if (strcasecmp(dot, ".png") == 0)
+    return GLINT_FORMAT_PNG;
+  if (strcasecmp(dot, ".bmp") == 0)
+    return GLINT_FORMAT_BMP;
+  if (strcasecmp(dot, ".ppm") == 0)
+    return GLINT_FORMAT_PPM;
+  return GLINT_FORMAT_UNKNOWN;
+}
+
+static glint_status unknown_format(const char *path, glint_error *error) {
+  return glint_fail(error, GLINT_E_ARGUMENT,
+                    "%s: unknown image format (use .png, .bmp or .ppm)", path);
+}
+
+/* "dir/name.png" -> "dir/.name.png.XXXXXX" for mkstemp. */
+static char *temp_template(const char *path) {
+  const char *slash = strrchr(path, '/');
+  size_t dirlen = slash ? (size_t)(slash - path) + 1 : 0;
+  const char *base = path + dirlen;
+  size_t n = strlen(path) + 16;
+  char *t = malloc(n);
+  if (t)
+    snprintf(t, n, "%.*s.%s.XXXXXX", (int)dirlen, path, base);
+  return t;
+}
+
+/* Creates the temporary file beside `path`; returns its descriptor. */
+static int open_temp(const char *path, char **temp, glint_error *error) {
+  struct stat sb;
+  if (stat(path, &sb) == 0 && S_ISDIR(sb.st_mode)) {
+    glint_fail(error, GLINT_E_IO, "%s: is a directory", path);
+    return -1;
+  }
+  *temp = temp_template(path);
+  if (!*temp) {
+    glint_fail(error, GLINT_E_MEMORY, "out of memory");
+    return -1;
+  }
+  int fd = mkstemp(*temp);
+  if (fd < 0) {
+    glint_fail(error, GLINT_E_IO, "%s: cannot write here: %s", path,
+               strerror(errno));
+    free(*temp);
+    *temp = NULL;
+  }
+  return fd;
+}
+
+glint_status glint_image_check_writable(const char *path, glint_error *error) {
+  if (glint_image_format_from_path(path) == GLINT_FORMAT_UNKNOWN)
+    return unknown_format(path, error);
+  char *temp;
+  int fd = open_temp(path, &temp, error);
+  if (fd < 0)
+    return error ? error->status : GLINT_E_IO;
+  close(fd);
+  unlink(temp);
+  free(temp);
+  return GLINT_OK;
+}
+
+glint_status glint_image_write(const glint_image *im, const char *path,
+                               glint_error *error) {
+  glint_image_format fmt = glint_image_format_from_path(path);
+  if (fmt == GLINT_FORMAT_UNKNOWN)
+    return unknown_format(path, error);
+  char *temp;
+  int fd = open_temp(path, &temp, error);
+  if (fd < 0)
+    return error ? error->status : GLINT_E_IO;
+  /* mkstemp creates 0600; give the image the usual permissions. */
+  mode_t mask = umask(0);
+  umask(mask);
+  fchmod(fd, 0666 & ~mask);
+  FILE *f = fdopen(fd, "wb");
+  if (!f) {
+    close(fd);
+    unlink(temp);
+    free(temp);
+    return glint_fail(error, GLINT_E_IO, "%s: %s", path, strerror(errno));
+  }
+  int bad = fmt == GLINT_FORMAT_PNG   ? glint_png_encode(im, f)
+            : fmt == GLINT_FORMAT_BMP ? glint_bmp_encode(im, f)
+                                      : glint_ppm_encode(im, f);
+  int saved = errno;
+  if (!bad && fflush(f) != 0)
+    bad = 1, saved = errno;
+  if (!bad && fsync(fileno(f)) != 0 && errno != EINVAL)
+    bad = 1, saved = errno;
+  if (fclose(f) != 0 && !bad)
+    bad = 1, saved = errno;
+  if (!bad && rename(temp, path) != 0)
+    bad = 1, saved = errno;
+  if (bad) {
+    unlink(temp);
+    free(temp);
+    return glint_fail(error, GLINT_E_IO, "%s: writing failed: %s", path,
+                      saved ? strerror(saved) : "encoder error");
+  }
+  free(temp);
+  return GLINT_OK;
+}
+
+glint_status glint_image_read(const char *path, glint_image **out,
+                              glint_error *error) {
+  glint_image_format fmt = glint_image_format_from_path(path);
+  if (fmt == GLINT_FORMAT_UNKNOWN)
+    return unknown_format(path, error);
+  FILE *f = fopen(path, "rb");
+  if (!f)
+    return glint_fail(error, GLINT_E_IO, "%s: %s", path, strerror(errno));
+  glint_status st =
+      fmt == GLINT_FORMAT_PNG   ? glint_png_decode(f, path, out, error)
+      : fmt == GLINT_FORMAT_BMP ? glint_bmp_decode(f, path, out, error)
+                                : glint_ppm_decode(f, path, out, error);
+  fclose(f);
+  return st;
+}
+
+double glint_image_psnr(const glint_image *a, const glint_image *b) {
+  if (a->width != b->width || a->height != b->height)
+    return -1;
+  size_t n = (size_t)a->width * (size_t)a->height * 3;
+  double sum = 0;
+  for (size_t i = 0; i < n; i++) {
+    double d = (double)a->rgb[i] - (double)b->rgb[i];
+    sum += d * d;
+  }
+  if (sum == 0)
+    return INFINITY;
+  return 10 * log10(255.0 * 255.0 / (sum / (double)n));
+}

@@ -1,0 +1,26 @@
+#ifndef GLINT_IMAGE_IMAGE_H
+#define GLINT_IMAGE_IMAGE_H
+
+#include "glint.h"
+
+#include <stdio.h>
+
+struct glint_image {
+  int width, height;
+  uint8_t *rgb; /* width*height*3, top row first */
+};
+
+/* Encoders write the whole image to an open stream; 0 on success. */
+int glint_png_encode(const glint_image *image, FILE *f);
+int glint_bmp_encode(const glint_image *image, FILE *f);
+int glint_ppm_encode(const glint_image *image, FILE *f);
+
+/* Decoders read a whole image; on failure they fill error naming `path`. */
+glint_status glint_png_decode(FILE *f, const char *path, glint_image **image,
+                              glint_error *error);
+glint_status glint_bmp_decode(FILE *f, const char *path, glint_image **image,
+                              glint_error *error);
+glint_status glint_ppm_decode(FILE *f, const char *path, glint_image **image,
+                              glint_error *error);
+
+#endif

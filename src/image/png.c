@@ -1,0 +1,81 @@
+/* PNG through libpng. */
+#include "image/image.h"
+
+#include "core/error.h"
+
+#include <png.h>
+#include <setjmp.h>
+#include <stdlib.h>
+
+int glint_png_encode(const glint_image *im, FILE *f) {
+  png_structp png =
+      png_create_write_struct(PNG_LIBPNG_VER_STRING, NULL, NULL, NULL);
+  if (!png)
+    return -1;
+  png_infop info = png_create_info_struct(png);
+  if (!info || setjmp(png_jmpbuf(png))) {
+    png_destroy_write_struct(&png, &info);
+    return -1;
+  }
+  png_init_io(png, f);
+  png_set_IHDR(png, info, (png_uint_32)im->width, (png_uint_32)im->height, 8,
+               PNG_COLOR_TYPE_RGB, PNG_INTERLACE_NONE,
+               PNG_COMPRESSION_TYPE_DEFAULT, PNG_FILTER_TYPE_DEFAULT);
+  png_write_info(png, info);
+  for (int y = 0; y < im->height; y++)
+    png_write_row(png, im->rgb + (size_t)y * im->width * 3);
+  png_write_end(png, NULL);
+  png_destroy_write_struct(&png, &info);
+  return ferror(f) ? -1 : 0;
+}
+
+glint_status glint_png_decode(FILE *f, const char *path, glint_image **out,
+                              glint_error *error) {
+  png_structp png =
+      png_create_read_struct(PNG_LIBPNG_VER_STRING, NULL, NULL, NULL);
+  if (!png)
+    return glint_fail(error, GLINT_E_MEMORY, "out of memory");
+  png_infop info = png_create_info_struct(png);
+  glint_image *volatile im = NULL;
+  if (!info || setjmp(png_jmpbuf(png))) {
+    png_destroy_read_struct(&png, &info, NULL);
+    glint_image_destroy(im);
+    return glint_fail(error, GLINT_E_PARSE, "%s: not a valid PNG file", path);
+  }
+  png_init_io(png, f);
+  png_read_info(png, info);
+  png_uint_32 w = png_get_image_width(png, info);
+  png_uint_32 h = png_get_image_height(png, info);
+  /* Normalise every PNG flavour to 8-bit RGB. */
+  png_set_expand(png);
+  png_set_strip_16(png);
+  png_set_strip_alpha(png);
+  png_set_gray_to_rgb(png);
+  png_set_interlace_handling(png);
+  png_read_update_info(png, info);
+  if (w < 1 || h < 1 || w > GLINT_MAX_DIMENSION || h > GLINT_MAX_DIMENSION ||
+      png_get_rowbytes(png, info) != (size_t)w * 3) {
+    png_destroy_read_struct(&png, &info, NULL);
+    return glint_fail(error, GLINT_E_PARSE, "%s: unsupported PNG layout", path);
+  }
+  glint_image *tmp;
+  if (glint_image_create((int)w, (int)h, &tmp, error)) {
+    png_destroy_read_struct(&png, &info, NULL);
+    return error ? error->status : GLINT_E_MEMORY;
+  }
+  im = tmp;
+  png_bytep *rows = malloc(sizeof *rows * h);
+  if (!rows) {
+    png_destroy_read_struct(&png, &info, NULL);
+    glint_image_destroy(tmp);
+    return glint_fail(error, GLINT_E_MEMORY, "out of memory");
+  }
+  for (png_uint_32 y = 0; y < h; y++)
+    rows[y] = tmp->rgb + (size_t)y * w * 3;
+  png_read_image(png, rows);
+  png_read_end(png, NULL);
+  free(rows);
+  png_destroy_read_struct(&png, &info, NULL);
+  *out = tmp;
+  return GLINT_OK;
+}

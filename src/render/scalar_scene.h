@@ -1,0 +1,96 @@
+/* A scene prepared for the scalar tracer, in the translation unit's
+ * precision: flat arrays per primitive kind plus the queries the tracer asks
+ * of them (nearest hit, shadow transmission). */
+#ifndef GLINT_RENDER_SCALAR_SCENE_H
+#define GLINT_RENDER_SCALAR_SCENE_H
+
+#include "glint.h"
+#include "math/vec3.h"
+#include "render/camera.h"
+#include "render/frame.h"
+
+#include <stdint.h>
+
+typedef struct sphere_r {
+  vec3 center;
+  real r2;
+  uint32_t object;
+} sphere_r;
+
+typedef struct plane_r {
+  vec3 n;
+  real d;
+  uint32_t object;
+} plane_r;
+
+typedef struct triangle_r {
+  vec3 a, e1, e2;
+  vec3 ng; /* unit geometric normal, front side by counter-clockwise order */
+  uint32_t object;
+  uint32_t normals; /* first of 3 vertex normals, or GLINT_NO_NORMALS */
+} triangle_r;
+
+typedef struct material_r {
+  vec3 color, odd, even;
+  real inv_size;
+  real ka, kd, ks, h, kr, kt, ior;
+  vec3 absorb;
+  int texture;
+  int absorbs; /* absorb != 0 */
+} material_r;
+
+typedef struct object_r {
+  uint32_t material, shape;
+  vec3 origin;        /* solid texture origin */
+  int axis_u, axis_v; /* world axes of a planar texture */
+} object_r;
+
+typedef struct light_r {
+  vec3 position, color;
+} light_r;
+
+typedef struct scene_r {
+  camera cam;
+  sphere_r *spheres;
+  plane_r *planes;
+  triangle_r *triangles;
+  vec3 *normals;
+  object_r *objects;
+  material_r *materials;
+  light_r *lights;
+  size_t sphere_count, plane_count, triangle_count, light_count;
+  vec3 background, ambient;
+  real eps;
+  int width, height, spp, max_depth;
+  const float (*samples)[2];
+} scene_r;
+
+/* What the nearest-hit query returns. */
+typedef struct hit_r {
+  real t;
+  uint32_t shape; /* glint_shape */
+  uint32_t prim;
+  int inside; /* spheres: the ray started inside */
+  real u, v;  /* triangles: barycentrics of v[1], v[2] */
+} hit_r;
+
+#define scalar_scene_prepare REAL_NAME(glint_scalar_scene_prepare)
+#define scalar_scene_release REAL_NAME(glint_scalar_scene_release)
+#define scalar_nearest_hit REAL_NAME(glint_scalar_nearest_hit)
+#define scalar_transmission REAL_NAME(glint_scalar_transmission)
+
+glint_status scalar_scene_prepare(const glint_scene *scene,
+                                  const glint_frame *frame, scene_r **out,
+                                  glint_stats *stats, glint_error *error);
+void scalar_scene_release(scene_r *s);
+
+/* Nearest hit along o + t d, eps < t < tmax. */
+int scalar_nearest_hit(const scene_r *s, vec3 o, vec3 d, real tmax, hit_r *hit);
+
+/* SPEC §4: the fraction of light that travels from o along unit d for a
+ * distance dist. An opaque surface on the way gives 0; each transparent
+ * surface crossed multiplies by its kt, and each stretch inside an absorbing
+ * object by exp(-absorb * length). */
+vec3 scalar_transmission(const scene_r *s, vec3 o, vec3 d, real dist);
+
+#endif

@@ -1,0 +1,399 @@
+/* Building a scene through the public API, with every argument checked: a
+ * NaN or an infinity never reaches a tracer. */
+#include "scene/scene.h"
+
+#include "core/error.h"
+#include "core/memory.h"
+
+#include <math.h>
+#include <stdlib.h>
+#include <string.h>
+
+int glint_vec3_finite(glint_vec3 v) {
+  return isfinite(v.x) && isfinite(v.y) && isfinite(v.z);
+}
+
+static double vlen(glint_vec3 v) {
+  return sqrt(v.x * v.x + v.y * v.y + v.z * v.z);
+}
+
+static glint_vec3 vsub(glint_vec3 a, glint_vec3 b) {
+  return (glint_vec3){a.x - b.x, a.y - b.y, a.z - b.z};
+}
+
+static glint_vec3 vcross(glint_vec3 a, glint_vec3 b) {
+  return (glint_vec3){a.y * b.z - a.z * b.y, a.z * b.x - a.x * b.z,
+                      a.x * b.y - a.y * b.x};
+}
+
+void glint_material_default(glint_material *m) {
+  memset(m, 0, sizeof *m);
+  m->color = (glint_vec3){1, 1, 1};
+  m->checker_odd = (glint_vec3){1, 1, 1};
+  m->checker_even = (glint_vec3){0, 0, 0};
+  m->checker_size = 1;
+  m->ka = 0.1;
+  m->kd = 0.9;
+  m->h = 1;
+  m->ior = 1;
+}
+
+glint_status glint_scene_create(glint_scene **out, glint_error *error) {
+  glint_scene *s = calloc(1, sizeof *s);
+  if (!s)
+    return glint_fail(error, GLINT_E_MEMORY, "out of memory creating a scene");
+  s->camera = (glint_camera){{0, 0, 10}, {0, 0, 0}, {0, 1, 0}, 60};
+  s->width = 640;
+  s->height = 480;
+  s->ambient = (glint_vec3){1, 1, 1};
+  *out = s;
+  return GLINT_OK;
+}
+
+void glint_scene_destroy(glint_scene *s) {
+  if (!s)
+    return;
+  free(s->lights);
+  free(s->materials);
+  free(s->objects);
+  free(s->spheres);
+  free(s->planes);
+  free(s->triangles);
+  free(s->tri_normals);
+  free(s->cones);
+  free(s);
+}
+
+static glint_status oom(glint_error *error) {
+  return glint_fail(error, GLINT_E_MEMORY, "out of memory building the scene");
+}
+
+glint_status glint_scene_set_camera(glint_scene *s, const glint_camera *c,
+                                    glint_error *error) {
+  if (!glint_vec3_finite(c->from) || !glint_vec3_finite(c->at) ||
+      !glint_vec3_finite(c->up) || !isfinite(c->fov_x_degrees))
+    return glint_fail(error, GLINT_E_ARGUMENT,
+                      "camera: coordinates must be finite numbers");
+  if (!(c->fov_x_degrees > 0 && c->fov_x_degrees < 180))
+    return glint_fail(error, GLINT_E_ARGUMENT,
+                      "camera: field of view %g is not between 0 and 180 "
+                      "degrees",
+                      c->fov_x_degrees);
+  glint_vec3 d = vsub(c->at, c->from);
+  if (vlen(d) == 0)
+    return glint_fail(error, GLINT_E_ARGUMENT,
+                      "camera: 'from' and 'at' are the same point");
+  double dl = vlen(d), ul = vlen(c->up);
+  if (ul == 0 || vlen(vcross(d, c->up)) <= 1e-9 * dl * ul)
+    return glint_fail(error, GLINT_E_ARGUMENT,
+                      "camera: 'up' is zero or parallel to the view "
+                      "direction");
+  s->camera = *c;
+  return GLINT_OK;
+}
+
+glint_status glint_scene_set_resolution(glint_scene *s, int w, int h,
+                                        glint_error *error) {
+  if (w < 1 || h < 1 || w > GLINT_MAX_DIMENSION || h > GLINT_MAX_DIMENSION)
+    return glint_fail(error, GLINT_E_ARGUMENT,
+                      "resolution %dx%d is outside 1..%d", w, h,
+                      GLINT_MAX_DIMENSION);
+  s->width = w;
+  s->height = h;
+  return GLINT_OK;
+}
+
+static glint_status check_color(glint_vec3 c, const char *what,
+                                glint_error *error) {
+  if (!glint_vec3_finite(c))
+    return glint_fail(error, GLINT_E_ARGUMENT, "%s must be finite", what);
+  if (c.x < 0 || c.y < 0 || c.z < 0)
+    return glint_fail(error, GLINT_E_ARGUMENT, "%s must not be negative", what);
+  return GLINT_OK;
+}
+
+glint_status glint_scene_set_background(glint_scene *s, glint_vec3 c,
+                                        glint_error *error) {
+  glint_status st = check_color(c, "background colour", error);
+  if (st == GLINT_OK)
+    s->background = c;
+  return st;
+}
+
+glint_status glint_scene_set_ambient(glint_scene *s, glint_vec3 c,
+                                     glint_error *error) {
+  glint_status st = check_color(c, "ambient light", error);
+  if (st == GLINT_OK)
+    s->ambient = c;
+  return st;
+}
+
+glint_status glint_scene_add_light(glint_scene *s, glint_vec3 p, glint_vec3 c,
+                                   glint_error *error) {
+  if (!glint_vec3_finite(p))
+    return glint_fail(error, GLINT_E_ARGUMENT, "light position must be finite");
+  glint_status st = check_color(c, "light colour", error);
+  if (st != GLINT_OK)
+    return st;
+  glint_light l = {p, c};
+  return GLINT_PUSH(s->lights, s->light_count, s->light_cap, l) ? oom(error)
+                                                                : GLINT_OK;
+}
+
+glint_status glint_scene_add_material(glint_scene *s, const glint_material *m,
+                                      uint32_t *id, glint_error *error) {
+  glint_status st;
+  if ((st = check_color(m->color, "material colour", error)) ||
+      (st = check_color(m->checker_odd, "checker colour", error)) ||
+      (st = check_color(m->checker_even, "checker colour", error)) ||
+      (st = check_color(m->absorb, "absorbance", error)))
+    return st;
+  const double k[] = {m->ka, m->kd, m->ks, m->h, m->kr, m->kt};
+  const char *names[] = {"ka", "kd", "ks", "h", "kr", "kt"};
+  for (int i = 0; i < 6; i++)
+    if (!isfinite(k[i]) || k[i] < 0)
+      return glint_fail(error, GLINT_E_ARGUMENT,
+                        "material %s = %g must be a finite number >= 0",
+                        names[i], k[i]);
+  if (!isfinite(m->ior) || m->ior <= 0)
+    return glint_fail(error, GLINT_E_ARGUMENT,
+                      "material ior = %g must be a finite number > 0", m->ior);
+  if (m->texture != GLINT_TEXTURE_NONE &&
+      m->texture != GLINT_TEXTURE_CHECKER_PLANAR &&
+      m->texture != GLINT_TEXTURE_CHECKER_SOLID)
+    return glint_fail(error, GLINT_E_ARGUMENT, "unknown texture kind %d",
+                      (int)m->texture);
+  if (m->texture != GLINT_TEXTURE_NONE &&
+      !(isfinite(m->checker_size) && m->checker_size > 0))
+    return glint_fail(error, GLINT_E_ARGUMENT,
+                      "checker size %g must be a finite number > 0",
+                      m->checker_size);
+  if (s->material_count >= UINT32_MAX)
+    return glint_fail(error, GLINT_E_ARGUMENT, "too many materials");
+  if (GLINT_PUSH(s->materials, s->material_count, s->material_cap, *m))
+    return oom(error);
+  if (id)
+    *id = (uint32_t)(s->material_count - 1);
+  return GLINT_OK;
+}
+
+glint_status glint_scene_begin_object(glint_scene *s, glint_shape shape,
+                                      uint32_t material, glint_error *error) {
+  if (material >= s->material_count)
+    return glint_fail(error, GLINT_E_ARGUMENT,
+                      "material %u does not exist (the scene has %zu)",
+                      material, s->material_count);
+  if (s->object_count >= UINT32_MAX - 1)
+    return glint_fail(error, GLINT_E_ARGUMENT, "too many objects");
+  size_t first = 0;
+  switch (shape) {
+  case GLINT_SHAPE_SPHERE: first = s->sphere_count; break;
+  case GLINT_SHAPE_TRIANGLE: first = s->triangle_count; break;
+  case GLINT_SHAPE_CONE: first = s->cone_count; break;
+  case GLINT_SHAPE_PLANE: first = s->plane_count; break;
+  }
+  if (first >= UINT32_MAX)
+    return glint_fail(error, GLINT_E_ARGUMENT, "too many primitives");
+  glint_object o = {material, (uint32_t)shape, (uint32_t)first, 0, {0, 0, 0}};
+  return GLINT_PUSH(s->objects, s->object_count, s->object_cap, o) ? oom(error)
+                                                                   : GLINT_OK;
+}
+
+glint_status glint_scene_add_sphere(glint_scene *s, glint_vec3 c, double r,
+                                    uint32_t material, glint_error *error) {
+  if (!glint_vec3_finite(c) || !isfinite(r))
+    return glint_fail(error, GLINT_E_ARGUMENT,
+                      "sphere: coordinates must be finite numbers");
+  if (!(r > 0))
+    return glint_fail(error, GLINT_E_ARGUMENT, "sphere: radius %g must be > 0",
+                      r);
+  glint_status st =
+      glint_scene_begin_object(s, GLINT_SHAPE_SPHERE, material, error);
+  if (st)
+    return st;
+  glint_object *o = &s->objects[s->object_count - 1];
+  glint_sphere_prim p = {c, r, (uint32_t)(s->object_count - 1)};
+  if (GLINT_PUSH(s->spheres, s->sphere_count, s->sphere_cap, p)) {
+    s->object_count--;
+    return oom(error);
+  }
+  o->count = 1;
+  o->origin = c;
+  return GLINT_OK;
+}
+
+glint_status glint_scene_add_plane(glint_scene *s, glint_vec3 n, glint_vec3 p,
+                                   uint32_t material, glint_error *error) {
+  if (!glint_vec3_finite(n) || !glint_vec3_finite(p))
+    return glint_fail(error, GLINT_E_ARGUMENT,
+                      "plane: coordinates must be finite numbers");
+  double len = vlen(n);
+  if (!(len > 0) || !isfinite(len))
+    return glint_fail(error, GLINT_E_ARGUMENT,
+                      "plane: the normal must not be zero");
+  glint_status st =
+      glint_scene_begin_object(s, GLINT_SHAPE_PLANE, material, error);
+  if (st)
+    return st;
+  glint_vec3 u = {n.x / len, n.y / len, n.z / len};
+  glint_plane_prim pl = {u, -(u.x * p.x + u.y * p.y + u.z * p.z),
+                         (uint32_t)(s->object_count - 1)};
+  if (GLINT_PUSH(s->planes, s->plane_count, s->plane_cap, pl)) {
+    s->object_count--;
+    return oom(error);
+  }
+  s->objects[s->object_count - 1].count = 1;
+  return GLINT_OK;
+}
+
+glint_status glint_scene_push_triangle(glint_scene *s, glint_vec3 a,
+                                       glint_vec3 b, glint_vec3 c,
+                                       const glint_vec3 normals[3],
+                                       glint_error *error) {
+  if (!glint_vec3_finite(a) || !glint_vec3_finite(b) || !glint_vec3_finite(c))
+    return glint_fail(error, GLINT_E_ARGUMENT,
+                      "triangle: coordinates must be finite numbers");
+  glint_object *o = &s->objects[s->object_count - 1];
+  if (s->triangle_count >= UINT32_MAX - 1)
+    return glint_fail(error, GLINT_E_ARGUMENT, "too many triangles");
+  glint_triangle_prim t = {
+      {a, b, c}, (uint32_t)(s->object_count - 1), GLINT_NO_NORMALS};
+  if (normals) {
+    for (int i = 0; i < 3; i++)
+      if (!glint_vec3_finite(normals[i]))
+        return glint_fail(error, GLINT_E_ARGUMENT,
+                          "triangle: normals must be finite numbers");
+    if (s->tri_normal_count >= UINT32_MAX - 3)
+      return glint_fail(error, GLINT_E_ARGUMENT, "too many normals");
+    if (glint_grow((void **)&s->tri_normals, &s->tri_normal_cap,
+                   s->tri_normal_count + 3, sizeof *s->tri_normals))
+      return oom(error);
+    t.normals = (uint32_t)s->tri_normal_count;
+    for (int i = 0; i < 3; i++) {
+      glint_vec3 nv = normals[i];
+      double l = vlen(nv);
+      /* A zero normal falls back to the face normal at shading time. */
+      s->tri_normals[s->tri_normal_count++] =
+          l > 0 ? (glint_vec3){nv.x / l, nv.y / l, nv.z / l} : nv;
+    }
+  }
+  if (GLINT_PUSH(s->triangles, s->triangle_count, s->triangle_cap, t))
+    return oom(error);
+  o->count++;
+  return GLINT_OK;
+}
+
+glint_status glint_scene_add_triangle(glint_scene *s, glint_vec3 a,
+                                      glint_vec3 b, glint_vec3 c,
+                                      uint32_t material, glint_error *error) {
+  if (!glint_vec3_finite(a) || !glint_vec3_finite(b) || !glint_vec3_finite(c))
+    return glint_fail(error, GLINT_E_ARGUMENT,
+                      "triangle: coordinates must be finite numbers");
+  glint_status st =
+      glint_scene_begin_object(s, GLINT_SHAPE_TRIANGLE, material, error);
+  if (st)
+    return st;
+  st = glint_scene_push_triangle(s, a, b, c, NULL, error);
+  if (st)
+    s->object_count--;
+  return st;
+}
+
+glint_status glint_scene_add_cone(glint_scene *s, glint_vec3 base, double rb,
+                                  glint_vec3 apex, double ra, uint32_t material,
+                                  glint_error *error) {
+  if (!glint_vec3_finite(base) || !glint_vec3_finite(apex) || !isfinite(rb) ||
+      !isfinite(ra))
+    return glint_fail(error, GLINT_E_ARGUMENT,
+                      "cone: coordinates must be finite numbers");
+  if (rb < 0 || ra < 0 || (rb == 0 && ra == 0))
+    return glint_fail(error, GLINT_E_ARGUMENT,
+                      "cone: radii %g and %g must be >= 0 and not both 0", rb,
+                      ra);
+  if (vlen(vsub(apex, base)) == 0)
+    return glint_fail(error, GLINT_E_ARGUMENT,
+                      "cone: base and apex are the same point");
+  glint_status st =
+      glint_scene_begin_object(s, GLINT_SHAPE_CONE, material, error);
+  if (st)
+    return st;
+  glint_cone_prim p = {base, apex, rb, ra, (uint32_t)(s->object_count - 1)};
+  if (GLINT_PUSH(s->cones, s->cone_count, s->cone_cap, p)) {
+    s->object_count--;
+    return oom(error);
+  }
+  s->objects[s->object_count - 1].count = 1;
+  return GLINT_OK;
+}
+
+glint_status glint_scene_add_mesh(glint_scene *s, const glint_mesh *m,
+                                  uint32_t material, glint_error *error) {
+  if (!m || !m->positions || (!m->indices && m->triangle_count))
+    return glint_fail(error, GLINT_E_ARGUMENT, "mesh: missing arrays");
+  for (size_t i = 0; i < 3 * m->triangle_count; i++)
+    if (m->indices[i] >= m->vertex_count)
+      return glint_fail(error, GLINT_E_ARGUMENT,
+                        "mesh: triangle %zu refers to vertex %u, but the "
+                        "mesh has %zu",
+                        i / 3, m->indices[i], m->vertex_count);
+  glint_status st =
+      glint_scene_begin_object(s, GLINT_SHAPE_TRIANGLE, material, error);
+  if (st)
+    return st;
+  size_t tri0 = s->triangle_count, nrm0 = s->tri_normal_count;
+  for (size_t i = 0; i < m->triangle_count && st == GLINT_OK; i++) {
+    const uint32_t *ix = &m->indices[3 * i];
+    glint_vec3 n[3];
+    if (m->normals)
+      for (int k = 0; k < 3; k++)
+        n[k] = m->normals[ix[k]];
+    st = glint_scene_push_triangle(s, m->positions[ix[0]], m->positions[ix[1]],
+                                   m->positions[ix[2]], m->normals ? n : NULL,
+                                   error);
+  }
+  if (st) { /* leave the scene as it was */
+    s->triangle_count = tri0;
+    s->tri_normal_count = nrm0;
+    s->object_count--;
+  }
+  return st;
+}
+
+void glint_scene_get_info(const glint_scene *s, glint_scene_info *info) {
+  info->camera = s->camera;
+  info->width = s->width;
+  info->height = s->height;
+  info->background = s->background;
+  info->ambient = s->ambient;
+  info->lights = s->light_count;
+  info->materials = s->material_count;
+  info->objects = s->object_count;
+  info->spheres = s->sphere_count;
+  info->planes = s->plane_count;
+  info->triangles = s->triangle_count;
+  info->cones = s->cone_count;
+}
+
+static double absmax3(glint_vec3 v, double m) {
+  m = fmax(m, fabs(v.x));
+  m = fmax(m, fabs(v.y));
+  return fmax(m, fabs(v.z));
+}
+
+double glint_scene_epsilon(const glint_scene *s) {
+  double m = absmax3(s->camera.from, 0);
+  for (size_t i = 0; i < s->sphere_count; i++)
+    m = fmax(m, absmax3(s->spheres[i].center, 0) + s->spheres[i].radius);
+  for (size_t i = 0; i < s->triangle_count; i++)
+    for (int k = 0; k < 3; k++)
+      m = absmax3(s->triangles[i].v[k], m);
+  for (size_t i = 0; i < s->cone_count; i++) {
+    const glint_cone_prim *c = &s->cones[i];
+    double r = fmax(c->base_radius, c->apex_radius);
+    m = fmax(m, absmax3(c->base, 0) + r);
+    m = fmax(m, absmax3(c->apex, 0) + r);
+  }
+  if (!(m > 1e-6))
+    m = 1e-6;
+  return 1e-4 * m;
+}

@@ -1,0 +1,289 @@
+/* The command-line program, run as a user would: every error path exits
+ * with status 2, prints one message naming the problem and writes no file;
+ * the success paths write the image and the summary line. */
+#include "test_util.h"
+
+#include <fcntl.h>
+#include <spawn.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+#include <sys/stat.h>
+#include <sys/wait.h>
+#include <unistd.h>
+
+extern char **environ;
+
+static char dir[64];
+static char out[65536], err[65536];
+
+static int setup(void **state) {
+  (void)state;
+  strcpy(dir, "/tmp/glint-test-cli-XXXXXX");
+  return mkdtemp(dir) ? 0 : -1;
+}
+
+static int teardown(void **state) {
+  (void)state;
+  char cmd[128];
+  snprintf(cmd, sizeof cmd, "rm -rf '%s'", dir);
+  return system(cmd) == 0 ? 0 : -1;
+}
+
+static void slurp(const char *path, char *buf, size_t size) {
+  FILE *f = fopen(path, "rb");
+  size_t n = f ? fread(buf, 1, size - 1, f) : 0;
+  buf[n] = '\0';
+  if (f)
+    fclose(f);
+}
+
+/* Runs glint with the given arguments (NULL-terminated) in the test folder;
+ * returns the exit status and fills out/err. */
+static int run(const char *first, ...) {
+  const char *argv[64] = {GLINT_EXE};
+  int n = 1;
+  va_list ap;
+  va_start(ap, first);
+  for (const char *a = first; a && n < 63; a = va_arg(ap, const char *))
+    argv[n++] = a;
+  va_end(ap);
+  argv[n] = NULL;
+  char out_path[128], err_path[128];
+  snprintf(out_path, sizeof out_path, "%s/.stdout", dir);
+  snprintf(err_path, sizeof err_path, "%s/.stderr", dir);
+  posix_spawn_file_actions_t fa;
+  posix_spawn_file_actions_init(&fa);
+  posix_spawn_file_actions_addopen(&fa, 1, out_path,
+                                   O_WRONLY | O_CREAT | O_TRUNC, 0644);
+  posix_spawn_file_actions_addopen(&fa, 2, err_path,
+                                   O_WRONLY | O_CREAT | O_TRUNC, 0644);
+  char cwd[512];
+  if (!getcwd(cwd, sizeof cwd) || chdir(dir) != 0)
+    fail_msg("cannot enter %s", dir);
+  pid_t pid;
+  int rc =
+      posix_spawn(&pid, GLINT_EXE, &fa, NULL, (char *const *)argv, environ);
+  if (chdir(cwd) != 0)
+    fail_msg("cannot return to %s", cwd);
+  posix_spawn_file_actions_destroy(&fa);
+  if (rc != 0)
+    fail_msg("cannot run %s", GLINT_EXE);
+  int status;
+  waitpid(pid, &status, 0);
+  slurp(out_path, out, sizeof out);
+  slurp(err_path, err, sizeof err);
+  unlink(out_path);
+  unlink(err_path);
+  if (!WIFEXITED(status))
+    fail_msg("glint did not exit normally (signal %d); stderr: %s",
+             WIFSIGNALED(status) ? WTERMSIG(status) : 0, err);
+  return WEXITSTATUS(status);
+}
+
+static int exists(const char *name) {
+  char p[256];
+  snprintf(p, sizeof p, "%s/%s", dir, name);
+  struct stat sb;
+  return stat(p, &sb) == 0;
+}
+
+/* Only the stdout/stderr capture files may be in the folder. */
+static int folder_is_empty(void) {
+  char cmd[256];
+  snprintf(cmd, sizeof cmd, "test -z \"$(ls -A '%s')\"", dir);
+  return system(cmd) == 0;
+}
+
+#define EXPECT_USAGE_ERROR(text, ...)                                          \
+  do {                                                                         \
+    int rc_ = run(__VA_ARGS__, NULL);                                          \
+    if (rc_ != 2)                                                              \
+      fail_msg("exit %d, want 2; stderr: %s", rc_, err);                       \
+    if (!strstr(err, text))                                                    \
+      fail_msg("stderr '%s' lacks '%s'", err, text);                           \
+    if (strncmp(err, "glint: ", 7) != 0 ||                                     \
+        strchr(err, '\n') != err + strlen(err) - 1)                            \
+      fail_msg("want exactly one line starting 'glint: ', got '%s'", err);     \
+    if (!folder_is_empty())                                                    \
+      fail_msg("a file was written on error");                                 \
+  } while (0)
+
+static void usage_errors(void **state) {
+  (void)state;
+  EXPECT_USAGE_ERROR("unknown command 'paint'", "paint");
+  EXPECT_USAGE_ERROR("unknown scene 'cornell'", "render", "cornell");
+  EXPECT_USAGE_ERROR("unknown backend 'gpu'", "render", "-b", "gpu");
+  EXPECT_USAGE_ERROR("unknown option '--fast'", "render", "--fast");
+  EXPECT_USAGE_ERROR("more than one scene", "render", "whitted", "giza");
+  EXPECT_USAGE_ERROR("--output needs a value", "render", "-o");
+  EXPECT_USAGE_ERROR("--math", "render", "--math", "sloppy");
+  EXPECT_USAGE_ERROR("--accel", "render", "--accel", "kdtree");
+  EXPECT_USAGE_ERROR("--gamma", "render", "--gamma", "0");
+}
+
+static void size_errors(void **state) {
+  (void)state;
+  EXPECT_USAGE_ERROR("--width: 0 is outside 1..16384", "render", "-W", "0");
+  EXPECT_USAGE_ERROR("--width: -5 is outside", "render", "-W", "-5");
+  EXPECT_USAGE_ERROR("--height: 0 is outside", "render", "--height=0");
+  EXPECT_USAGE_ERROR("--width: 'abc' is not a whole number", "render", "-W",
+                     "abc");
+  EXPECT_USAGE_ERROR("--width: '64x' is not a whole number", "render", "-W64x");
+  EXPECT_USAGE_ERROR("--height: 100000 is outside", "render", "-H", "100000");
+  EXPECT_USAGE_ERROR("--width: '99999999999999999999' is not a whole number",
+                     "render", "-W", "99999999999999999999");
+  EXPECT_USAGE_ERROR("--depth: 0 is outside 1..64", "render", "-d", "0");
+  EXPECT_USAGE_ERROR("--depth: 65 is outside 1..64", "render", "-d", "65");
+  EXPECT_USAGE_ERROR("--spp: 0 is outside 1..4096", "render", "-s", "0");
+  EXPECT_USAGE_ERROR("--threads: -1 is outside", "render", "-t", "-1");
+}
+
+static void output_errors(void **state) {
+  (void)state;
+  EXPECT_USAGE_ERROR("unknown image format", "render", "-W", "8", "-H", "8",
+                     "-o", "out.jpg");
+  EXPECT_USAGE_ERROR("unknown image format", "render", "-W", "8", "-H", "8",
+                     "-o", "out");
+  EXPECT_USAGE_ERROR("/no/such/folder/out.png: cannot write here", "render",
+                     "-W", "8", "-H", "8", "-o", "/no/such/folder/out.png");
+  char sub[128];
+  snprintf(sub, sizeof sub, "%s/sub.png", dir);
+  mkdir(sub, 0755);
+  int rc = run("render", "-W", "8", "-H", "8", "-o", "sub.png", NULL);
+  assert_int_equal(rc, 2);
+  assert_non_null(strstr(err, "is a directory"));
+  rmdir(sub);
+}
+
+/* An existing image survives a failed run untouched. */
+static void existing_file_survives_errors(void **state) {
+  (void)state;
+  char p[128];
+  snprintf(p, sizeof p, "%s/keep.png", dir);
+  FILE *f = fopen(p, "wb");
+  fputs("precious", f);
+  fclose(f);
+  assert_int_equal(run("render", "-d", "99", "-o", "keep.png", NULL), 2);
+  assert_int_equal(run("render", "nosuchscene", "-o", "keep.png", NULL), 2);
+  char buf[32];
+  slurp(p, buf, sizeof buf);
+  assert_string_equal(buf, "precious");
+  unlink(p);
+}
+
+static void help_and_version(void **state) {
+  (void)state;
+  assert_int_equal(run("--version", NULL), 0);
+  assert_non_null(strstr(out, "glint 0."));
+  assert_int_equal(run("--help", NULL), 0);
+  assert_non_null(strstr(out, "glint render"));
+  assert_int_equal(run("render", "--help", NULL), 0);
+  assert_non_null(strstr(out, "--backend"));
+  assert_non_null(strstr(out, "--depth"));
+  assert_int_equal(run("bench", "--help", NULL), 0);
+  assert_non_null(strstr(out, "--runs"));
+  assert_int_equal(run(NULL), 2); /* no command: usage on stderr */
+  assert_non_null(strstr(err, "Usage"));
+}
+
+static void render_writes_every_format(void **state) {
+  (void)state;
+  const char *names[] = {"w.png", "w.bmp", "w.ppm"};
+  for (int i = 0; i < 3; i++) {
+    assert_int_equal(
+        run("render", "whitted", "-W", "32", "-H", "24", "-o", names[i], NULL),
+        0);
+    assert_true(exists(names[i]));
+    /* The summary line: wall time, rays by kind and the rate. */
+    assert_non_null(strstr(out, names[i]));
+    assert_non_null(strstr(out, " s, "));
+    assert_non_null(strstr(out, "primary"));
+    assert_non_null(strstr(out, "secondary"));
+    assert_non_null(strstr(out, "shadow"));
+    assert_non_null(strstr(out, "Mrays/s"));
+    assert_string_equal(err, ""); /* no progress bar when not a terminal */
+  }
+  glint_image *a, *b;
+  char pa[128], pb[128];
+  snprintf(pa, sizeof pa, "%s/w.png", dir);
+  snprintf(pb, sizeof pb, "%s/w.bmp", dir);
+  ASSERT_OK(glint_image_read(pa, &a, &e_));
+  ASSERT_OK(glint_image_read(pb, &b, &e_));
+  assert_int_equal(glint_image_width(a), 32);
+  assert_memory_equal(glint_image_pixels_const(a), glint_image_pixels_const(b),
+                      32 * 24 * 3);
+  glint_image_destroy(a);
+  glint_image_destroy(b);
+  char cmd[256];
+  snprintf(cmd, sizeof cmd, "rm -f '%s'/w.*", dir);
+  assert_int_equal(system(cmd), 0);
+}
+
+static void defaults_quiet_and_stats(void **state) {
+  (void)state;
+  /* The default output is SCENE.png. */
+  assert_int_equal(run("render", "phong", "-W", "16", "-H", "12", "-q", NULL),
+                   0);
+  assert_true(exists("phong.png"));
+  assert_string_equal(out, "");
+  assert_string_equal(err, "");
+  assert_int_equal(run("render", "phong", "-W", "16", "-H", "12", "--stats",
+                       "-b", "scalar-float", NULL),
+                   0);
+  assert_non_null(strstr(out, "reflected"));
+  assert_non_null(strstr(out, "peak memory"));
+  assert_non_null(strstr(out, "scalar-float"));
+  char p[128];
+  snprintf(p, sizeof p, "%s/phong.png", dir);
+  unlink(p);
+}
+
+static void bench_runs_and_writes_csv(void **state) {
+  (void)state;
+  assert_int_equal(run("bench", "--scenes", "whitted,phong", "--depths", "1,2",
+                       "--runs", "1", "-W", "16", "-H", "12", "-s", "1",
+                       "--backends", "scalar-float,scalar-double", "--csv",
+                       "b.csv", NULL),
+                   0);
+  assert_non_null(strstr(out, "Scene \"whitted\": seconds"));
+  assert_non_null(strstr(out, "Scene \"phong\": Mrays/s"));
+  assert_non_null(strstr(out, "scalar-double"));
+  char p[128], csv[4096];
+  snprintf(p, sizeof p, "%s/b.csv", dir);
+  slurp(p, csv, sizeof csv);
+  int lines = 0;
+  for (char *c = csv; *c; c++)
+    lines += *c == '\n';
+  assert_int_equal(lines, 1 + 2 * 2 * 2);
+  assert_non_null(strstr(csv, "scene,depth,backend"));
+  assert_non_null(strstr(csv, "phong,2,scalar-float,16,12,1,1,1,"));
+  unlink(p);
+}
+
+static void bench_errors(void **state) {
+  (void)state;
+  EXPECT_USAGE_ERROR("--runs: 0 is outside", "bench", "--runs", "0");
+  EXPECT_USAGE_ERROR("--depths", "bench", "--depths", "0-3");
+  EXPECT_USAGE_ERROR("--depths", "bench", "--depths", "x");
+  EXPECT_USAGE_ERROR("unknown backend 'quantum'", "bench", "--backends",
+                     "quantum");
+  EXPECT_USAGE_ERROR("unknown scene 'atlantis'", "bench", "--scenes",
+                     "atlantis");
+  EXPECT_USAGE_ERROR("unknown option", "bench", "--frobnicate");
+}
+
+int main(void) {
+  const struct CMUnitTest tests[] = {
+      cmocka_unit_test(usage_errors),
+      cmocka_unit_test(size_errors),
+      cmocka_unit_test(output_errors),
+      cmocka_unit_test(existing_file_survives_errors),
+      cmocka_unit_test(help_and_version),
+      cmocka_unit_test(render_writes_every_format),
+      cmocka_unit_test(defaults_quiet_and_stats),
+      cmocka_unit_test(bench_runs_and_writes_csv),
+      cmocka_unit_test(bench_errors),
+  };
+  return cmocka_run_group_tests(tests, setup, teardown);
+}

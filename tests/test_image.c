@@ -1,0 +1,216 @@
+/* PNG, BMP and PPM written and read back pixel by pixel; the atomic write
+ * never leaves a partial file nor destroys an existing one. */
+#include "test_util.h"
+
+#include <dirent.h>
+#include <math.h>
+#include <signal.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+#include <sys/resource.h>
+#include <sys/stat.h>
+#include <sys/wait.h>
+#include <unistd.h>
+
+static char dir[64];
+
+static int setup(void **state) {
+  (void)state;
+  strcpy(dir, "/tmp/glint-test-image-XXXXXX");
+  return mkdtemp(dir) ? 0 : -1;
+}
+
+static int teardown(void **state) {
+  (void)state;
+  char cmd[128];
+  snprintf(cmd, sizeof cmd, "rm -rf '%s'", dir);
+  return system(cmd) == 0 ? 0 : -1;
+}
+
+static const char *path(const char *name) {
+  static char buf[128];
+  snprintf(buf, sizeof buf, "%s/%s", dir, name);
+  return buf;
+}
+
+/* Odd sizes exercise BMP's row padding. */
+static glint_image *pattern(int w, int h) {
+  glint_image *im;
+  ASSERT_OK(glint_image_create(w, h, &im, &e_));
+  uint8_t *p = glint_image_pixels(im);
+  for (int y = 0; y < h; y++)
+    for (int x = 0; x < w; x++) {
+      uint8_t *q = p + ((size_t)y * w + x) * 3;
+      q[0] = (uint8_t)(x * 37 + y);
+      q[1] = (uint8_t)(y * 91 + 3 * x);
+      q[2] = (uint8_t)((x ^ y) * 13);
+    }
+  return im;
+}
+
+static int files_in_dir(void) {
+  DIR *d = opendir(dir);
+  int n = 0;
+  struct dirent *e;
+  while ((e = readdir(d)))
+    if (strcmp(e->d_name, ".") && strcmp(e->d_name, ".."))
+      n++;
+  closedir(d);
+  return n;
+}
+
+static void round_trip(const char *name, int w, int h) {
+  glint_image *a = pattern(w, h), *b = NULL;
+  char p[128];
+  snprintf(p, sizeof p, "%s", path(name));
+  ASSERT_OK(glint_image_write(a, p, &e_));
+  ASSERT_OK(glint_image_read(p, &b, &e_));
+  assert_int_equal(glint_image_width(b), w);
+  assert_int_equal(glint_image_height(b), h);
+  assert_memory_equal(glint_image_pixels_const(a), glint_image_pixels_const(b),
+                      (size_t)w * h * 3);
+  assert_true(isinf(glint_image_psnr(a, b)));
+  glint_image_destroy(a);
+  glint_image_destroy(b);
+}
+
+static void png_round_trip(void **state) {
+  (void)state;
+  round_trip("a.png", 7, 5);
+  round_trip("b.PNG", 1, 1);
+}
+
+static void bmp_round_trip(void **state) {
+  (void)state;
+  round_trip("a.bmp", 7, 5);
+  round_trip("b.bmp", 4, 3);
+  round_trip("c.bmp", 1, 9);
+}
+
+static void ppm_round_trip(void **state) {
+  (void)state;
+  round_trip("a.ppm", 7, 5);
+}
+
+/* The BMP header fields a viewer relies on. */
+static void bmp_layout(void **state) {
+  (void)state;
+  glint_image *a = pattern(3, 2);
+  char p[128];
+  snprintf(p, sizeof p, "%s", path("layout.bmp"));
+  ASSERT_OK(glint_image_write(a, p, &e_));
+  FILE *f = fopen(p, "rb");
+  uint8_t b[80];
+  size_t n = fread(b, 1, sizeof b, f);
+  fclose(f);
+  assert_int_equal(n, 54 + 2 * 12); /* rows of 9 bytes padded to 12 */
+  assert_int_equal(b[0], 'B');
+  assert_int_equal(b[1], 'M');
+  assert_int_equal(b[28], 24); /* bits per pixel */
+  /* Bottom-up: the first stored row is the image's last, in BGR. */
+  const uint8_t *last = glint_image_pixels_const(a) + 3 * 3;
+  assert_int_equal(b[54], last[2]);
+  assert_int_equal(b[55], last[1]);
+  assert_int_equal(b[56], last[0]);
+  glint_image_destroy(a);
+}
+
+static void psnr_of_known_difference(void **state) {
+  (void)state;
+  glint_image *a = pattern(4, 4), *b = pattern(4, 4), *c = pattern(5, 4);
+  /* One channel of one pixel off by 10: MSE = 100 / 48. */
+  glint_image_pixels(b)[0] = (uint8_t)(glint_image_pixels(a)[0] + 10);
+  double want = 10 * log10(255.0 * 255.0 / (100.0 / 48.0));
+  assert_true(fabs(glint_image_psnr(a, b) - want) < 1e-9);
+  assert_true(glint_image_psnr(a, c) < 0);
+  glint_image_destroy(a);
+  glint_image_destroy(b);
+  glint_image_destroy(c);
+}
+
+static void bad_paths_are_refused(void **state) {
+  (void)state;
+  glint_image *a = pattern(2, 2);
+  glint_error e;
+  assert_int_equal(glint_image_write(a, path("x.jpg"), &e), GLINT_E_ARGUMENT);
+  assert_non_null(strstr(e.message, "unknown image format"));
+  assert_int_equal(glint_image_write(a, path("noext"), &e), GLINT_E_ARGUMENT);
+  assert_int_equal(glint_image_check_writable("/nonexistent-dir/x.png", &e),
+                   GLINT_E_IO);
+  assert_non_null(strstr(e.message, "/nonexistent-dir/x.png"));
+  assert_int_equal(glint_image_write(a, "/nonexistent-dir/x.png", &e),
+                   GLINT_E_IO);
+  /* A folder is not a file. */
+  mkdir(path("sub.png"), 0755);
+  assert_int_equal(glint_image_check_writable(path("sub.png"), &e), GLINT_E_IO);
+  assert_non_null(strstr(e.message, "directory"));
+  rmdir(path("sub.png"));
+  /* Reading: missing, and not an image. */
+  glint_image *r = NULL;
+  assert_int_equal(glint_image_read(path("missing.png"), &r, &e), GLINT_E_IO);
+  FILE *f = fopen(path("junk.png"), "wb");
+  fputs("this is not a png", f);
+  fclose(f);
+  assert_int_equal(glint_image_read(path("junk.png"), &r, &e), GLINT_E_PARSE);
+  f = fopen(path("trunc.ppm"), "wb");
+  fputs("P6\n4 4\n255\nabc", f);
+  fclose(f);
+  assert_int_equal(glint_image_read(path("trunc.ppm"), &r, &e), GLINT_E_PARSE);
+  assert_null(r);
+  glint_image_destroy(a);
+}
+
+/* A write that fails part-way (here: the file-size limit is hit) leaves the
+ * existing image byte for byte as it was, and no temporary file. */
+static void failed_write_keeps_existing_file(void **state) {
+  (void)state;
+  int before = files_in_dir();
+  char p[128];
+  snprintf(p, sizeof p, "%s", path("keep.ppm"));
+  FILE *f = fopen(p, "wb");
+  fputs("original", f);
+  fclose(f);
+  pid_t pid = fork();
+  if (pid == 0) {
+    signal(SIGXFSZ, SIG_IGN);
+    struct rlimit rl = {1000, 1000};
+    setrlimit(RLIMIT_FSIZE, &rl);
+    glint_image *big = pattern(200, 200); /* 120 kB: cannot fit */
+    glint_error e;
+    int st = glint_image_write(big, p, &e);
+    _exit(st == GLINT_E_IO && strstr(e.message, "keep.ppm") ? 0 : 1);
+  }
+  int status;
+  waitpid(pid, &status, 0);
+  assert_true(WIFEXITED(status) && WEXITSTATUS(status) == 0);
+  char buf[64] = {0};
+  f = fopen(p, "rb");
+  size_t n = fread(buf, 1, sizeof buf - 1, f);
+  fclose(f);
+  assert_int_equal(n, 8);
+  assert_string_equal(buf, "original");
+  assert_int_equal(files_in_dir(), before + 1);
+  /* And a successful write replaces it completely. */
+  glint_image *small = pattern(3, 3), *back;
+  ASSERT_OK(glint_image_write(small, p, &e_));
+  ASSERT_OK(glint_image_read(p, &back, &e_));
+  assert_memory_equal(glint_image_pixels_const(small),
+                      glint_image_pixels_const(back), 27);
+  assert_int_equal(files_in_dir(), before + 1);
+  glint_image_destroy(small);
+  glint_image_destroy(back);
+}
+
+int main(void) {
+  const struct CMUnitTest tests[] = {
+      cmocka_unit_test(png_round_trip),
+      cmocka_unit_test(bmp_round_trip),
+      cmocka_unit_test(ppm_round_trip),
+      cmocka_unit_test(bmp_layout),
+      cmocka_unit_test(psnr_of_known_difference),
+      cmocka_unit_test(bad_paths_are_refused),
+      cmocka_unit_test(failed_write_keeps_existing_file),
+  };
+  return cmocka_run_group_tests(tests, setup, teardown);
+}

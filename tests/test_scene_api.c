@@ -1,0 +1,220 @@
+/* The library's argument checking: every bad value is refused with
+ * GLINT_E_ARGUMENT and a message, and nothing NaN reaches a tracer. */
+#include "test_util.h"
+
+#include <math.h>
+#include <string.h>
+
+typedef glint_vec3 V;
+
+#define EXPECT_ERR(call, want, text)                                           \
+  do {                                                                         \
+    glint_error e_;                                                            \
+    e_.message[0] = '\0';                                                      \
+    glint_status st_ = (call);                                                 \
+    assert_int_equal(st_, want);                                               \
+    assert_int_equal(e_.status, want);                                         \
+    if (!strstr(e_.message, text))                                             \
+      fail_msg("message '%s' lacks '%s'", e_.message, text);                   \
+  } while (0)
+
+static glint_scene *scene_with_material(uint32_t *id) {
+  glint_scene *s;
+  ASSERT_OK(glint_scene_create(&s, &e_));
+  glint_material m;
+  glint_material_default(&m);
+  ASSERT_OK(glint_scene_add_material(s, &m, id, &e_));
+  return s;
+}
+
+static void primitives_refuse_bad_numbers(void **state) {
+  (void)state;
+  uint32_t m;
+  glint_scene *s = scene_with_material(&m);
+  V ok = {0, 0, 0}, nan3 = {NAN, 0, 0}, inf3 = {0, INFINITY, 0};
+  EXPECT_ERR(glint_scene_add_sphere(s, nan3, 1, m, &e_), GLINT_E_ARGUMENT,
+             "finite");
+  EXPECT_ERR(glint_scene_add_sphere(s, ok, NAN, m, &e_), GLINT_E_ARGUMENT,
+             "finite");
+  EXPECT_ERR(glint_scene_add_sphere(s, ok, -1, m, &e_), GLINT_E_ARGUMENT,
+             "radius");
+  EXPECT_ERR(glint_scene_add_sphere(s, ok, 0, m, &e_), GLINT_E_ARGUMENT,
+             "radius");
+  EXPECT_ERR(glint_scene_add_sphere(s, ok, 1, m + 1, &e_), GLINT_E_ARGUMENT,
+             "material");
+  EXPECT_ERR(glint_scene_add_plane(s, (V){0, 0, 0}, ok, m, &e_),
+             GLINT_E_ARGUMENT, "normal");
+  EXPECT_ERR(glint_scene_add_plane(s, inf3, ok, m, &e_), GLINT_E_ARGUMENT,
+             "finite");
+  EXPECT_ERR(glint_scene_add_triangle(s, ok, nan3, ok, m, &e_),
+             GLINT_E_ARGUMENT, "finite");
+  EXPECT_ERR(glint_scene_add_cone(s, ok, 1, ok, 0.5, m, &e_), GLINT_E_ARGUMENT,
+             "same point");
+  EXPECT_ERR(glint_scene_add_cone(s, ok, 0, (V){0, 1, 0}, 0, m, &e_),
+             GLINT_E_ARGUMENT, "radii");
+  EXPECT_ERR(glint_scene_add_light(s, nan3, (V){1, 1, 1}, &e_),
+             GLINT_E_ARGUMENT, "finite");
+  EXPECT_ERR(glint_scene_add_light(s, ok, (V){-1, 1, 1}, &e_), GLINT_E_ARGUMENT,
+             "negative");
+  EXPECT_ERR(glint_scene_set_background(s, nan3, &e_), GLINT_E_ARGUMENT,
+             "finite");
+  /* Nothing was added by the failed calls. */
+  glint_scene_info info;
+  glint_scene_get_info(s, &info);
+  assert_int_equal(info.objects, 0);
+  assert_int_equal(info.spheres + info.planes + info.triangles + info.cones, 0);
+  glint_scene_destroy(s);
+}
+
+static void materials_refuse_bad_values(void **state) {
+  (void)state;
+  uint32_t m;
+  glint_scene *s = scene_with_material(&m);
+  glint_material mat;
+  glint_material_default(&mat);
+  mat.kd = -0.5;
+  EXPECT_ERR(glint_scene_add_material(s, &mat, NULL, &e_), GLINT_E_ARGUMENT,
+             "kd");
+  glint_material_default(&mat);
+  mat.h = NAN;
+  EXPECT_ERR(glint_scene_add_material(s, &mat, NULL, &e_), GLINT_E_ARGUMENT,
+             "h");
+  glint_material_default(&mat);
+  mat.ior = 0;
+  EXPECT_ERR(glint_scene_add_material(s, &mat, NULL, &e_), GLINT_E_ARGUMENT,
+             "ior");
+  glint_material_default(&mat);
+  mat.texture = GLINT_TEXTURE_CHECKER_SOLID;
+  mat.checker_size = 0;
+  EXPECT_ERR(glint_scene_add_material(s, &mat, NULL, &e_), GLINT_E_ARGUMENT,
+             "checker size");
+  glint_scene_destroy(s);
+}
+
+static void camera_refuses_degenerate_views(void **state) {
+  (void)state;
+  uint32_t m;
+  glint_scene *s = scene_with_material(&m);
+  glint_camera c = {{0, 0, 0}, {0, 0, 0}, {0, 1, 0}, 60};
+  EXPECT_ERR(glint_scene_set_camera(s, &c, &e_), GLINT_E_ARGUMENT,
+             "same point");
+  c.at = (V){0, 5, 0};
+  EXPECT_ERR(glint_scene_set_camera(s, &c, &e_), GLINT_E_ARGUMENT, "parallel");
+  c.at = (V){0, 0, -1};
+  c.fov_x_degrees = 180;
+  EXPECT_ERR(glint_scene_set_camera(s, &c, &e_), GLINT_E_ARGUMENT,
+             "field of view");
+  c.fov_x_degrees = NAN;
+  EXPECT_ERR(glint_scene_set_camera(s, &c, &e_), GLINT_E_ARGUMENT, "finite");
+  EXPECT_ERR(glint_scene_set_resolution(s, 0, 10, &e_), GLINT_E_ARGUMENT,
+             "resolution");
+  EXPECT_ERR(glint_scene_set_resolution(s, 10, GLINT_MAX_DIMENSION + 1, &e_),
+             GLINT_E_ARGUMENT, "resolution");
+  glint_scene_destroy(s);
+}
+
+static void render_refuses_bad_settings(void **state) {
+  (void)state;
+  glint_scene *s;
+  ASSERT_OK(glint_scene_builtin("whitted", &s, &e_));
+  glint_image *im = NULL;
+  glint_render_settings rs;
+#define CASE(field, value, text)                                               \
+  glint_render_settings_default(&rs);                                          \
+  rs.field = value;                                                            \
+  EXPECT_ERR(glint_render(s, &rs, &im, NULL, &e_), GLINT_E_ARGUMENT, text);    \
+  assert_null(im);
+  CASE(max_depth, 0, "depth")
+  CASE(max_depth, GLINT_MAX_DEPTH + 1, "depth")
+  CASE(spp, 0, "samples")
+  CASE(spp, GLINT_MAX_SPP + 1, "samples")
+  CASE(width, -3, "width")
+  CASE(width, GLINT_MAX_DIMENSION + 1, "width")
+  CASE(height, -1, "height")
+  CASE(threads, -1, "threads")
+  CASE(gamma, 0, "gamma")
+  CASE(gamma, NAN, "gamma")
+  CASE(backend, (glint_backend)99, "backend")
+#undef CASE
+  glint_scene_destroy(s);
+}
+
+static void names_parse_and_print(void **state) {
+  (void)state;
+  glint_backend b;
+  ASSERT_OK(glint_backend_parse("scalar-double", &b, &e_));
+  assert_int_equal(b, GLINT_BACKEND_SCALAR_DOUBLE);
+  assert_string_equal(glint_backend_name(b), "scalar-double");
+  EXPECT_ERR(glint_backend_parse("gpu", &b, &e_), GLINT_E_ARGUMENT,
+             "unknown backend 'gpu'");
+  glint_math m;
+  ASSERT_OK(glint_math_parse("taylor", &m, &e_));
+  assert_int_equal(m, GLINT_MATH_TAYLOR);
+  EXPECT_ERR(glint_math_parse("exactish", &m, &e_), GLINT_E_ARGUMENT,
+             "unknown math");
+  glint_scene *s = NULL;
+  EXPECT_ERR(glint_scene_builtin("cornell", &s, &e_), GLINT_E_ARGUMENT,
+             "unknown scene 'cornell'");
+  assert_null(s);
+  assert_true(glint_backend_supported(GLINT_BACKEND_SCALAR_FLOAT));
+  assert_true(glint_backend_supported(GLINT_BACKEND_AUTO));
+  assert_int_equal(glint_backend_width(GLINT_BACKEND_SCALAR_DOUBLE), 1);
+}
+
+static void builtin_scenes_match_the_spec(void **state) {
+  (void)state;
+  static const struct {
+    const char *name;
+    size_t spheres, planes, triangles;
+  } want[] = {{"whitted", 1, 1, 0},
+              {"giza", 0, 1, 26},
+              {"billiard", 10, 1, 0},
+              {"phong", 16, 0, 0}};
+  assert_int_equal(glint_builtin_scene_count(), 4);
+  for (size_t i = 0; i < 4; i++) {
+    glint_scene *s;
+    assert_string_equal(glint_builtin_scene_name(i), want[i].name);
+    ASSERT_OK(glint_scene_builtin(want[i].name, &s, &e_));
+    glint_scene_info info;
+    glint_scene_get_info(s, &info);
+    assert_int_equal(info.spheres, want[i].spheres);
+    assert_int_equal(info.planes, want[i].planes);
+    assert_int_equal(info.triangles, want[i].triangles);
+    assert_int_equal(info.lights, 1);
+    assert_int_equal(info.width, 640);
+    assert_int_equal(info.height, 480);
+    glint_scene_destroy(s);
+  }
+}
+
+static void mesh_indices_checked(void **state) {
+  (void)state;
+  uint32_t m;
+  glint_scene *s = scene_with_material(&m);
+  V p[3] = {{0, 0, 0}, {1, 0, 0}, {0, 1, 0}};
+  uint32_t bad[3] = {0, 1, 3};
+  glint_mesh mesh = {p, NULL, 3, bad, 1};
+  EXPECT_ERR(glint_scene_add_mesh(s, &mesh, m, &e_), GLINT_E_ARGUMENT,
+             "vertex 3");
+  uint32_t good[3] = {0, 1, 2};
+  mesh.indices = good;
+  ASSERT_OK(glint_scene_add_mesh(s, &mesh, m, &e_));
+  glint_scene_info info;
+  glint_scene_get_info(s, &info);
+  assert_int_equal(info.triangles, 1);
+  assert_int_equal(info.objects, 1);
+  glint_scene_destroy(s);
+}
+
+int main(void) {
+  const struct CMUnitTest tests[] = {
+      cmocka_unit_test(primitives_refuse_bad_numbers),
+      cmocka_unit_test(materials_refuse_bad_values),
+      cmocka_unit_test(camera_refuses_degenerate_views),
+      cmocka_unit_test(render_refuses_bad_settings),
+      cmocka_unit_test(names_parse_and_print),
+      cmocka_unit_test(builtin_scenes_match_the_spec),
+      cmocka_unit_test(mesh_indices_checked),
+  };
+  return cmocka_run_group_tests(tests, NULL, NULL);
+}

@@ -1,0 +1,299 @@
+/* The shading of single points (SPEC §4) against hand-computed colours.
+ * Each case is a 1x1 image with one sample, whose primary ray runs exactly
+ * along the camera's view direction, rendered by every backend this CPU
+ * supports: all of them must agree with the hand computation to one level. */
+#include "test_util.h"
+
+#include <math.h>
+#include <stdio.h>
+#include <stdlib.h>
+
+typedef glint_vec3 V;
+
+static glint_scene *new_scene(V from, V at, V up, V background) {
+  glint_scene *s;
+  ASSERT_OK(glint_scene_create(&s, &e_));
+  glint_camera cam = {from, at, up, 60};
+  ASSERT_OK(glint_scene_set_camera(s, &cam, &e_));
+  ASSERT_OK(glint_scene_set_background(s, background, &e_));
+  return s;
+}
+
+static uint32_t material(glint_scene *s, const glint_material *m) {
+  uint32_t id;
+  ASSERT_OK(glint_scene_add_material(s, m, &id, &e_));
+  return id;
+}
+
+/* Renders the centre ray with every supported backend and checks each
+ * channel against round(255 c). */
+static void expect_pixel(glint_scene *s, int depth, double r, double g,
+                         double b) {
+  for (int be = GLINT_BACKEND_SCALAR_FLOAT; be < GLINT_BACKEND_COUNT; be++) {
+    if (be == GLINT_BACKEND_STREAM ||
+        !glint_backend_supported((glint_backend)be))
+      continue;
+    glint_render_settings rs;
+    glint_render_settings_default(&rs);
+    rs.width = rs.height = 1;
+    rs.spp = 1;
+    rs.max_depth = depth;
+    rs.threads = 1;
+    rs.backend = (glint_backend)be;
+    rs.math = GLINT_MATH_EXACT;
+    glint_image *im;
+    ASSERT_OK(glint_render(s, &rs, &im, NULL, &e_));
+    const uint8_t *p = glint_image_pixels_const(im);
+    int want[3] = {expected_byte(r), expected_byte(g), expected_byte(b)};
+    for (int c = 0; c < 3; c++)
+      if (abs(p[c] - want[c]) > 1)
+        fail_msg("backend %s, channel %d: got %d, want %d (%.5f)",
+                 glint_backend_name((glint_backend)be), c, p[c], want[c],
+                 c == 0   ? r
+                 : c == 1 ? g
+                          : b);
+    glint_image_destroy(im);
+  }
+  glint_scene_destroy(s);
+}
+
+/* A plane z = 0 facing the camera at (0, 0, 5). */
+static glint_scene *wall(const glint_material *m, V ambient) {
+  glint_scene *s =
+      new_scene((V){0, 0, 5}, (V){0, 0, 0}, (V){0, 1, 0}, (V){0, 0, 0});
+  ASSERT_OK(glint_scene_set_ambient(s, ambient, &e_));
+  ASSERT_OK(glint_scene_add_plane(s, (V){0, 0, 1}, (V){0, 0, 0}, material(s, m),
+                                  &e_));
+  return s;
+}
+
+/* Light straight ahead: N·L = 1. I = C (ka Ia + kd) = C (0.1 + 0.5). */
+static void diffuse_only(void **state) {
+  (void)state;
+  glint_material m;
+  glint_material_default(&m);
+  m.color = (V){0.8, 0.6, 0.4};
+  m.ka = 0.2;
+  m.kd = 0.5;
+  glint_scene *s = wall(&m, (V){0.5, 0.5, 0.5});
+  ASSERT_OK(glint_scene_add_light(s, (V){0, 0, 10}, (V){1, 1, 1}, &e_));
+  expect_pixel(s, 5, 0.8 * 0.6, 0.6 * 0.6, 0.4 * 0.6);
+}
+
+/* The light at (0, 4, 3): L = (0, .8, .6), N·L = .6, R = (0, -.8, .6),
+ * V·R = .6, so the highlight is ks .6^h = .5 * .36 = .18 per unit light. */
+static glint_material phong_material(void) {
+  glint_material m;
+  glint_material_default(&m);
+  m.color = (V){0.5, 0.5, 0.5};
+  m.ka = 0.1;
+  m.kd = 0.5;
+  m.ks = 0.5;
+  m.h = 2;
+  return m;
+}
+
+static void diffuse_and_highlight(void **state) {
+  (void)state;
+  glint_material m = phong_material();
+  glint_scene *s = wall(&m, (V){1, 1, 1});
+  ASSERT_OK(glint_scene_add_light(s, (V){0, 4, 3}, (V){1, 0.5, 0.25}, &e_));
+  expect_pixel(s, 5, 0.5 * (0.1 + 0.3 * 1) + 0.18 * 1,
+               0.5 * (0.1 + 0.3 * 0.5) + 0.18 * 0.5,
+               0.5 * (0.1 + 0.3 * 0.25) + 0.18 * 0.25);
+}
+
+/* A light behind the surface contributes nothing, not even a highlight. */
+static void light_behind_surface(void **state) {
+  (void)state;
+  glint_material m = phong_material();
+  glint_scene *s = wall(&m, (V){1, 1, 1});
+  ASSERT_OK(glint_scene_add_light(s, (V){0, 4, -3}, (V){1, 1, 1}, &e_));
+  expect_pixel(s, 5, 0.05, 0.05, 0.05);
+}
+
+/* An opaque sphere on the shadow ray (its centre at t = 2.5 along L). */
+static void opaque_shadow(void **state) {
+  (void)state;
+  glint_material m = phong_material(), blocker;
+  glint_material_default(&blocker);
+  glint_scene *s = wall(&m, (V){1, 1, 1});
+  ASSERT_OK(glint_scene_add_light(s, (V){0, 4, 3}, (V){1, 1, 1}, &e_));
+  ASSERT_OK(glint_scene_add_sphere(s, (V){0, 2, 1.5}, 0.5,
+                                   material(s, &blocker), &e_));
+  expect_pixel(s, 5, 0.05, 0.05, 0.05);
+}
+
+/* A glass sphere on the shadow ray, crossed through its centre: two
+ * crossings (kt^2) and a chord of 1 (Beer): S = .64 exp(-absorb). */
+static void glass_shadow(void **state) {
+  (void)state;
+  glint_material m = phong_material(), glass;
+  glint_material_default(&glass);
+  glass.kt = 0.8;
+  glass.ior = 1.5;
+  glass.absorb = (V){0.5, 0, 0.25};
+  glint_scene *s = wall(&m, (V){1, 1, 1});
+  ASSERT_OK(glint_scene_add_light(s, (V){0, 4, 3}, (V){1, 1, 1}, &e_));
+  ASSERT_OK(
+      glint_scene_add_sphere(s, (V){0, 2, 1.5}, 0.5, material(s, &glass), &e_));
+  double S[3] = {0.64 * exp(-0.5), 0.64, 0.64 * exp(-0.25)};
+  /* I = C (ka + kd .6 S) + ks .36 S = .05 + .33 S */
+  expect_pixel(s, 5, 0.05 + 0.33 * S[0], 0.05 + 0.33 * S[1],
+               0.05 + 0.33 * S[2]);
+}
+
+/* A mirror reflects the background: kr bg. Depth 1 traces no reflection. */
+static glint_scene *mirror(void) {
+  glint_material m;
+  glint_material_default(&m);
+  m.color = (V){0, 0, 0};
+  m.ka = m.kd = 0;
+  m.kr = 0.4;
+  glint_scene *s = wall(&m, (V){1, 1, 1});
+  ASSERT_OK(glint_scene_set_background(s, (V){0.2, 0.4, 0.8}, &e_));
+  return s;
+}
+
+static void reflection_of_background(void **state) {
+  (void)state;
+  expect_pixel(mirror(), 2, 0.08, 0.16, 0.32);
+}
+
+static void depth_one_has_no_reflection(void **state) {
+  (void)state;
+  expect_pixel(mirror(), 1, 0, 0, 0);
+}
+
+/* Straight through the centre of a clear glass ball (ka = kd = ks = kr = 0):
+ * in (kt), a chord of 2 (Beer), out (kt): kt^2 exp(-2 absorb) bg. The ray
+ * out is level 3: at depth 2 it is not traced and contributes black. */
+static glint_scene *glass_ball(void) {
+  glint_material g;
+  glint_material_default(&g);
+  g.ka = g.kd = 0;
+  g.kt = 0.9;
+  g.ior = 1.5;
+  g.absorb = (V){0.2, 0.1, 0};
+  glint_scene *s =
+      new_scene((V){0, 0, 5}, (V){0, 0, 0}, (V){0, 1, 0}, (V){0.5, 0.5, 0.5});
+  ASSERT_OK(glint_scene_add_sphere(s, (V){0, 0, 0}, 1, material(s, &g), &e_));
+  return s;
+}
+
+static void beer_through_glass(void **state) {
+  (void)state;
+  expect_pixel(glass_ball(), 3, 0.405 * exp(-0.4), 0.405 * exp(-0.2), 0.405);
+}
+
+static void depth_limit_blacks_out(void **state) {
+  (void)state;
+  expect_pixel(glass_ball(), 2, 0, 0, 0);
+}
+
+/* Under a glass ceiling (the plane y = 0, normal +y; kr .25, kt .75) above a
+ * floor lit only by ambient light (C = (0, 1, 0), ka = 1), looking up at 60
+ * degrees from the normal: beyond the critical angle (41.8), so the ray is
+ * totally reflected with weight kr + kt = 1 and sees the floor. Were it
+ * refracted, it would give kt bg + kr floor. */
+static void total_internal_reflection_weight(void **state) {
+  (void)state;
+  glint_material ceiling, floor;
+  glint_material_default(&ceiling);
+  ceiling.ka = ceiling.kd = 0;
+  ceiling.kr = 0.25;
+  ceiling.kt = 0.75;
+  ceiling.ior = 1.5;
+  glint_material_default(&floor);
+  floor.color = (V){0, 1, 0};
+  floor.ka = 1;
+  floor.kd = 0;
+  glint_scene *s = new_scene((V){0, -1, 0}, (V){sqrt(0.75), -0.5, 0},
+                             (V){0, 0, 1}, (V){0, 0, 1});
+  ASSERT_OK(glint_scene_add_plane(s, (V){0, 1, 0}, (V){0, 0, 0},
+                                  material(s, &ceiling), &e_));
+  ASSERT_OK(glint_scene_add_plane(s, (V){0, 1, 0}, (V){0, -100, 0},
+                                  material(s, &floor), &e_));
+  expect_pixel(s, 5, 0, 1, 0);
+}
+
+/* Planar checker (SPEC §8): floor(x) + floor(z) even at (0.5, 0, 0.5), odd
+ * at (1.5, 0, 0.5); ambient light only, so I = C exactly. */
+static void planar_checker(void **state) {
+  (void)state;
+  for (int odd = 0; odd < 2; odd++) {
+    glint_material m;
+    glint_material_default(&m);
+    m.texture = GLINT_TEXTURE_CHECKER_PLANAR;
+    m.checker_odd = (V){1, 0, 0};
+    m.checker_even = (V){1, 1, 0};
+    m.checker_size = 1;
+    m.ka = 1;
+    m.kd = 0;
+    double x = odd ? 1.5 : 0.5;
+    glint_scene *s =
+        new_scene((V){x, 5, 0.5}, (V){x, 0, 0.5}, (V){0, 0, -1}, (V){0, 0, 0});
+    ASSERT_OK(glint_scene_add_plane(s, (V){0, 1, 0}, (V){0, 0, 0},
+                                    material(s, &m), &e_));
+    expect_pixel(s, 1, 1, odd ? 0 : 1, 0);
+  }
+}
+
+/* Solid checker in sphere-local coordinates: the front point (0, 0, 1) with
+ * cells of 0.5 is at cell z = 2 (even); with cells of 0.3 at z = 3 (odd). */
+static void solid_checker(void **state) {
+  (void)state;
+  for (int odd = 0; odd < 2; odd++) {
+    glint_material m;
+    glint_material_default(&m);
+    m.texture = GLINT_TEXTURE_CHECKER_SOLID;
+    m.checker_odd = (V){0.9, 0.9, 0.9};
+    m.checker_even = (V){0.8, 0.1, 0.1};
+    m.checker_size = odd ? 0.3 : 0.5;
+    m.ka = 1;
+    m.kd = 0;
+    glint_scene *s =
+        new_scene((V){10, 10, 15}, (V){10, 10, 10}, (V){0, 1, 0}, (V){0, 0, 0});
+    ASSERT_OK(
+        glint_scene_add_sphere(s, (V){10, 10, 10}, 1, material(s, &m), &e_));
+    if (odd)
+      expect_pixel(s, 1, 0.9, 0.9, 0.9);
+    else
+      expect_pixel(s, 1, 0.8, 0.1, 0.1);
+  }
+}
+
+/* A transparent plane between a wall and its light is crossed once: kt. */
+static void glass_plane_shadow(void **state) {
+  (void)state;
+  glint_material m = phong_material(), glass;
+  glint_material_default(&glass);
+  glass.ka = glass.kd = 0;
+  glass.kt = 0.7;
+  glint_scene *s = wall(&m, (V){1, 1, 1});
+  ASSERT_OK(glint_scene_add_light(s, (V){0, 4, 3}, (V){1, 1, 1}, &e_));
+  /* The plane y = 1 lies between the wall point and the light (at y = 4)
+   * and is parallel to the camera ray, which therefore never meets it. */
+  ASSERT_OK(glint_scene_add_plane(s, (V){0, 1, 0}, (V){0, 1, 0},
+                                  material(s, &glass), &e_));
+  expect_pixel(s, 5, 0.05 + 0.33 * 0.7, 0.05 + 0.33 * 0.7, 0.05 + 0.33 * 0.7);
+}
+
+int main(void) {
+  const struct CMUnitTest tests[] = {
+      cmocka_unit_test(diffuse_only),
+      cmocka_unit_test(diffuse_and_highlight),
+      cmocka_unit_test(light_behind_surface),
+      cmocka_unit_test(opaque_shadow),
+      cmocka_unit_test(glass_shadow),
+      cmocka_unit_test(glass_plane_shadow),
+      cmocka_unit_test(reflection_of_background),
+      cmocka_unit_test(depth_one_has_no_reflection),
+      cmocka_unit_test(beer_through_glass),
+      cmocka_unit_test(depth_limit_blacks_out),
+      cmocka_unit_test(total_internal_reflection_weight),
+      cmocka_unit_test(planar_checker),
+      cmocka_unit_test(solid_checker),
+  };
+  return cmocka_run_group_tests(tests, NULL, NULL);
+}

@@ -1,0 +1,35 @@
+/* Helpers shared by the tests. */
+#ifndef GLINT_TEST_UTIL_H
+#define GLINT_TEST_UTIL_H
+
+#include <setjmp.h>
+#include <stdarg.h>
+#include <stddef.h>
+#include <stdint.h>
+
+#include <cmocka.h>
+
+#include "glint.h"
+
+#define ASSERT_OK(call)                                                        \
+  do {                                                                         \
+    glint_error e_;                                                            \
+    e_.message[0] = '\0';                                                      \
+    glint_status st_ = (call);                                                 \
+    if (st_ != GLINT_OK)                                                       \
+      fail_msg("%s failed: %s", #call, e_.message);                            \
+  } while (0)
+
+/* Expected 8-bit value of a linear colour channel: round(255 c) (SPEC §4). */
+static inline int expected_byte(double c) {
+  if (c <= 0)
+    return 0;
+  if (c >= 1)
+    return 255;
+  return (int)(255 * c + 0.5);
+}
+
+/* The exit code for "this test cannot run here" (ctest reports SKIPPED). */
+#define SKIP_EXIT 77
+
+#endif
