@@ -3,6 +3,7 @@
 
 int cmd_render(int argc, char **argv);
 int cmd_bench(int argc, char **argv);
+int cmd_compare(int argc, char **argv);
 
 /* Loads a built-in scene by name, or a scene file when the argument names
  * one (it has a '.' or a '/'); prints one message and returns NULL on error.

@@ -13,6 +13,7 @@ static void usage(FILE *f) {
         "Usage:\n"
         "  glint render [SCENE] [options]  render a built-in scene or a file\n"
         "  glint bench [options]           time scenes x depths x backends\n"
+        "  glint compare A B               PSNR between two images\n"
         "  glint --help                    this help\n"
         "  glint --version                 the version\n"
         "\n"
@@ -40,6 +41,8 @@ int main(int argc, char **argv) {
     return cmd_render(argc - 2, argv + 2);
   if (strcmp(cmd, "bench") == 0)
     return cmd_bench(argc - 2, argv + 2);
+  if (strcmp(cmd, "compare") == 0)
+    return cmd_compare(argc - 2, argv + 2);
   cli_error("unknown command '%s' (see glint --help)", cmd);
   return EXIT_USAGE;
 }

@@ -23,5 +23,23 @@ typedef struct glint_backend_ops {
 
 extern const glint_backend_ops glint_scalar_ops_float;
 extern const glint_backend_ops glint_scalar_ops_double;
+extern const glint_backend_ops glint_beam_ops_sse;
+extern const glint_backend_ops glint_beam_ops_avx2;
+extern const glint_backend_ops glint_beam_ops_avx512;
+
+/* Test hooks: the packet nearest hit of one beam of W rays (origins and
+ * directions as x[W] y[W] z[W]), per ISA, on a prepared beam backend. */
+void glint_beam_nearest_hit_sse(const void *prepared, const float *o,
+                                const float *d, int active_bits, float *t,
+                                int *object);
+void glint_beam_nearest_hit_avx2(const void *prepared, const float *o,
+                                 const float *d, int active_bits, float *t,
+                                 int *object);
+void glint_beam_nearest_hit_avx512(const void *prepared, const float *o,
+                                   const float *d, int active_bits, float *t,
+                                   int *object);
+
+/* The ops of a concrete backend (NULL if not built in). */
+const glint_backend_ops *glint_backend_ops_of(glint_backend backend);
 
 #endif

@@ -29,6 +29,9 @@ static int cpu_any(const glint_cpu_features *f) {
   (void)f;
   return 1;
 }
+static int cpu_sse(const glint_cpu_features *f) { return f->sse41; }
+static int cpu_avx2(const glint_cpu_features *f) { return f->avx2; }
+static int cpu_avx512(const glint_cpu_features *f) { return f->avx512; }
 
 static const backend_entry backends[GLINT_BACKEND_COUNT] = {
     [GLINT_BACKEND_AUTO] = {"auto", 0, NULL, cpu_any},
@@ -36,14 +39,19 @@ static const backend_entry backends[GLINT_BACKEND_COUNT] = {
                                     cpu_any},
     [GLINT_BACKEND_SCALAR_DOUBLE] = {"scalar-double", 1,
                                      &glint_scalar_ops_double, cpu_any},
-    [GLINT_BACKEND_SSE] = {"sse", 4, NULL, cpu_any},
-    [GLINT_BACKEND_AVX2] = {"avx2", 8, NULL, cpu_any},
-    [GLINT_BACKEND_AVX512] = {"avx512", 16, NULL, cpu_any},
+    [GLINT_BACKEND_SSE] = {"sse", 4, &glint_beam_ops_sse, cpu_sse},
+    [GLINT_BACKEND_AVX2] = {"avx2", 8, &glint_beam_ops_avx2, cpu_avx2},
+    [GLINT_BACKEND_AVX512] = {"avx512", 16, &glint_beam_ops_avx512,
+                              cpu_avx512},
     [GLINT_BACKEND_STREAM] = {"stream", 0, NULL, cpu_any},
     [GLINT_BACKEND_STREAM_SSE] = {"stream-sse", 4, NULL, cpu_any},
     [GLINT_BACKEND_STREAM_AVX2] = {"stream-avx2", 8, NULL, cpu_any},
     [GLINT_BACKEND_STREAM_AVX512] = {"stream-avx512", 16, NULL, cpu_any},
 };
+
+const glint_backend_ops *glint_backend_ops_of(glint_backend b) {
+  return (unsigned)b < GLINT_BACKEND_COUNT ? backends[b].ops : NULL;
+}
 
 const char *glint_backend_name(glint_backend b) {
   return (unsigned)b < GLINT_BACKEND_COUNT ? backends[b].name : "unknown";

@@ -50,8 +50,8 @@ glint_status scalar_scene_prepare(const glint_scene *g,
 
   for (size_t i = 0; i < g->sphere_count; i++) {
     const glint_sphere_prim *p = &g->spheres[i];
-    s->spheres[i] =
-        (sphere_r){from_d(p->center), (real)(p->radius * p->radius), p->object};
+    s->spheres[i] = (sphere_r){from_d(p->center), (real)(p->radius * p->radius),
+                               p->object};
   }
   for (size_t i = 0; i < g->plane_count; i++) {
     const glint_plane_prim *p = &g->planes[i];
@@ -97,6 +97,10 @@ glint_status scalar_scene_prepare(const glint_scene *g,
     object_r *r = &s->objects[i];
     r->material = o->material;
     r->shape = o->shape;
+    r->first = o->first;
+    r->count = o->count;
+    r->smooth = o->shape == GLINT_SHAPE_TRIANGLE && o->count > 0 &&
+                g->triangles[o->first].normals != GLINT_NO_NORMALS;
     r->origin = from_d(o->origin);
     glint_vec3 n = {0, 1, 0};
     if (o->shape == GLINT_SHAPE_PLANE)

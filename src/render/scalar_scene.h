@@ -41,8 +41,10 @@ typedef struct material_r {
 
 typedef struct object_r {
   uint32_t material, shape;
-  vec3 origin;        /* solid texture origin */
-  int axis_u, axis_v; /* world axes of a planar texture */
+  uint32_t first, count; /* primitives of its shape */
+  vec3 origin;           /* solid texture origin */
+  int axis_u, axis_v;    /* world axes of a planar texture */
+  int smooth;            /* triangles with vertex normals */
 } object_r;
 
 typedef struct light_r {

@@ -1,0 +1,454 @@
+/* Packet kernels: W rays at a time in SoA layout with a lane mask (SPEC §6,
+ * thesis §4.1 and listing 4.4), written once against the SIMD layer and
+ * compiled once per ISA. The beam tracer (SPEC §6) and the stream tracer are
+ * both built from these.
+ *
+ * Every function takes the pow/exp variant and the rcp Newton switch as
+ * arguments; callers pass constants for the default path, so the compiler
+ * folds them away there (see beam_tracer.c). */
+#ifndef GLINT_RENDER_PACKET_H
+#define GLINT_RENDER_PACKET_H
+
+#define GLINT_REAL_FLOAT
+#include "render/scalar_scene.h"
+#include "scene/scene.h"
+#include "simd/simd.h"
+#include "simd/vmath.h"
+
+#include <float.h>
+#include <stddef.h>
+
+#define ALWAYS_INLINE inline __attribute__((always_inline))
+
+/* ---- vectors of W 3-vectors ------------------------------------------- */
+
+typedef struct vvec3 {
+  vfloat x, y, z;
+} vvec3;
+
+static ALWAYS_INLINE vvec3 vv_set1(vec3 a) {
+  vvec3 r = {vf_set1(a.x), vf_set1(a.y), vf_set1(a.z)};
+  return r;
+}
+static ALWAYS_INLINE vvec3 vv_add(vvec3 a, vvec3 b) {
+  vvec3 r = {vf_add(a.x, b.x), vf_add(a.y, b.y), vf_add(a.z, b.z)};
+  return r;
+}
+static ALWAYS_INLINE vvec3 vv_sub(vvec3 a, vvec3 b) {
+  vvec3 r = {vf_sub(a.x, b.x), vf_sub(a.y, b.y), vf_sub(a.z, b.z)};
+  return r;
+}
+static ALWAYS_INLINE vvec3 vv_mul(vvec3 a, vvec3 b) {
+  vvec3 r = {vf_mul(a.x, b.x), vf_mul(a.y, b.y), vf_mul(a.z, b.z)};
+  return r;
+}
+static ALWAYS_INLINE vvec3 vv_scale(vvec3 a, vfloat s) {
+  vvec3 r = {vf_mul(a.x, s), vf_mul(a.y, s), vf_mul(a.z, s)};
+  return r;
+}
+/* a + s b */
+static ALWAYS_INLINE vvec3 vv_madd(vvec3 a, vfloat s, vvec3 b) {
+  vvec3 r = {vf_fmadd(s, b.x, a.x), vf_fmadd(s, b.y, a.y),
+             vf_fmadd(s, b.z, a.z)};
+  return r;
+}
+static ALWAYS_INLINE vvec3 vv_neg(vvec3 a) {
+  vvec3 r = {vf_neg(a.x), vf_neg(a.y), vf_neg(a.z)};
+  return r;
+}
+/* The thesis's SoA dot product (listing 4.5), with fused multiply-adds. */
+static ALWAYS_INLINE vfloat vv_dot(vvec3 a, vvec3 b) {
+  return vf_fmadd(a.x, b.x, vf_fmadd(a.y, b.y, vf_mul(a.z, b.z)));
+}
+static ALWAYS_INLINE vvec3 vv_cross(vvec3 a, vvec3 b) {
+  vvec3 r = {vf_sub(vf_mul(a.y, b.z), vf_mul(a.z, b.y)),
+             vf_sub(vf_mul(a.z, b.x), vf_mul(a.x, b.z)),
+             vf_sub(vf_mul(a.x, b.y), vf_mul(a.y, b.x))};
+  return r;
+}
+static ALWAYS_INLINE vvec3 vv_select(vmask m, vvec3 a, vvec3 b) {
+  vvec3 r = {vf_select(m, a.x, b.x), vf_select(m, a.y, b.y),
+             vf_select(m, a.z, b.z)};
+  return r;
+}
+static ALWAYS_INLINE vvec3 vv_normalize(vvec3 a, int newton) {
+  return vv_scale(a, vf_rsqrt(vv_dot(a, a), newton));
+}
+/* Lane-wise gather of a vec3 field at `offset` floats into records of
+ * `stride` floats, indexed by idx. */
+static ALWAYS_INLINE vvec3 vv_gather(const float *base, vint idx, int stride,
+                                     int offset) {
+  vint i = vi_add(vi_mul_const(idx, stride), vi_set1(offset));
+  vvec3 r = {vf_gather(base, i), vf_gather(base, vi_add(i, vi_set1(1))),
+             vf_gather(base, vi_add(i, vi_set1(2)))};
+  return r;
+}
+
+/* ---- a packet's nearest hits ----------------------------------------- */
+
+typedef struct packet_hit {
+  vfloat t, u, v;
+  vint object; /* -1: no hit */
+  vint prim;
+  vmask inside; /* spheres: the ray started inside */
+} packet_hit;
+
+static ALWAYS_INLINE void packet_hit_init(packet_hit *h) {
+  h->t = vf_set1(FLT_MAX);
+  h->u = h->v = vf_zero();
+  h->object = vi_set1(-1);
+  h->prim = vi_set1(0);
+  h->inside = vm_false();
+}
+
+static ALWAYS_INLINE void count_tests(glint_stats *st, size_t tests,
+                                      int lanes) {
+  st->packet_tests += tests;
+  st->active_lanes += (uint64_t)tests * (uint64_t)lanes;
+}
+
+/* Algorithm 2.1 for all lanes against one sphere: updates the hits that are
+ * nearer than those found so far. */
+static ALWAYS_INLINE void packet_sphere(const sphere_r *sp, uint32_t index,
+                                        vvec3 o, vvec3 d, vmask active,
+                                        vfloat eps, packet_hit *h) {
+  vvec3 v = vv_sub(vv_set1(sp->center), o);
+  vfloat proj = vv_dot(v, d);
+  vvec3 perp = vv_madd(v, vf_neg(proj), d);
+  vfloat dist2 = vv_dot(perp, perp);
+  vfloat r2 = vf_set1(sp->r2);
+  vmask m = vm_and(active, vf_le(dist2, r2));
+  if (vm_none(m))
+    return; /* the thesis's early rejection, for the whole packet */
+  vfloat half = vf_sqrt(vf_sub(r2, dist2));
+  vfloat l1 = vf_sub(proj, half), l2 = vf_add(proj, half);
+  vmask outside = vf_gt(l1, eps);
+  vfloat t = vf_select(outside, l1, l2);
+  vmask win = vm_and(vm_and(m, vf_gt(l2, eps)), vf_lt(t, h->t));
+  h->t = vf_select(win, t, h->t);
+  h->object = vi_select(win, vi_set1((int)sp->object), h->object);
+  h->prim = vi_select(win, vi_set1((int)index), h->prim);
+  h->inside = vm_select(win, vm_andnot(vm_true(), outside), h->inside);
+}
+
+/* Eq. 2.5, the division by rcp (eq. 3.1). */
+static ALWAYS_INLINE void packet_plane(const plane_r *pl, uint32_t index,
+                                       vvec3 o, vvec3 d, vmask active,
+                                       vfloat eps, int newton,
+                                       packet_hit *h) {
+  vvec3 n = vv_set1(pl->n);
+  vfloat denom = vv_dot(n, d);
+  vfloat t = vf_mul(vf_neg(vf_add(vv_dot(n, o), vf_set1(pl->d))),
+                    vf_rcp(denom, newton));
+  vmask win = vm_and(vm_and(active, vf_neq(denom, vf_zero())),
+                     vm_and(vf_gt(t, eps), vf_lt(t, h->t)));
+  h->t = vf_select(win, t, h->t);
+  h->object = vi_select(win, vi_set1((int)pl->object), h->object);
+  h->prim = vi_select(win, vi_set1((int)index), h->prim);
+}
+
+/* Möller–Trumbore, as the scalar triangle_hit. */
+static ALWAYS_INLINE void packet_triangle(const triangle_r *tr, uint32_t index,
+                                          vvec3 o, vvec3 d, vmask active,
+                                          vfloat eps, int newton,
+                                          packet_hit *h) {
+  vvec3 e1 = vv_set1(tr->e1), e2 = vv_set1(tr->e2);
+  vvec3 p = vv_cross(d, e2);
+  vfloat det = vv_dot(e1, p);
+  vfloat inv = vf_rcp(det, newton);
+  vvec3 s = vv_sub(o, vv_set1(tr->a));
+  vfloat u = vf_mul(vv_dot(s, p), inv);
+  vmask m = vm_and(vm_and(active, vf_neq(det, vf_zero())),
+                   vm_and(vf_ge(u, vf_zero()), vf_le(u, vf_set1(1))));
+  if (vm_none(m))
+    return;
+  vvec3 q = vv_cross(s, e1);
+  vfloat v = vf_mul(vv_dot(d, q), inv);
+  vfloat t = vf_mul(vv_dot(e2, q), inv);
+  vmask win = vm_and(vm_and(m, vf_ge(v, vf_zero())),
+                     vm_and(vf_le(vf_add(u, v), vf_set1(1)),
+                            vm_and(vf_gt(t, eps), vf_lt(t, h->t))));
+  h->t = vf_select(win, t, h->t);
+  h->u = vf_select(win, u, h->u);
+  h->v = vf_select(win, v, h->v);
+  h->object = vi_select(win, vi_set1((int)tr->object), h->object);
+  h->prim = vi_select(win, vi_set1((int)index), h->prim);
+}
+
+/* Every object against every active lane (the thesis's brute force, §4.3):
+ * per lane the nearest hit wins. */
+static ALWAYS_INLINE void packet_nearest(const scene_r *s, vvec3 o, vvec3 d,
+                                         vmask active, int newton,
+                                         packet_hit *h, glint_stats *st) {
+  packet_hit_init(h);
+  vfloat eps = vf_set1(s->eps);
+  count_tests(st, s->sphere_count + s->plane_count + s->triangle_count,
+              vm_count(active));
+  for (size_t i = 0; i < s->sphere_count; i++)
+    packet_sphere(&s->spheres[i], (uint32_t)i, o, d, active, eps, h);
+  for (size_t i = 0; i < s->plane_count; i++)
+    packet_plane(&s->planes[i], (uint32_t)i, o, d, active, eps, newton, h);
+  for (size_t i = 0; i < s->triangle_count; i++)
+    packet_triangle(&s->triangles[i], (uint32_t)i, o, d, active, eps, newton,
+                    h);
+}
+
+/* ---- shadow rays ------------------------------------------------------ */
+
+/* SPEC §4's transmission toward a light, for W shadow rays at once (the
+ * scalar_transmission of scalar_scene.c, lane-parallel): each opaque crossing
+ * kills its lane; each transparent one multiplies by kt and adds to the Beer
+ * exponent (+a t entering, -a t leaving). */
+typedef struct shadow_state {
+  vvec3 kt, exponent;
+  vmask alive;
+  int absorbed;
+} shadow_state;
+
+static ALWAYS_INLINE void shadow_cross(const scene_r *s, uint32_t object,
+                                       vmask crossing, vfloat t,
+                                       vmask entering, shadow_state *sh) {
+  if (vm_none(crossing))
+    return;
+  const material_r *m = &s->materials[s->objects[object].material];
+  if (m->kt == 0) {
+    sh->alive = vm_andnot(sh->alive, crossing);
+    return;
+  }
+  vfloat k = vf_select(crossing, vf_set1(m->kt), vf_set1(1));
+  sh->kt = vv_scale(sh->kt, k);
+  if (m->absorbs) {
+    vfloat signed_t = vf_select(entering, t, vf_neg(t));
+    vfloat st = vf_select(crossing, signed_t, vf_zero());
+    sh->exponent = vv_madd(sh->exponent, st, vv_set1(m->absorb));
+    sh->absorbed = 1;
+  }
+}
+
+static ALWAYS_INLINE vvec3 packet_transmission(const scene_r *s, vvec3 o,
+                                               vvec3 d, vfloat dist,
+                                               vmask active, glint_math math,
+                                               int newton, glint_stats *st) {
+  shadow_state sh = {{vf_set1(1), vf_set1(1), vf_set1(1)},
+                     {vf_zero(), vf_zero(), vf_zero()},
+                     active,
+                     0};
+  vfloat eps = vf_set1(s->eps);
+  count_tests(st, s->sphere_count + s->plane_count + s->triangle_count,
+              vm_count(active));
+  for (size_t i = 0; i < s->sphere_count && vm_any(sh.alive); i++) {
+    const sphere_r *sp = &s->spheres[i];
+    vvec3 v = vv_sub(vv_set1(sp->center), o);
+    vfloat proj = vv_dot(v, d);
+    vvec3 perp = vv_madd(v, vf_neg(proj), d);
+    vfloat dist2 = vv_dot(perp, perp);
+    vfloat r2 = vf_set1(sp->r2);
+    vmask m = vm_and(sh.alive, vf_le(dist2, r2));
+    if (vm_none(m))
+      continue;
+    vfloat half = vf_sqrt(vf_sub(r2, dist2));
+    vfloat l1 = vf_sub(proj, half), l2 = vf_add(proj, half);
+    vmask c1 = vm_and(m, vm_and(vf_gt(l1, eps), vf_lt(l1, dist)));
+    vmask c2 = vm_and(m, vm_and(vf_gt(l2, eps), vf_lt(l2, dist)));
+    shadow_cross(s, sp->object, c1, l1, vm_true(), &sh);
+    shadow_cross(s, sp->object, c2, l2, vm_false(), &sh);
+  }
+  for (size_t i = 0; i < s->plane_count && vm_any(sh.alive); i++) {
+    const plane_r *pl = &s->planes[i];
+    vvec3 n = vv_set1(pl->n);
+    vfloat denom = vv_dot(n, d);
+    vfloat t = vf_mul(vf_neg(vf_add(vv_dot(n, o), vf_set1(pl->d))),
+                      vf_rcp(denom, newton));
+    vmask c = vm_and(vm_and(sh.alive, vf_neq(denom, vf_zero())),
+                     vm_and(vf_gt(t, eps), vf_lt(t, dist)));
+    shadow_cross(s, pl->object, c, t, vf_lt(denom, vf_zero()), &sh);
+  }
+  for (size_t i = 0; i < s->triangle_count && vm_any(sh.alive); i++) {
+    const triangle_r *tr = &s->triangles[i];
+    packet_hit h;
+    packet_hit_init(&h);
+    h.t = dist;
+    packet_triangle(tr, (uint32_t)i, o, d, sh.alive, eps, newton, &h);
+    vmask c = vm_and(sh.alive, vf_lt(h.t, dist));
+    shadow_cross(s, tr->object, c, h.t, vf_lt(vv_dot(vv_set1(tr->ng), d),
+                                              vf_zero()),
+                 &sh);
+  }
+  if (vm_none(sh.alive)) {
+    vvec3 z = {vf_zero(), vf_zero(), vf_zero()};
+    return z;
+  }
+  vvec3 r = sh.kt;
+  if (sh.absorbed) {
+    r.x = vf_mul(r.x, vm_exp(vf_min(sh.exponent.x, vf_zero()), math));
+    r.y = vf_mul(r.y, vm_exp(vf_min(sh.exponent.y, vf_zero()), math));
+    r.z = vf_mul(r.z, vm_exp(vf_min(sh.exponent.z, vf_zero()), math));
+  }
+  vvec3 z = {vf_zero(), vf_zero(), vf_zero()};
+  return vv_select(sh.alive, r, z);
+}
+
+/* ---- surfaces and local shading -------------------------------------- */
+
+/* Where the lanes of `m` met one object, with the normal facing the ray. */
+typedef struct packet_surface {
+  vvec3 p, n;
+  vmask front; /* hit the outside: entering a closed object */
+} packet_surface;
+
+#define FLOATS_OF(type) ((int)(sizeof(type) / sizeof(float)))
+#define FLOAT_OFFSET(type, field) ((int)(offsetof(type, field) / sizeof(float)))
+
+static ALWAYS_INLINE packet_surface packet_surface_at(
+    const scene_r *s, const object_r *ob, const packet_hit *h, vvec3 o,
+    vvec3 d, int newton) {
+  packet_surface f;
+  f.p = vv_madd(o, h->t, d);
+  vvec3 ng;
+  switch (ob->shape) {
+  case GLINT_SHAPE_SPHERE: {
+    const sphere_r *sp = &s->spheres[ob->first];
+    /* Normalised, not scaled by 1/r: see surface_at in scalar_tracer.c. */
+    ng = vv_normalize(vv_sub(f.p, vv_set1(sp->center)), newton);
+    f.front = vm_andnot(vm_true(), h->inside);
+    break;
+  }
+  case GLINT_SHAPE_PLANE:
+    ng = vv_set1(s->planes[ob->first].n);
+    f.front = vf_lt(vv_dot(ng, d), vf_zero());
+    break;
+  default: /* triangles */
+    if (ob->count == 1)
+      ng = vv_set1(s->triangles[ob->first].ng);
+    else
+      ng = vv_gather((const float *)s->triangles, h->prim,
+                     FLOATS_OF(triangle_r), FLOAT_OFFSET(triangle_r, ng));
+    f.front = vf_lt(vv_dot(ng, d), vf_zero());
+    if (ob->smooth) {
+      /* Interpolated vertex normals (NFF polygonal patches). */
+      vint n0 = vf_bits(vf_gather(
+          (const float *)s->triangles,
+          vi_add(vi_mul_const(h->prim, FLOATS_OF(triangle_r)),
+                 vi_set1(FLOAT_OFFSET(triangle_r, normals)))));
+      n0 = vi_mul_const(n0, 3);
+      const float *nb = (const float *)s->normals;
+      vvec3 a = vv_gather(nb, n0, 1, 0);
+      vvec3 b = vv_gather(nb, n0, 1, 3);
+      vvec3 c = vv_gather(nb, n0, 1, 6);
+      vfloat w = vf_sub(vf_sub(vf_set1(1), h->u), h->v);
+      vvec3 n = vv_madd(vv_madd(vv_scale(a, w), h->u, b), h->v, c);
+      n = vv_normalize(n, newton);
+      vmask facing = vf_lt(vv_dot(n, d), vf_zero());
+      f.n = vv_select(facing, n, vv_neg(n));
+      return f;
+    }
+    break;
+  }
+  f.n = vv_select(f.front, ng, vv_neg(ng));
+  return f;
+}
+
+/* floor(a) mod 2, as 0 or 1, without integer conversion. */
+static ALWAYS_INLINE vfloat vf_parity(vfloat a) {
+  vfloat f = vf_floor(a);
+  return vf_fnmadd(vf_set1(2), vf_floor(vf_mul(f, vf_set1(0.5f))), f);
+}
+
+/* The surface colour C (SPEC §4 textures) for one material. */
+static ALWAYS_INLINE vvec3 packet_color(const material_r *m,
+                                        const object_r *ob, vvec3 p) {
+  if (m->texture == GLINT_TEXTURE_NONE)
+    return vv_set1(m->color);
+  vfloat sum;
+  vfloat inv = vf_set1(m->inv_size);
+  if (m->texture == GLINT_TEXTURE_CHECKER_PLANAR) {
+    vfloat axes[3] = {p.x, p.y, p.z};
+    sum = vf_add(vf_parity(vf_mul(axes[ob->axis_u], inv)),
+                 vf_parity(vf_mul(axes[ob->axis_v], inv)));
+  } else {
+    vvec3 q = vv_scale(vv_sub(p, vv_set1(ob->origin)), inv);
+    sum = vf_add(vf_add(vf_parity(q.x), vf_parity(q.y)), vf_parity(q.z));
+  }
+  vmask odd = vf_eq(vf_parity(sum), vf_set1(1));
+  return vv_select(odd, vv_set1(m->odd), vv_set1(m->even));
+}
+
+/* Eq. 2.9/2.10's local part for the lanes of m on one material:
+ * C (ka Ia + sum S kd N·L IL) + sum S ks (V·R)^h IL, shadow rays included. */
+static ALWAYS_INLINE vvec3 packet_local_shading(
+    const scene_r *s, const material_r *mat, vvec3 c, const packet_surface *f,
+    vvec3 d, vmask m, glint_math math, int newton, glint_stats *st) {
+  vvec3 diffuse = vv_set1(v3_scale(s->ambient, mat->ka));
+  vvec3 highlight = {vf_zero(), vf_zero(), vf_zero()};
+  vvec3 v = vv_neg(d);
+  for (size_t j = 0; j < s->light_count; j++) {
+    const light_r *li = &s->lights[j];
+    vvec3 l = vv_sub(vv_set1(li->position), f->p);
+    vfloat dist = vf_sqrt(vv_dot(l, l));
+    l = vv_scale(l, vf_rcp(dist, newton));
+    vfloat nl = vv_dot(f->n, l);
+    vmask lit = vm_and(m, vf_gt(nl, vf_zero()));
+    if (vm_none(lit))
+      continue;
+    st->shadow_rays += (uint64_t)vm_count(lit);
+    vvec3 sj = packet_transmission(s, f->p, l, dist, lit, math, newton, st);
+    vvec3 il = vv_mul(sj, vv_set1(li->color));
+    vfloat kdnl = vf_select(lit, vf_mul(vf_set1(mat->kd), nl), vf_zero());
+    diffuse = vv_madd(diffuse, kdnl, il);
+    if (mat->ks > 0) {
+      /* R = 2(L·N)N - L */
+      vvec3 r = vv_sub(vv_scale(f->n, vf_add(nl, nl)), l);
+      vfloat vr = vv_dot(v, r);
+      vmask hl = vm_and(lit, vf_gt(vr, vf_zero()));
+      if (vm_any(hl)) {
+        vfloat p = vm_pow(vf_max(vr, vf_set1(FLT_MIN)), vf_set1(mat->h), math);
+        vfloat k = vf_select(hl, vf_mul(vf_set1(mat->ks), p), vf_zero());
+        highlight = vv_madd(highlight, k, il);
+      }
+    }
+  }
+  return vv_add(vv_mul(c, diffuse), highlight);
+}
+
+/* Eq. 2.12 and 2.13 for the lanes of m. The refracted directions are valid
+ * in *refract_mask; lanes with total internal reflection are not in it and
+ * their reflection weight is kr + kt. */
+static ALWAYS_INLINE void packet_secondary(const material_r *mat,
+                                           const packet_surface *f, vvec3 d,
+                                           vmask m, vvec3 *reflected,
+                                           vfloat *kr, vvec3 *refracted,
+                                           vmask *refract_mask, vmask *tir) {
+  vfloat cosi = vf_neg(vv_dot(d, f->n));
+  *reflected = vv_madd(d, vf_add(cosi, cosi), f->n);
+  *kr = vf_set1(mat->kr);
+  *refract_mask = vm_false();
+  *tir = vm_false();
+  if (mat->kt > 0) {
+    vfloat eta = vf_select(f->front, vf_set1(1 / mat->ior), vf_set1(mat->ior));
+    vfloat k = vf_fnmadd(vf_mul(eta, eta),
+                         vf_fnmadd(cosi, cosi, vf_set1(1)), vf_set1(1));
+    *tir = vm_and(m, vf_lt(k, vf_zero()));
+    *refract_mask = vm_andnot(m, *tir);
+    vfloat coef = vf_sub(vf_mul(eta, cosi), vf_sqrt(vf_max(k, vf_zero())));
+    *refracted = vv_madd(vv_scale(d, eta), coef, f->n);
+    *kr = vf_select(*tir, vf_set1(mat->kr + mat->kt), *kr);
+  }
+}
+
+/* Beer's law (eq. 2.11) on the lanes that travelled inside the object. */
+static ALWAYS_INLINE vvec3 packet_beer(const material_r *mat,
+                                       const packet_surface *f, vfloat t,
+                                       vmask m, vvec3 color, glint_math math) {
+  if (!mat->absorbs)
+    return color;
+  vmask inside = vm_andnot(m, f->front);
+  if (vm_none(inside))
+    return color;
+  vfloat nt = vf_neg(t);
+  vvec3 a = {vm_exp(vf_mul(vf_set1(mat->absorb.x), nt), math),
+             vm_exp(vf_mul(vf_set1(mat->absorb.y), nt), math),
+             vm_exp(vf_mul(vf_set1(mat->absorb.z), nt), math)};
+  return vv_select(inside, vv_mul(color, a), color);
+}
+
+#endif

@@ -1,0 +1,96 @@
+/* AVX2 + FMA (8 lanes). */
+#ifndef GLINT_SIMD_AVX2_H
+#define GLINT_SIMD_AVX2_H
+
+#include <immintrin.h>
+
+#define GLINT_SIMD_WIDTH 8
+
+typedef __m256 vfloat;
+typedef __m256 vmask; /* all-ones or all-zeros per lane */
+typedef __m256i vint;
+
+static inline vfloat vf_set1(float a) { return _mm256_set1_ps(a); }
+static inline vfloat vf_zero(void) { return _mm256_setzero_ps(); }
+static inline vfloat vf_load(const float *p) { return _mm256_load_ps(p); }
+static inline vfloat vf_loadu(const float *p) { return _mm256_loadu_ps(p); }
+static inline void vf_store(float *p, vfloat a) { _mm256_store_ps(p, a); }
+static inline vfloat vf_add(vfloat a, vfloat b) { return _mm256_add_ps(a, b); }
+static inline vfloat vf_sub(vfloat a, vfloat b) { return _mm256_sub_ps(a, b); }
+static inline vfloat vf_mul(vfloat a, vfloat b) { return _mm256_mul_ps(a, b); }
+static inline vfloat vf_div(vfloat a, vfloat b) { return _mm256_div_ps(a, b); }
+static inline vfloat vf_fmadd(vfloat a, vfloat b, vfloat c) {
+  return _mm256_fmadd_ps(a, b, c);
+}
+static inline vfloat vf_min(vfloat a, vfloat b) { return _mm256_min_ps(a, b); }
+static inline vfloat vf_max(vfloat a, vfloat b) { return _mm256_max_ps(a, b); }
+static inline vfloat vf_sqrt(vfloat a) { return _mm256_sqrt_ps(a); }
+static inline vfloat vf_rcp_estimate(vfloat a) { return _mm256_rcp_ps(a); }
+static inline vfloat vf_floor(vfloat a) { return _mm256_floor_ps(a); }
+
+static inline vmask vf_lt(vfloat a, vfloat b) { return _mm256_cmp_ps(a, b, _CMP_LT_OQ); }
+static inline vmask vf_le(vfloat a, vfloat b) { return _mm256_cmp_ps(a, b, _CMP_LE_OQ); }
+static inline vmask vf_gt(vfloat a, vfloat b) { return _mm256_cmp_ps(a, b, _CMP_GT_OQ); }
+static inline vmask vf_ge(vfloat a, vfloat b) { return _mm256_cmp_ps(a, b, _CMP_GE_OQ); }
+static inline vmask vf_eq(vfloat a, vfloat b) { return _mm256_cmp_ps(a, b, _CMP_EQ_OQ); }
+static inline vmask vf_neq(vfloat a, vfloat b) { return _mm256_cmp_ps(a, b, _CMP_NEQ_UQ); }
+static inline vfloat vf_select(vmask m, vfloat a, vfloat b) {
+  return _mm256_blendv_ps(b, a, m);
+}
+
+static inline vmask vm_and(vmask a, vmask b) { return _mm256_and_ps(a, b); }
+static inline vmask vm_or(vmask a, vmask b) { return _mm256_or_ps(a, b); }
+static inline vmask vm_xor(vmask a, vmask b) { return _mm256_xor_ps(a, b); }
+static inline vmask vm_andnot(vmask a, vmask b) { return _mm256_andnot_ps(b, a); }
+static inline vmask vm_true(void) {
+  return _mm256_castsi256_ps(_mm256_set1_epi32(-1));
+}
+static inline vmask vm_false(void) { return _mm256_setzero_ps(); }
+static inline int vm_bits(vmask m) { return _mm256_movemask_ps(m); }
+static inline vmask vm_from_bits(int bits) {
+  __m256i lane = _mm256_setr_epi32(1, 2, 4, 8, 16, 32, 64, 128);
+  __m256i b = _mm256_and_si256(_mm256_set1_epi32(bits), lane);
+  return _mm256_castsi256_ps(_mm256_cmpeq_epi32(b, lane));
+}
+
+static inline vint vi_set1(int a) { return _mm256_set1_epi32(a); }
+static inline vint vi_load(const int *p) { return _mm256_load_si256((const __m256i *)p); }
+static inline void vi_store(int *p, vint a) { _mm256_store_si256((__m256i *)p, a); }
+static inline vint vi_add(vint a, vint b) { return _mm256_add_epi32(a, b); }
+static inline vmask vi_eq(vint a, vint b) {
+  return _mm256_castsi256_ps(_mm256_cmpeq_epi32(a, b));
+}
+static inline vint vi_select(vmask m, vint a, vint b) {
+  return _mm256_castps_si256(
+      _mm256_blendv_ps(_mm256_castsi256_ps(b), _mm256_castsi256_ps(a), m));
+}
+static inline vint vf_to_vi(vfloat a) { return _mm256_cvttps_epi32(a); }
+static inline vfloat vi_to_vf(vint a) { return _mm256_cvtepi32_ps(a); }
+static inline vint vf_bits(vfloat a) { return _mm256_castps_si256(a); }
+static inline vfloat vi_as_vf(vint a) { return _mm256_castsi256_ps(a); }
+static inline vint vi_shl(vint a, int n) { return _mm256_slli_epi32(a, n); }
+static inline vint vi_shr(vint a, int n) { return _mm256_srli_epi32(a, n); }
+static inline vint vi_sra(vint a, int n) { return _mm256_srai_epi32(a, n); }
+static inline vint vi_and(vint a, vint b) { return _mm256_and_si256(a, b); }
+static inline vint vi_or(vint a, vint b) { return _mm256_or_si256(a, b); }
+static inline vint vi_sub(vint a, vint b) { return _mm256_sub_epi32(a, b); }
+static inline vint vi_mul_const(vint a, int k) { return _mm256_mullo_epi32(a, vi_set1(k)); }
+
+static inline vfloat vf_gather(const float *base, vint idx) {
+  return _mm256_i32gather_ps(base, idx, 4);
+}
+
+/* Stores the lanes of m contiguously at p; returns how many. AVX2 has no
+ * compress: a permutation from a table indexed by the mask's low and high
+ * nibbles would do; the loop below is clear and off the hot path. */
+static inline int vf_compress_store(float *p, vmask m, vfloat a) {
+  float v[8] __attribute__((aligned(32)));
+  _mm256_store_ps(v, a);
+  int bits = vm_bits(m), n = 0;
+  for (int i = 0; i < 8; i++)
+    if (bits >> i & 1)
+      p[n++] = v[i];
+  return n;
+}
+
+#endif

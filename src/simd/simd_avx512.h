@@ -1,0 +1,83 @@
+/* AVX-512F (16 lanes), with DQ/BW/VL. Lane masks are the k registers. */
+#ifndef GLINT_SIMD_AVX512_H
+#define GLINT_SIMD_AVX512_H
+
+#include <immintrin.h>
+
+#define GLINT_SIMD_WIDTH 16
+
+typedef __m512 vfloat;
+typedef __mmask16 vmask; /* one bit per lane */
+typedef __m512i vint;
+
+static inline vfloat vf_set1(float a) { return _mm512_set1_ps(a); }
+static inline vfloat vf_zero(void) { return _mm512_setzero_ps(); }
+static inline vfloat vf_load(const float *p) { return _mm512_load_ps(p); }
+static inline vfloat vf_loadu(const float *p) { return _mm512_loadu_ps(p); }
+static inline void vf_store(float *p, vfloat a) { _mm512_store_ps(p, a); }
+static inline vfloat vf_add(vfloat a, vfloat b) { return _mm512_add_ps(a, b); }
+static inline vfloat vf_sub(vfloat a, vfloat b) { return _mm512_sub_ps(a, b); }
+static inline vfloat vf_mul(vfloat a, vfloat b) { return _mm512_mul_ps(a, b); }
+static inline vfloat vf_div(vfloat a, vfloat b) { return _mm512_div_ps(a, b); }
+static inline vfloat vf_fmadd(vfloat a, vfloat b, vfloat c) {
+  return _mm512_fmadd_ps(a, b, c);
+}
+static inline vfloat vf_min(vfloat a, vfloat b) { return _mm512_min_ps(a, b); }
+static inline vfloat vf_max(vfloat a, vfloat b) { return _mm512_max_ps(a, b); }
+static inline vfloat vf_sqrt(vfloat a) { return _mm512_sqrt_ps(a); }
+/* rcp14: a 14-bit estimate (SSE/AVX2 give about 12). */
+static inline vfloat vf_rcp_estimate(vfloat a) { return _mm512_rcp14_ps(a); }
+static inline vfloat vf_floor(vfloat a) {
+  return _mm512_roundscale_ps(a, _MM_FROUND_TO_NEG_INF | _MM_FROUND_NO_EXC);
+}
+
+static inline vmask vf_lt(vfloat a, vfloat b) { return _mm512_cmp_ps_mask(a, b, _CMP_LT_OQ); }
+static inline vmask vf_le(vfloat a, vfloat b) { return _mm512_cmp_ps_mask(a, b, _CMP_LE_OQ); }
+static inline vmask vf_gt(vfloat a, vfloat b) { return _mm512_cmp_ps_mask(a, b, _CMP_GT_OQ); }
+static inline vmask vf_ge(vfloat a, vfloat b) { return _mm512_cmp_ps_mask(a, b, _CMP_GE_OQ); }
+static inline vmask vf_eq(vfloat a, vfloat b) { return _mm512_cmp_ps_mask(a, b, _CMP_EQ_OQ); }
+static inline vmask vf_neq(vfloat a, vfloat b) { return _mm512_cmp_ps_mask(a, b, _CMP_NEQ_UQ); }
+static inline vfloat vf_select(vmask m, vfloat a, vfloat b) {
+  return _mm512_mask_blend_ps(m, b, a);
+}
+
+static inline vmask vm_and(vmask a, vmask b) { return (vmask)(a & b); }
+static inline vmask vm_or(vmask a, vmask b) { return (vmask)(a | b); }
+static inline vmask vm_xor(vmask a, vmask b) { return (vmask)(a ^ b); }
+static inline vmask vm_andnot(vmask a, vmask b) { return (vmask)(a & ~b); }
+static inline vmask vm_true(void) { return (vmask)0xffff; }
+static inline vmask vm_false(void) { return (vmask)0; }
+static inline int vm_bits(vmask m) { return (int)m; }
+static inline vmask vm_from_bits(int bits) { return (vmask)bits; }
+
+static inline vint vi_set1(int a) { return _mm512_set1_epi32(a); }
+static inline vint vi_load(const int *p) { return _mm512_load_si512((const void *)p); }
+static inline void vi_store(int *p, vint a) { _mm512_store_si512((void *)p, a); }
+static inline vint vi_add(vint a, vint b) { return _mm512_add_epi32(a, b); }
+static inline vmask vi_eq(vint a, vint b) { return _mm512_cmpeq_epi32_mask(a, b); }
+static inline vint vi_select(vmask m, vint a, vint b) {
+  return _mm512_mask_blend_epi32(m, b, a);
+}
+static inline vint vf_to_vi(vfloat a) { return _mm512_cvttps_epi32(a); }
+static inline vfloat vi_to_vf(vint a) { return _mm512_cvtepi32_ps(a); }
+static inline vint vf_bits(vfloat a) { return _mm512_castps_si512(a); }
+static inline vfloat vi_as_vf(vint a) { return _mm512_castsi512_ps(a); }
+static inline vint vi_shl(vint a, int n) { return _mm512_slli_epi32(a, (unsigned)n); }
+static inline vint vi_shr(vint a, int n) { return _mm512_srli_epi32(a, (unsigned)n); }
+static inline vint vi_sra(vint a, int n) { return _mm512_srai_epi32(a, (unsigned)n); }
+static inline vint vi_and(vint a, vint b) { return _mm512_and_si512(a, b); }
+static inline vint vi_or(vint a, vint b) { return _mm512_or_si512(a, b); }
+static inline vint vi_sub(vint a, vint b) { return _mm512_sub_epi32(a, b); }
+static inline vint vi_mul_const(vint a, int k) { return _mm512_mullo_epi32(a, vi_set1(k)); }
+
+static inline vfloat vf_gather(const float *base, vint idx) {
+  return _mm512_i32gather_ps(idx, base, 4);
+}
+
+/* Stores the lanes of m contiguously at p (vcompressps); returns how many. */
+static inline int vf_compress_store(float *p, vmask m, vfloat a) {
+  _mm512_mask_compressstoreu_ps(p, m, a);
+  return __builtin_popcount((unsigned)m);
+}
+
+#endif
