@@ -20,6 +20,7 @@ void glint_cpu_detect(glint_cpu_features *f) {
     return;
   f->sse41 = (c >> 19) & 1;
   int fma = (c >> 12) & 1, osxsave = (c >> 27) & 1, avx = (c >> 28) & 1;
+  int popcnt = (c >> 23) & 1;
   if (!osxsave || !avx)
     return;
   unsigned long long xcr0 = xgetbv0();
@@ -31,7 +32,7 @@ void glint_cpu_detect(glint_cpu_features *f) {
   int avx2 = (b >> 5) & 1;
   int avx512f = (b >> 16) & 1, avx512dq = (b >> 17) & 1;
   int avx512bw = (b >> 30) & 1, avx512vl = (b >> 31) & 1;
-  f->avx2 = avx2 && fma && ymm_saved;
+  f->avx2 = avx2 && fma && popcnt && ymm_saved;
   f->avx512 =
       f->avx2 && avx512f && avx512dq && avx512bw && avx512vl && zmm_saved;
 }

@@ -72,6 +72,7 @@ glint_status scalar_scene_prepare(const glint_scene *g,
       t->e1 = from_d(e1);
       t->e2 = from_d(e2);
       t->ng = v3((real)(n.x / nl), (real)(n.y / nl), (real)(n.z / nl));
+      t->n = from_d(n);
     } /* else degenerate: zero edges, never hit */
     t->object = p->object;
     t->normals = p->normals;

@@ -26,6 +26,7 @@ typedef struct plane_r {
 typedef struct triangle_r {
   vec3 a, e1, e2;
   vec3 ng; /* unit geometric normal, front side by counter-clockwise order */
+  vec3 n;  /* e1 x e2, unnormalised (the packet intersector's) */
   uint32_t object;
   uint32_t normals; /* first of 3 vertex normals, or GLINT_NO_NORMALS */
 } triangle_r;

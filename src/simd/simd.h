@@ -33,8 +33,13 @@
 
 /* ---- derived operations, the same for every ISA ------------------------ */
 
-static inline vfloat vf_neg(vfloat a) { return vf_sub(vf_zero(), a); }
-static inline vfloat vf_abs(vfloat a) { return vf_max(a, vf_neg(a)); }
+/* Sign-bit arithmetic: one instruction each. */
+static inline vfloat vf_neg(vfloat a) {
+  return vi_as_vf(vi_xor(vf_bits(a), vi_set1((int)0x80000000u)));
+}
+static inline vfloat vf_abs(vfloat a) {
+  return vi_as_vf(vi_and(vf_bits(a), vi_set1(0x7fffffff)));
+}
 /* c - a*b */
 static inline vfloat vf_fnmadd(vfloat a, vfloat b, vfloat c) {
   return vf_sub(c, vf_mul(a, b));
@@ -45,7 +50,6 @@ static inline vmask vm_select(vmask m, vmask a, vmask b) {
 }
 static inline int vm_any(vmask m) { return vm_bits(m) != 0; }
 static inline int vm_none(vmask m) { return vm_bits(m) == 0; }
-static inline int vm_count(vmask m) { return __builtin_popcount((unsigned)vm_bits(m)); }
 static inline int vm_first(vmask m) { return __builtin_ctz((unsigned)vm_bits(m)); }
 
 /* 1/a by the hardware estimate refined with one Newton–Raphson step, eq. 3.1:

@@ -47,6 +47,8 @@ static inline vmask vm_true(void) {
 }
 static inline vmask vm_false(void) { return _mm256_setzero_ps(); }
 static inline int vm_bits(vmask m) { return _mm256_movemask_ps(m); }
+/* Active lanes (POPCNT: every AVX2 CPU has it; checked by CPUID). */
+static inline int vm_count(vmask m) { return _mm_popcnt_u32((unsigned)vm_bits(m)); }
 static inline vmask vm_from_bits(int bits) {
   __m256i lane = _mm256_setr_epi32(1, 2, 4, 8, 16, 32, 64, 128);
   __m256i b = _mm256_and_si256(_mm256_set1_epi32(bits), lane);
@@ -74,7 +76,17 @@ static inline vint vi_sra(vint a, int n) { return _mm256_srai_epi32(a, n); }
 static inline vint vi_and(vint a, vint b) { return _mm256_and_si256(a, b); }
 static inline vint vi_or(vint a, vint b) { return _mm256_or_si256(a, b); }
 static inline vint vi_sub(vint a, vint b) { return _mm256_sub_epi32(a, b); }
+static inline vint vi_xor(vint a, vint b) { return _mm256_xor_si256(a, b); }
 static inline vint vi_mul_const(vint a, int k) { return _mm256_mullo_epi32(a, vi_set1(k)); }
+
+/* Four consecutive floats, each broadcast (vbroadcastss from memory). */
+static inline void vf_splat4(const float *p, vfloat *a, vfloat *b, vfloat *c,
+                             vfloat *d) {
+  *a = _mm256_broadcast_ss(p);
+  *b = _mm256_broadcast_ss(p + 1);
+  *c = _mm256_broadcast_ss(p + 2);
+  *d = _mm256_broadcast_ss(p + 3);
+}
 
 static inline vfloat vf_gather(const float *base, vint idx) {
   return _mm256_i32gather_ps(base, idx, 4);

@@ -48,6 +48,8 @@ static inline vmask vm_andnot(vmask a, vmask b) { return (vmask)(a & ~b); }
 static inline vmask vm_true(void) { return (vmask)0xffff; }
 static inline vmask vm_false(void) { return (vmask)0; }
 static inline int vm_bits(vmask m) { return (int)m; }
+/* Active lanes (POPCNT: every AVX2 CPU has it; checked by CPUID). */
+static inline int vm_count(vmask m) { return _mm_popcnt_u32((unsigned)vm_bits(m)); }
 static inline vmask vm_from_bits(int bits) { return (vmask)bits; }
 
 static inline vint vi_set1(int a) { return _mm512_set1_epi32(a); }
@@ -68,7 +70,17 @@ static inline vint vi_sra(vint a, int n) { return _mm512_srai_epi32(a, (unsigned
 static inline vint vi_and(vint a, vint b) { return _mm512_and_si512(a, b); }
 static inline vint vi_or(vint a, vint b) { return _mm512_or_si512(a, b); }
 static inline vint vi_sub(vint a, vint b) { return _mm512_sub_epi32(a, b); }
+static inline vint vi_xor(vint a, vint b) { return _mm512_xor_si512(a, b); }
 static inline vint vi_mul_const(vint a, int k) { return _mm512_mullo_epi32(a, vi_set1(k)); }
+
+/* Four consecutive floats, each broadcast (vbroadcastss from memory). */
+static inline void vf_splat4(const float *p, vfloat *a, vfloat *b, vfloat *c,
+                             vfloat *d) {
+  *a = _mm512_set1_ps(p[0]);
+  *b = _mm512_set1_ps(p[1]);
+  *c = _mm512_set1_ps(p[2]);
+  *d = _mm512_set1_ps(p[3]);
+}
 
 static inline vfloat vf_gather(const float *base, vint idx) {
   return _mm512_i32gather_ps(idx, base, 4);

@@ -50,6 +50,12 @@ static inline vmask vm_true(void) {
 }
 static inline vmask vm_false(void) { return _mm_setzero_ps(); }
 static inline int vm_bits(vmask m) { return _mm_movemask_ps(m); }
+/* Active lanes. SSE4.1 CPUs need not have POPCNT: a table of 16. */
+static inline int vm_count(vmask m) {
+  static const unsigned char bits_set[16] = {0, 1, 1, 2, 1, 2, 2, 3,
+                                             1, 2, 2, 3, 2, 3, 3, 4};
+  return bits_set[_mm_movemask_ps(m)];
+}
 static inline vmask vm_from_bits(int bits) {
   __m128i lane = _mm_setr_epi32(1, 2, 4, 8);
   __m128i b = _mm_and_si128(_mm_set1_epi32(bits), lane);
@@ -77,7 +83,20 @@ static inline vint vi_sra(vint a, int n) { return _mm_srai_epi32(a, n); }
 static inline vint vi_and(vint a, vint b) { return _mm_and_si128(a, b); }
 static inline vint vi_or(vint a, vint b) { return _mm_or_si128(a, b); }
 static inline vint vi_sub(vint a, vint b) { return _mm_sub_epi32(a, b); }
+static inline vint vi_xor(vint a, vint b) { return _mm_xor_si128(a, b); }
 static inline vint vi_mul_const(vint a, int k) { return _mm_mullo_epi32(a, vi_set1(k)); }
+
+/* Four consecutive floats, each splat across a vector: one load and four
+ * shuffles (SSE has no broadcast load; set1 from memory costs two
+ * instructions a value). */
+static inline void vf_splat4(const float *p, vfloat *a, vfloat *b, vfloat *c,
+                             vfloat *d) {
+  __m128 v = _mm_loadu_ps(p);
+  *a = _mm_shuffle_ps(v, v, 0x00);
+  *b = _mm_shuffle_ps(v, v, 0x55);
+  *c = _mm_shuffle_ps(v, v, 0xaa);
+  *d = _mm_shuffle_ps(v, v, 0xff);
+}
 
 /* No gather in SSE: four scalar loads. */
 static inline vfloat vf_gather(const float *base, vint idx) {

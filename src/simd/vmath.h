@@ -62,10 +62,11 @@ static inline vfloat vm_log2(vfloat x, glint_math math) {
   vmask tiny = vf_lt(x, vf_set1(1.17549435e-38f));
   vfloat r;
   if (math == GLINT_MATH_FAST) {
-    /* bits / 2^23 - 127 is log2 to within 0.086; the constant centres the
-     * error of the linear mantissa. */
+    /* bits / 2^23 - 127 is log2 with the mantissa taken as linear: exact at
+     * powers of two, at most 0.086 below in between, and never positive
+     * for x < 1 (centring its error would make pow(x < 1, 1000) explode). */
     r = vf_fmadd(vi_to_vf(vf_bits(x)), vf_set1(1.0f / 8388608.0f),
-                 vf_set1(-127.0f + 0.0430357f));
+                 vf_set1(-127.0f));
   } else {
     vfloat e, t = vm_split(x, &e);
     vfloat p = math == GLINT_MATH_TAYLOR

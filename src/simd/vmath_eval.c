@@ -1,0 +1,45 @@
+/* pow and exp of the SIMD maths library on whole arrays, for the tests and
+ * for tools: compiled once per ISA like the tracers. */
+#include "simd/vmath.h"
+
+#include <string.h>
+
+void ISA_NAME(glint_vmath_pow)(const float *x, const float *y, float *out,
+                               size_t n, glint_math math) {
+  for (size_t i = 0; i < n; i += W) {
+    SIMD_ALIGN float a[W], b[W], r[W];
+    size_t k = n - i < W ? n - i : W;
+    for (size_t j = 0; j < W; j++) {
+      a[j] = j < k ? x[i + j] : 1.0f;
+      b[j] = j < k ? y[i + j] : 1.0f;
+    }
+    vf_store(r, vm_pow(vf_load(a), vf_load(b), math));
+    memcpy(out + i, r, k * sizeof *r);
+  }
+}
+
+void ISA_NAME(glint_vmath_exp)(const float *x, float *out, size_t n,
+                               glint_math math) {
+  for (size_t i = 0; i < n; i += W) {
+    SIMD_ALIGN float a[W], r[W];
+    size_t k = n - i < W ? n - i : W;
+    for (size_t j = 0; j < W; j++)
+      a[j] = j < k ? x[i + j] : 0.0f;
+    vf_store(r, vm_exp(vf_load(a), math));
+    memcpy(out + i, r, k * sizeof *r);
+  }
+}
+
+/* 1/x as the packet tracers divide (eq. 3.1), with or without the Newton
+ * step. */
+void ISA_NAME(glint_vmath_rcp)(const float *x, float *out, size_t n,
+                               int newton) {
+  for (size_t i = 0; i < n; i += W) {
+    SIMD_ALIGN float a[W], r[W];
+    size_t k = n - i < W ? n - i : W;
+    for (size_t j = 0; j < W; j++)
+      a[j] = j < k ? x[i + j] : 1.0f;
+    vf_store(r, vf_rcp(vf_load(a), newton));
+    memcpy(out + i, r, k * sizeof *r);
+  }
+}

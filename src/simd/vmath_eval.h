@@ -1,0 +1,20 @@
+/* Array entry points to the SIMD maths, one set per ISA (vmath_eval.c). */
+#ifndef GLINT_SIMD_VMATH_EVAL_H
+#define GLINT_SIMD_VMATH_EVAL_H
+
+#include "glint.h"
+
+#include <stddef.h>
+
+#define GLINT_VMATH_DECLARE(isa)                                               \
+  void glint_vmath_pow_##isa(const float *x, const float *y, float *out,       \
+                             size_t n, glint_math math);                       \
+  void glint_vmath_exp_##isa(const float *x, float *out, size_t n,             \
+                             glint_math math);                                 \
+  void glint_vmath_rcp_##isa(const float *x, float *out, size_t n, int newton);
+GLINT_VMATH_DECLARE(sse)
+GLINT_VMATH_DECLARE(avx2)
+GLINT_VMATH_DECLARE(avx512)
+#undef GLINT_VMATH_DECLARE
+
+#endif
