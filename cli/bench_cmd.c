@@ -10,6 +10,7 @@
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
+#include <sys/stat.h>
 #include <unistd.h>
 
 #define MAX_ITEMS 64
@@ -36,6 +37,8 @@ static void bench_usage(FILE *f) {
       "      --math NAME    minimax, fast, taylor, exact (default: minimax)\n"
       "      --accel NAME   bvh or none (default: bvh)\n"
       "      --csv FILE     also write every measurement as CSV\n"
+      "      --plot DIR     also plot seconds against depth per scene into\n"
+      "                     DIR/SCENE.png (needs gnuplot)\n"
       "  -h, --help         this help\n",
       f);
 }
@@ -97,11 +100,76 @@ static int parse_depths(char *text, int *depths) {
   return count;
 }
 
+/* --plot needs gnuplot and a folder to write into; checked before the
+ * (long) measurements rather than after. */
+static int check_plot_dir(const char *dir) {
+  if (system("command -v gnuplot >/dev/null 2>&1") != 0) {
+    cli_error("--plot needs gnuplot (Debian package gnuplot-nox)");
+    return -1;
+  }
+  struct stat sb;
+  if (stat(dir, &sb) != 0 && mkdir(dir, 0777) != 0) {
+    cli_error("--plot: cannot create the folder %s", dir);
+    return -1;
+  }
+  if (stat(dir, &sb) != 0 || !S_ISDIR(sb.st_mode)) {
+    cli_error("--plot: %s is not a folder", dir);
+    return -1;
+  }
+  return 0;
+}
+
+/* Seconds against depth, one line per backend, like the thesis's figures
+ * 5.4-5.6: DIR/SCENE.dat (the data), DIR/SCENE.gp (the script) and
+ * DIR/SCENE.png (the plot). */
+static int plot_scene(const char *dir, const char *scene, const int *depths,
+                      int ndepths, const glint_backend *backends,
+                      int nbackends, const double *medians) {
+  char path[8192];
+  snprintf(path, sizeof path, "%s/%s.dat", dir, scene);
+  FILE *f = fopen(path, "w");
+  if (!f)
+    return -1;
+  fprintf(f, "# depth");
+  for (int b = 0; b < nbackends; b++)
+    fprintf(f, " %s", glint_backend_name(backends[b]));
+  fprintf(f, "\n");
+  for (int d = 0; d < ndepths; d++) {
+    fprintf(f, "%d", depths[d]);
+    for (int b = 0; b < nbackends; b++)
+      fprintf(f, " %.6f", medians[d * nbackends + b]);
+    fprintf(f, "\n");
+  }
+  if (fclose(f) != 0)
+    return -1;
+  snprintf(path, sizeof path, "%s/%s.gp", dir, scene);
+  if (!(f = fopen(path, "w")))
+    return -1;
+  fprintf(f,
+          "set terminal pngcairo size 800,500 font 'sans,11'\n"
+          "set output '%s/%s.png'\n"
+          "set title 'Scene \"%s\": render time against recursion depth "
+          "(640x480, 5 spp, one thread)'\n"
+          "set xlabel 'recursion depth'\nset ylabel 'seconds'\n"
+          "set key top left\nset grid\nset xtics 1\n"
+          "plot ",
+          dir, scene, scene);
+  for (int b = 0; b < nbackends; b++)
+    fprintf(f, "%s'%s/%s.dat' using 1:%d with linespoints lw 2 title '%s'",
+            b ? ", " : "", dir, scene, b + 2, glint_backend_name(backends[b]));
+  fprintf(f, "\n");
+  if (fclose(f) != 0)
+    return -1;
+  char cmd[16384];
+  snprintf(cmd, sizeof cmd, "gnuplot '%s/%s.gp'", dir, scene);
+  return system(cmd) == 0 ? 0 : -1;
+}
+
 int cmd_bench(int argc, char **argv) {
   char default_scenes[] = "whitted,giza,billiard", default_depths[] = "1-15";
   char *scene_list = default_scenes, *depth_list = default_depths;
   char *backend_list = NULL;
-  const char *csv_path = NULL, *v;
+  const char *csv_path = NULL, *plot_dir = NULL, *v;
   int runs = 3;
   glint_render_settings rs;
   glint_render_settings_default(&rs);
@@ -159,6 +227,9 @@ int cmd_bench(int argc, char **argv) {
     } else if (arg_is(&c, NULL, "--csv")) {
       if (!(csv_path = arg_value(&c, "--csv")))
         return EXIT_USAGE;
+    } else if (arg_is(&c, NULL, "--plot")) {
+      if (!(plot_dir = arg_value(&c, "--plot")))
+        return EXIT_USAGE;
     } else {
       cli_error("unknown option '%s' (see glint bench --help)", a);
       return EXIT_USAGE;
@@ -168,6 +239,8 @@ int cmd_bench(int argc, char **argv) {
   int depths[MAX_ITEMS];
   int ndepths = parse_depths(depth_list, depths);
   if (ndepths < 0)
+    return EXIT_USAGE;
+  if (plot_dir && check_plot_dir(plot_dir))
     return EXIT_USAGE;
 
   glint_backend backends[GLINT_BACKEND_COUNT];
@@ -295,6 +368,26 @@ int cmd_bench(int argc, char **argv) {
         }
         printf("\n");
       }
+      int ref = -1;
+      for (int b = 0; b < nbackends; b++)
+        if (backends[b] == GLINT_BACKEND_SCALAR_FLOAT)
+          ref = b;
+      if (ref >= 0 && nbackends > 1) {
+        printf("Scene \"%s\": speed-up over scalar-float\n%5s", stems[s],
+               "depth");
+        for (int b = 0; b < nbackends; b++)
+          printf(" %14s", glint_backend_name(backends[b]));
+        printf("\n");
+        for (int d = 0; d < ndepths; d++) {
+          printf("%5d", depths[d]);
+          double base = median(CELL(s, d, ref).seconds, runs);
+          for (int b = 0; b < nbackends; b++) {
+            double t = median(CELL(s, d, b).seconds, runs);
+            printf(" %13.2fx", t > 0 ? base / t : 0.0);
+          }
+          printf("\n");
+        }
+      }
       int any_packet = 0;
       for (int b = 0; b < nbackends; b++)
         any_packet |= glint_backend_width(backends[b]) > 1;
@@ -318,6 +411,18 @@ int cmd_bench(int argc, char **argv) {
           }
           printf("\n");
         }
+      }
+    }
+    for (int sc = 0; plot_dir && sc < nscenes && !status; sc++) {
+      double med[MAX_ITEMS * GLINT_BACKEND_COUNT];
+      for (int d = 0; d < ndepths; d++)
+        for (int b = 0; b < nbackends; b++)
+          med[d * nbackends + b] = median(CELL(sc, d, b).seconds, runs);
+      if (plot_scene(plot_dir, stems[sc], depths, ndepths, backends,
+                     nbackends, med)) {
+        cli_error("--plot: gnuplot could not draw %s/%s.png", plot_dir,
+                  stems[sc]);
+        status = EXIT_USAGE;
       }
     }
     if (csv) {

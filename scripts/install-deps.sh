@@ -9,6 +9,7 @@ packages=(
   pkg-config        # finds libpng and friends
   libpng-dev        # PNG output
   libcmocka-dev     # the unit-test framework
+  gnuplot-nox       # glint bench --plot
 )
 
 missing=()

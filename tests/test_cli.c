@@ -16,6 +16,7 @@ extern char **environ;
 
 static char dir[64];
 static char out[65536], err[65536];
+static const char *extra_env; /* one more NAME=value for the next run */
 
 static int setup(void **state) {
   (void)state;
@@ -61,9 +62,16 @@ static int run(const char *first, ...) {
   char cwd[512];
   if (!getcwd(cwd, sizeof cwd) || chdir(dir) != 0)
     fail_msg("cannot enter %s", dir);
+  const char *envp[512];
+  int ne = 0;
+  for (char **e = environ; *e && ne < 510; e++)
+    envp[ne++] = *e;
+  if (extra_env)
+    envp[ne++] = extra_env;
+  envp[ne] = NULL;
   pid_t pid;
-  int rc =
-      posix_spawn(&pid, GLINT_EXE, &fa, NULL, (char *const *)argv, environ);
+  int rc = posix_spawn(&pid, GLINT_EXE, &fa, NULL, (char *const *)argv,
+                       (char *const *)envp);
   if (chdir(cwd) != 0)
     fail_msg("cannot return to %s", cwd);
   posix_spawn_file_actions_destroy(&fa);
@@ -273,6 +281,26 @@ static void bench_errors(void **state) {
   EXPECT_USAGE_ERROR("unknown option", "bench", "--frobnicate");
 }
 
+/* A backend the CPU lacks is refused; auto falls back to the widest one
+ * there is. GLINT_ISA caps the detected instruction sets. */
+static void missing_instruction_sets(void **state) {
+  (void)state;
+  char p[128];
+  snprintf(p, sizeof p, "%s/a.png", dir);
+  extra_env = "GLINT_ISA=sse";
+  EXPECT_USAGE_ERROR("backend 'avx512' is not supported on this CPU", "render", "-b", "avx512");
+  EXPECT_USAGE_ERROR("backend 'avx2' is not supported on this CPU", "render", "-b", "avx2");
+  assert_int_equal(run("render", "-W", "8", "-H", "8", "-o", "a.png", NULL), 0);
+  assert_non_null(strstr(out, ", sse,"));
+  unlink(p);
+  extra_env = "GLINT_ISA=none";
+  EXPECT_USAGE_ERROR("backend 'sse' is not supported on this CPU", "render", "-b", "sse");
+  assert_int_equal(run("render", "-W", "8", "-H", "8", "-o", "a.png", NULL), 0);
+  assert_non_null(strstr(out, ", scalar-float,"));
+  unlink(p);
+  extra_env = NULL;
+}
+
 int main(void) {
   const struct CMUnitTest tests[] = {
       cmocka_unit_test(usage_errors),
@@ -284,6 +312,7 @@ int main(void) {
       cmocka_unit_test(defaults_quiet_and_stats),
       cmocka_unit_test(bench_runs_and_writes_csv),
       cmocka_unit_test(bench_errors),
+      cmocka_unit_test(missing_instruction_sets),
   };
   return cmocka_run_group_tests(tests, setup, teardown);
 }

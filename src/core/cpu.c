@@ -2,7 +2,24 @@
 
 #include "glint.h"
 
+#include <stdlib.h>
+#include <string.h>
 #include <unistd.h>
+
+/* GLINT_ISA=none|sse|avx2|avx512 caps what detection reports, to test
+ * fallbacks and to compare instruction sets on one machine. It can only
+ * take features away, never claim ones the CPU lacks. */
+static void apply_cap(glint_cpu_features *f) {
+  const char *cap = getenv("GLINT_ISA");
+  if (!cap || !*cap)
+    return;
+  if (strcmp(cap, "none") == 0 || strcmp(cap, "scalar") == 0)
+    f->sse41 = f->avx2 = f->avx512 = 0;
+  else if (strcmp(cap, "sse") == 0)
+    f->avx2 = f->avx512 = 0;
+  else if (strcmp(cap, "avx2") == 0)
+    f->avx512 = 0;
+}
 
 #if defined(__x86_64__) || defined(__i386__)
 #include <cpuid.h>
@@ -35,6 +52,7 @@ void glint_cpu_detect(glint_cpu_features *f) {
   f->avx2 = avx2 && fma && popcnt && ymm_saved;
   f->avx512 =
       f->avx2 && avx512f && avx512dq && avx512bw && avx512vl && zmm_saved;
+  apply_cap(f);
 }
 #else
 void glint_cpu_detect(glint_cpu_features *f) {

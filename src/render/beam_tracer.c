@@ -13,25 +13,18 @@
 #include "render/backend.h"
 #include "render/packet.h"
 
-#include "core/error.h"
-
-#include <stdlib.h>
-
-typedef struct beam_scene {
-  scene_r *s;
-  glint_math math;
-  int newton;
-} beam_scene;
 
 typedef struct beam_ctx {
-  const scene_r *s;
+  const packet_scene *ps;
   glint_math math;
   int newton;
   glint_stats *st;
 } beam_ctx;
 
-typedef void (*trace_fn)(const beam_ctx *c, vvec3 o, vvec3 d, vmask active,
-                         int level, vvec3 *color);
+/* Rays are passed by pointer: by value, each call would copy six vectors
+ * through the stack. */
+typedef void (*trace_fn)(const beam_ctx *c, const vvec3 *o, const vvec3 *d,
+                         vmask active, int level, vvec3 *color);
 
 /* Shades the sub-beam `sub` (every lane hit `object`) and, below the depth
  * limit, traces its reflected and refracted beams. */
@@ -40,27 +33,29 @@ static ALWAYS_INLINE void shade_sub_beam(const beam_ctx *c, vvec3 o, vvec3 d,
                                          vmask sub, int level, vvec3 *out,
                                          glint_math math, int newton,
                                          trace_fn trace) {
-  const scene_r *s = c->s;
+  const packet_scene *ps = c->ps;
+  const scene_r *s = ps->s;
   const object_r *ob = &s->objects[object];
   const material_r *mat = &s->materials[ob->material];
-  packet_surface f = packet_surface_at(s, ob, h, o, d, newton);
-  vvec3 col = packet_color(mat, ob, f.p);
-  vvec3 color =
-      packet_local_shading(s, mat, col, &f, d, sub, math, newton, c->st);
+  const pmaterial *pm = &ps->materials[ob->material];
+  packet_surface f = packet_surface_at(ps, ob, h, o, d, newton);
+  vvec3 col = packet_color(mat, pm, ob, f.p);
+  vvec3 color = packet_local_shading(ps, mat, pm, col, &f, d, sub, math,
+                                     newton, c->st);
 
   if (level < s->max_depth && (mat->kr > 0 || mat->kt > 0)) {
     vvec3 reflected, refracted;
     vfloat kr;
     vmask refract, tir;
-    packet_secondary(mat, &f, d, sub, &reflected, &kr, &refracted, &refract,
-                     &tir);
+    packet_secondary(mat, pm, &f, d, sub, &reflected, &kr, &refracted,
+                     &refract, &tir);
     c->st->total_internal_reflections += (uint64_t)vm_count(tir);
     if (vm_any(refract)) {
       vvec3 ct;
       c->st->secondary_rays += (uint64_t)vm_count(refract);
       c->st->refracted_rays += (uint64_t)vm_count(refract);
-      trace(c, f.p, refracted, refract, level + 1, &ct);
-      vfloat kt = vf_select(refract, vf_set1(mat->kt), vf_zero());
+      trace(c, &f.p, &refracted, refract, level + 1, &ct);
+      vfloat kt = vf_keep(refract, vs_get(&pm->kt));
       color = vv_madd(color, kt, ct);
     }
     vmask reflect = vm_and(sub, vf_gt(kr, vf_zero()));
@@ -68,11 +63,11 @@ static ALWAYS_INLINE void shade_sub_beam(const beam_ctx *c, vvec3 o, vvec3 d,
       vvec3 cr;
       c->st->secondary_rays += (uint64_t)vm_count(reflect);
       c->st->reflected_rays += (uint64_t)vm_count(reflect);
-      trace(c, f.p, reflected, reflect, level + 1, &cr);
-      color = vv_madd(color, vf_select(reflect, kr, vf_zero()), cr);
+      trace(c, &f.p, &reflected, reflect, level + 1, &cr);
+      color = vv_madd(color, vf_keep(reflect, kr), cr);
     }
   }
-  color = packet_beer(mat, &f, h->t, sub, color, math);
+  color = packet_beer(mat, pm, &f, h->t, sub, color, math);
   *out = vv_select(sub, color, *out);
 }
 
@@ -83,11 +78,10 @@ static ALWAYS_INLINE void trace_beam_body(const beam_ctx *c, vvec3 o, vvec3 d,
                                           vmask active, int level,
                                           vvec3 *color, glint_math math,
                                           int newton, trace_fn trace) {
-  const scene_r *s = c->s;
   c->st->beams++;
   packet_hit h;
-  packet_nearest(s, o, d, active, newton, &h, c->st);
-  *color = vv_set1(s->background);
+  packet_nearest(c->ps, o, d, active, newton, &h, c->st);
+  *color = vv_get(c->ps->background);
   vmask todo = vm_andnot(active, vi_eq(h.object, vi_set1(-1)));
   if (vm_none(todo))
     return;
@@ -103,15 +97,15 @@ static ALWAYS_INLINE void trace_beam_body(const beam_ctx *c, vvec3 o, vvec3 d,
   }
 }
 
-static void trace_default(const beam_ctx *c, vvec3 o, vvec3 d, vmask active,
-                          int level, vvec3 *color) {
-  trace_beam_body(c, o, d, active, level, color, GLINT_MATH_MINIMAX, 1,
+static void trace_default(const beam_ctx *c, const vvec3 *o, const vvec3 *d,
+                          vmask active, int level, vvec3 *color) {
+  trace_beam_body(c, *o, *d, active, level, color, GLINT_MATH_MINIMAX, 1,
                   trace_default);
 }
 
-static void trace_generic(const beam_ctx *c, vvec3 o, vvec3 d, vmask active,
-                          int level, vvec3 *color) {
-  trace_beam_body(c, o, d, active, level, color, c->math, c->newton,
+static void trace_generic(const beam_ctx *c, const vvec3 *o, const vvec3 *d,
+                          vmask active, int level, vvec3 *color) {
+  trace_beam_body(c, *o, *d, active, level, color, c->math, c->newton,
                   trace_generic);
 }
 
@@ -125,12 +119,12 @@ static void trace_generic(const beam_ctx *c, vvec3 o, vvec3 d, vmask active,
 #endif
 #define BH (W / BW)
 
-static ALWAYS_INLINE void render_tile_body(const beam_scene *b,
+static ALWAYS_INLINE void render_tile_body(const packet_scene *ps,
                                            const glint_tile *tile, float *rgb,
                                            glint_stats *st, int newton,
                                            trace_fn trace) {
-  const scene_r *s = b->s;
-  beam_ctx c = {s, b->math, b->newton, st};
+  const scene_r *s = ps->s;
+  beam_ctx c = {ps, ps->math, ps->newton, st};
   const camera *cam = &s->cam;
   /* Lane i covers pixel (bx + i % BW, by + i / BW). */
   SIMD_ALIGN float lx[W], ly[W];
@@ -160,7 +154,7 @@ static ALWAYS_INLINE void render_tile_body(const beam_scene *b,
             vf_add(py, vf_set1(0.5f + s->samples[k][1])), sy, oy);
         vvec3 dir = vv_normalize(vv_madd(vv_madd(cd, x, cr), y, cu), newton);
         vvec3 color;
-        trace(&c, from, dir, valid, 1, &color);
+        trace(&c, &from, &dir, valid, 1, &color);
         sum = vv_add(sum, color);
       }
       st->primary_rays += (uint64_t)vm_count(valid) * (uint64_t)s->spp;
@@ -183,36 +177,23 @@ static ALWAYS_INLINE void render_tile_body(const beam_scene *b,
 static void render_tile(const void *prepared, const glint_tile *tile,
                         void *scratch, float *rgb, glint_stats *st) {
   (void)scratch;
-  const beam_scene *b = prepared;
-  if (b->math == GLINT_MATH_MINIMAX && b->newton)
-    render_tile_body(b, tile, rgb, st, 1, trace_default);
+  const packet_scene *ps = prepared;
+  if (ps->math == GLINT_MATH_MINIMAX && ps->newton)
+    render_tile_body(ps, tile, rgb, st, 1, trace_default);
   else
-    render_tile_body(b, tile, rgb, st, b->newton, trace_generic);
+    render_tile_body(ps, tile, rgb, st, ps->newton, trace_generic);
 }
 
 static glint_status prepare(const glint_scene *scene, const glint_frame *frame,
                             void **prepared, glint_stats *stats,
                             glint_error *error) {
-  beam_scene *b = calloc(1, sizeof *b);
-  if (!b)
-    return glint_fail(error, GLINT_E_MEMORY, "out of memory");
-  glint_status st =
-      glint_scalar_scene_prepare_float(scene, frame, &b->s, stats, error);
-  if (st) {
-    free(b);
-    return st;
-  }
-  b->math = frame->math;
-  b->newton = frame->rcp_newton;
-  *prepared = b;
-  return GLINT_OK;
+  packet_scene *ps;
+  glint_status st = packet_scene_prepare(scene, frame, &ps, stats, error);
+  *prepared = ps;
+  return st;
 }
 
-static void release(void *prepared) {
-  beam_scene *b = prepared;
-  glint_scalar_scene_release_float(b->s);
-  free(b);
-}
+static void release(void *prepared) { packet_scene_release(prepared); }
 
 const glint_backend_ops ISA_NAME(glint_beam_ops) = {prepare, release, NULL,
                                                     render_tile};
@@ -222,12 +203,12 @@ const glint_backend_ops ISA_NAME(glint_beam_ops) = {prepare, release, NULL,
 void ISA_NAME(glint_beam_nearest_hit)(const void *prepared, const float *o,
                                       const float *d, int active_bits,
                                       float *t, int *object) {
-  const beam_scene *b = prepared;
+  const packet_scene *ps = prepared;
   glint_stats st = {0};
   vvec3 vo = {vf_loadu(o), vf_loadu(o + W), vf_loadu(o + 2 * W)};
   vvec3 vd = {vf_loadu(d), vf_loadu(d + W), vf_loadu(d + 2 * W)};
   packet_hit h;
-  packet_nearest(b->s, vo, vd, vm_from_bits(active_bits), 1, &h, &st);
+  packet_nearest(ps, vo, vd, vm_from_bits(active_bits), 1, &h, &st);
   SIMD_ALIGN float tt[W];
   SIMD_ALIGN int ob[W];
   vf_store(tt, h.t);

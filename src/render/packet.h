@@ -9,8 +9,7 @@
 #ifndef GLINT_RENDER_PACKET_H
 #define GLINT_RENDER_PACKET_H
 
-#define GLINT_REAL_FLOAT
-#include "render/scalar_scene.h"
+#include "render/packet_scene.h"
 #include "scene/scene.h"
 #include "simd/simd.h"
 #include "simd/vmath.h"
@@ -78,6 +77,12 @@ static ALWAYS_INLINE vvec3 vv_select(vmask m, vvec3 a, vvec3 b) {
 static ALWAYS_INLINE vvec3 vv_normalize(vvec3 a, int newton) {
   return vv_scale(a, vf_rsqrt(vv_dot(a, a), newton));
 }
+/* Three consecutive vscalars (a packet-scene vec3) across lanes. */
+static ALWAYS_INLINE vvec3 vv_get(const vscalar *p) {
+  vvec3 r = {vs_get(&p[0]), vs_get(&p[1]), vs_get(&p[2])};
+  return r;
+}
+
 /* A vec3 stored in a record, splat across lanes. It reads one float past
  * the vec3, which every record below has. */
 static ALWAYS_INLINE vvec3 vv_splat(const vec3 *p) {
@@ -122,16 +127,16 @@ static ALWAYS_INLINE void count_tests(glint_stats *st, size_t tests,
 
 /* Algorithm 2.1 for all lanes against one sphere: updates the hits that are
  * nearer than those found so far. */
-static ALWAYS_INLINE void packet_sphere(const sphere_r *sp, uint32_t index,
-                                        vvec3 o, vvec3 d, vmask active,
+/* Spheres and planes record only the object: each is one primitive, so the
+ * object names it. */
+static ALWAYS_INLINE void packet_sphere(const psphere *sp, vvec3 o, vvec3 d,
+                                        vmask active,
                                         vfloat eps, packet_hit *h) {
-  vvec3 c;
-  vfloat r2;
-  vf_splat4(&sp->center.x, &c.x, &c.y, &c.z, &r2); /* center, r2 */
-  vvec3 v = vv_sub(c, o);
+  vvec3 v = vv_sub(vv_get(sp->center), o);
   vfloat proj = vv_dot(v, d);
   vvec3 perp = vv_madd(v, vf_neg(proj), d);
   vfloat dist2 = vv_dot(perp, perp);
+  vfloat r2 = vs_get(&sp->r2);
   vmask m = vm_and(active, vf_le(dist2, r2));
   if (vm_none(m))
     return; /* the thesis's early rejection, for the whole packet */
@@ -141,26 +146,23 @@ static ALWAYS_INLINE void packet_sphere(const sphere_r *sp, uint32_t index,
   vfloat t = vf_select(outside, l1, l2);
   vmask win = vm_and(vm_and(m, vf_gt(l2, eps)), vf_lt(t, h->t));
   h->t = vf_select(win, t, h->t);
-  h->object = vi_select(win, vi_set1((int)sp->object), h->object);
-  h->prim = vi_select(win, vi_set1((int)index), h->prim);
+  h->object = vi_select(win, vi_set1(sp->object), h->object);
   h->inside = vm_select(win, vm_andnot(vm_true(), outside), h->inside);
 }
 
 /* Eq. 2.5, the division by rcp (eq. 3.1). */
-static ALWAYS_INLINE void packet_plane(const plane_r *pl, uint32_t index,
-                                       vvec3 o, vvec3 d, vmask active,
+static ALWAYS_INLINE void packet_plane(const pplane *pl, vvec3 o, vvec3 d,
+                                       vmask active,
                                        vfloat eps, int newton,
                                        packet_hit *h) {
-  vvec3 n;
-  vfloat pd;
-  vf_splat4(&pl->n.x, &n.x, &n.y, &n.z, &pd); /* n, d */
+  vvec3 n = vv_get(pl->n);
   vfloat denom = vv_dot(n, d);
-  vfloat t = vf_mul(vf_neg(vf_add(vv_dot(n, o), pd)), vf_rcp(denom, newton));
+  vfloat t = vf_mul(vf_neg(vf_add(vv_dot(n, o), vs_get(&pl->d))),
+                    vf_rcp(denom, newton));
   vmask win = vm_and(vm_and(active, vf_neq(denom, vf_zero())),
                      vm_and(vf_gt(t, eps), vf_lt(t, h->t)));
   h->t = vf_select(win, t, h->t);
-  h->object = vi_select(win, vi_set1((int)pl->object), h->object);
-  h->prim = vi_select(win, vi_set1((int)index), h->prim);
+  h->object = vi_select(win, vi_set1(pl->object), h->object);
 }
 
 /* Möller–Trumbore (eq. 2.6–2.8) refactored around the triangle's stored
@@ -170,25 +172,25 @@ static ALWAYS_INLINE void packet_plane(const plane_r *pl, uint32_t index,
  * t are compared as multiples of |det| (its sign folded in), so lanes that
  * miss never pay for the reciprocal. Returns the lanes that cross the
  * triangle within (eps, tmax), with their t, u, v. */
-static ALWAYS_INLINE vmask packet_triangle_cross(const triangle_r *tr, vvec3 o,
+static ALWAYS_INLINE vmask packet_triangle_cross(const ptriangle *tr, vvec3 o,
                                                  vvec3 d, vmask active,
                                                  vfloat eps, vfloat tmax,
                                                  int newton, vfloat *t,
                                                  vfloat *u, vfloat *v) {
-  vvec3 n = vv_splat(&tr->n);
+  vvec3 n = vv_get(tr->n);
   vfloat det = vf_neg(vv_dot(d, n));
   vfloat sign = vi_as_vf(vi_and(vf_bits(det), vi_set1((int)0x80000000u)));
   vfloat adet = vf_abs(det);
-  vvec3 s = vv_sub(o, vv_splat(&tr->a));
+  vvec3 s = vv_sub(o, vv_get(tr->a));
   vvec3 r = vv_cross(s, d);
   /* x ^ sign(det) multiplies x by the sign of det, exactly */
-  vfloat us = vi_as_vf(vi_xor(vf_bits(vv_dot(vv_splat(&tr->e2), r)),
+  vfloat us = vi_as_vf(vi_xor(vf_bits(vv_dot(vv_get(tr->e2), r)),
                               vf_bits(sign)));
   vmask m = vm_and(vm_and(active, vf_gt(adet, vf_zero())),
                    vm_and(vf_ge(us, vf_zero()), vf_le(us, adet)));
   if (vm_none(m))
     return m;
-  vfloat vs = vi_as_vf(vi_xor(vf_bits(vf_neg(vv_dot(vv_splat(&tr->e1), r))),
+  vfloat vs = vi_as_vf(vi_xor(vf_bits(vf_neg(vv_dot(vv_get(tr->e1), r))),
                               vf_bits(sign)));
   m = vm_and(m, vm_and(vf_ge(vs, vf_zero()), vf_le(vf_add(us, vs), adet)));
   if (vm_none(m))
@@ -207,7 +209,7 @@ static ALWAYS_INLINE vmask packet_triangle_cross(const triangle_r *tr, vvec3 o,
   return vm_and(m, vm_and(vf_gt(*t, eps), vf_lt(*t, tmax)));
 }
 
-static ALWAYS_INLINE void packet_triangle(const triangle_r *tr, uint32_t index,
+static ALWAYS_INLINE void packet_triangle(const ptriangle *tr, uint32_t index,
                                           vvec3 o, vvec3 d, vmask active,
                                           vfloat eps, int newton,
                                           packet_hit *h) {
@@ -219,25 +221,26 @@ static ALWAYS_INLINE void packet_triangle(const triangle_r *tr, uint32_t index,
   h->t = vf_select(win, t, h->t);
   h->u = vf_select(win, u, h->u);
   h->v = vf_select(win, v, h->v);
-  h->object = vi_select(win, vi_set1((int)tr->object), h->object);
+  h->object = vi_select(win, vi_set1(tr->object), h->object);
   h->prim = vi_select(win, vi_set1((int)index), h->prim);
 }
 
 /* Every object against every active lane (the thesis's brute force, §4.3):
  * per lane the nearest hit wins. */
-static ALWAYS_INLINE void packet_nearest(const scene_r *s, vvec3 o, vvec3 d,
-                                         vmask active, int newton,
+static ALWAYS_INLINE void packet_nearest(const packet_scene *ps, vvec3 o,
+                                         vvec3 d, vmask active, int newton,
                                          packet_hit *h, glint_stats *st) {
+  const scene_r *s = ps->s;
   packet_hit_init(h);
-  vfloat eps = vf_set1(s->eps);
+  vfloat eps = vs_get(&ps->eps);
   count_tests(st, s->sphere_count + s->plane_count + s->triangle_count,
               vm_count(active));
   for (size_t i = 0; i < s->sphere_count; i++)
-    packet_sphere(&s->spheres[i], (uint32_t)i, o, d, active, eps, h);
+    packet_sphere(&ps->spheres[i], o, d, active, eps, h);
   for (size_t i = 0; i < s->plane_count; i++)
-    packet_plane(&s->planes[i], (uint32_t)i, o, d, active, eps, newton, h);
+    packet_plane(&ps->planes[i], o, d, active, eps, newton, h);
   for (size_t i = 0; i < s->triangle_count; i++)
-    packet_triangle(&s->triangles[i], (uint32_t)i, o, d, active, eps, newton,
+    packet_triangle(&ps->triangles[i], (uint32_t)i, o, d, active, eps, newton,
                     h);
 }
 
@@ -253,45 +256,48 @@ typedef struct shadow_state {
   int absorbed; /* bit c: channel c met an absorbing surface */
 } shadow_state;
 
-static ALWAYS_INLINE void shadow_cross(const scene_r *s, uint32_t object,
+static ALWAYS_INLINE void shadow_cross(const packet_scene *ps, int object,
                                        vmask crossing, vfloat t,
                                        vmask entering, shadow_state *sh) {
   if (vm_none(crossing))
     return;
-  const material_r *m = &s->materials[s->objects[object].material];
+  uint32_t mi = ps->s->objects[object].material;
+  const material_r *m = &ps->s->materials[mi];
   if (m->kt == 0) {
     sh->alive = vm_andnot(sh->alive, crossing);
     return;
   }
-  vfloat k = vf_select(crossing, vf_set1(m->kt), vf_set1(1));
+  const pmaterial *pm = &ps->materials[mi];
+  vfloat k = vf_select(crossing, vs_get(&pm->kt), vf_set1(1));
   sh->kt = vv_scale(sh->kt, k);
   if (m->absorbs) {
     vfloat signed_t = vf_select(entering, t, vf_neg(t));
-    vfloat st = vf_select(crossing, signed_t, vf_zero());
-    sh->exponent = vv_madd(sh->exponent, st, vv_set1(m->absorb));
+    vfloat st = vf_keep(crossing, signed_t);
+    sh->exponent = vv_madd(sh->exponent, st, vv_get(pm->absorb));
     sh->absorbed |= (m->absorb.x != 0) | (m->absorb.y != 0) << 1 |
                     (m->absorb.z != 0) << 2;
   }
 }
 
-static ALWAYS_INLINE vvec3 packet_transmission(const scene_r *s, vvec3 o,
-                                               vvec3 d, vfloat dist,
+static ALWAYS_INLINE vvec3 packet_transmission(const packet_scene *ps,
+                                               vvec3 o, vvec3 d, vfloat dist,
                                                vmask active, glint_math math,
                                                int newton, glint_stats *st) {
+  const scene_r *s = ps->s;
   shadow_state sh = {{vf_set1(1), vf_set1(1), vf_set1(1)},
                      {vf_zero(), vf_zero(), vf_zero()},
                      active,
                      0};
-  vfloat eps = vf_set1(s->eps);
+  vfloat eps = vs_get(&ps->eps);
   count_tests(st, s->sphere_count + s->plane_count + s->triangle_count,
               vm_count(active));
   for (size_t i = 0; i < s->sphere_count && vm_any(sh.alive); i++) {
-    const sphere_r *sp = &s->spheres[i];
-    vvec3 v = vv_sub(vv_set1(sp->center), o);
+    const psphere *sp = &ps->spheres[i];
+    vvec3 v = vv_sub(vv_get(sp->center), o);
     vfloat proj = vv_dot(v, d);
     vvec3 perp = vv_madd(v, vf_neg(proj), d);
     vfloat dist2 = vv_dot(perp, perp);
-    vfloat r2 = vf_set1(sp->r2);
+    vfloat r2 = vs_get(&sp->r2);
     vmask m = vm_and(sh.alive, vf_le(dist2, r2));
     if (vm_none(m))
       continue;
@@ -299,31 +305,31 @@ static ALWAYS_INLINE vvec3 packet_transmission(const scene_r *s, vvec3 o,
     vfloat l1 = vf_sub(proj, half), l2 = vf_add(proj, half);
     vmask c1 = vm_and(m, vm_and(vf_gt(l1, eps), vf_lt(l1, dist)));
     vmask c2 = vm_and(m, vm_and(vf_gt(l2, eps), vf_lt(l2, dist)));
-    shadow_cross(s, sp->object, c1, l1, vm_true(), &sh);
-    shadow_cross(s, sp->object, c2, l2, vm_false(), &sh);
+    shadow_cross(ps, sp->object, c1, l1, vm_true(), &sh);
+    shadow_cross(ps, sp->object, c2, l2, vm_false(), &sh);
   }
   for (size_t i = 0; i < s->plane_count && vm_any(sh.alive); i++) {
-    const plane_r *pl = &s->planes[i];
-    vvec3 n = vv_set1(pl->n);
+    const pplane *pl = &ps->planes[i];
+    vvec3 n = vv_get(pl->n);
     vfloat denom = vv_dot(n, d);
-    vfloat t = vf_mul(vf_neg(vf_add(vv_dot(n, o), vf_set1(pl->d))),
+    vfloat t = vf_mul(vf_neg(vf_add(vv_dot(n, o), vs_get(&pl->d))),
                       vf_rcp(denom, newton));
     vmask c = vm_and(vm_and(sh.alive, vf_neq(denom, vf_zero())),
                      vm_and(vf_gt(t, eps), vf_lt(t, dist)));
-    shadow_cross(s, pl->object, c, t, vf_lt(denom, vf_zero()), &sh);
+    shadow_cross(ps, pl->object, c, t, vf_lt(denom, vf_zero()), &sh);
   }
   for (size_t i = 0; i < s->triangle_count && vm_any(sh.alive); i++) {
-    const triangle_r *tr = &s->triangles[i];
+    const ptriangle *tr = &ps->triangles[i];
     vfloat t, u, v;
     vmask c = packet_triangle_cross(tr, o, d, sh.alive, eps, dist, newton, &t,
                                     &u, &v);
-    shadow_cross(s, tr->object, c, t,
-                 vf_lt(vv_dot(vv_set1(tr->ng), d), vf_zero()), &sh);
+    /* Entering: against the normal, which the unnormalised one shares. */
+    shadow_cross(ps, tr->object, c, t,
+                 vf_lt(vv_dot(vv_get(tr->n), d), vf_zero()), &sh);
   }
-  if (vm_none(sh.alive)) {
-    vvec3 z = {vf_zero(), vf_zero(), vf_zero()};
+  vvec3 z = {vf_zero(), vf_zero(), vf_zero()};
+  if (vm_none(sh.alive))
     return z;
-  }
   vvec3 r = sh.kt;
   if (sh.absorbed & 1)
     r.x = vf_mul(r.x, vm_exp(vf_min(sh.exponent.x, vf_zero()), math));
@@ -331,13 +337,13 @@ static ALWAYS_INLINE vvec3 packet_transmission(const scene_r *s, vvec3 o,
     r.y = vf_mul(r.y, vm_exp(vf_min(sh.exponent.y, vf_zero()), math));
   if (sh.absorbed & 4)
     r.z = vf_mul(r.z, vm_exp(vf_min(sh.exponent.z, vf_zero()), math));
-  vvec3 z = {vf_zero(), vf_zero(), vf_zero()};
   return vv_select(sh.alive, r, z);
 }
 
 /* ---- surfaces and local shading -------------------------------------- */
 
-/* Where the lanes of `m` met one object, with the normal facing the ray. */
+/* Where the lanes of a sub-beam met one object, with the normal facing the
+ * ray. */
 typedef struct packet_surface {
   vvec3 p, n;
   vmask front; /* hit the outside: entering a closed object */
@@ -347,21 +353,21 @@ typedef struct packet_surface {
 #define FLOAT_OFFSET(type, field) ((int)(offsetof(type, field) / sizeof(float)))
 
 static ALWAYS_INLINE packet_surface packet_surface_at(
-    const scene_r *s, const object_r *ob, const packet_hit *h, vvec3 o,
+    const packet_scene *ps, const object_r *ob, const packet_hit *h, vvec3 o,
     vvec3 d, int newton) {
+  const scene_r *s = ps->s;
   packet_surface f;
   f.p = vv_madd(o, h->t, d);
   vvec3 ng;
   switch (ob->shape) {
-  case GLINT_SHAPE_SPHERE: {
-    const sphere_r *sp = &s->spheres[ob->first];
+  case GLINT_SHAPE_SPHERE:
     /* Normalised, not scaled by 1/r: see surface_at in scalar_tracer.c. */
-    ng = vv_normalize(vv_sub(f.p, vv_set1(sp->center)), newton);
+    ng = vv_normalize(vv_sub(f.p, vv_get(ps->spheres[ob->first].center)),
+                      newton);
     f.front = vm_andnot(vm_true(), h->inside);
     break;
-  }
   case GLINT_SHAPE_PLANE:
-    ng = vv_set1(s->planes[ob->first].n);
+    ng = vv_get(ps->planes[ob->first].n);
     f.front = vf_lt(vv_dot(ng, d), vf_zero());
     break;
   default: /* triangles */
@@ -404,11 +410,12 @@ static ALWAYS_INLINE vfloat vf_parity(vfloat f) {
 /* The surface colour C (SPEC §4 textures) for one material: the parity of
  * the sum of the cell indices picks the checker colour. */
 static ALWAYS_INLINE vvec3 packet_color(const material_r *m,
+                                        const pmaterial *pm,
                                         const object_r *ob, vvec3 p) {
   if (m->texture == GLINT_TEXTURE_NONE)
-    return vv_set1(m->color);
+    return vv_get(pm->color);
   vfloat cells;
-  vfloat inv = vf_set1(m->inv_size);
+  vfloat inv = vs_get(&pm->inv_size);
   if (m->texture == GLINT_TEXTURE_CHECKER_PLANAR) {
     vfloat axes[3] = {p.x, p.y, p.z};
     cells = vf_add(vf_floor(vf_mul(axes[ob->axis_u], inv)),
@@ -418,39 +425,42 @@ static ALWAYS_INLINE vvec3 packet_color(const material_r *m,
     cells = vf_add(vf_add(vf_floor(q.x), vf_floor(q.y)), vf_floor(q.z));
   }
   vmask odd = vf_eq(vf_parity(cells), vf_set1(1));
-  return vv_select(odd, vv_set1(m->odd), vv_set1(m->even));
+  return vv_select(odd, vv_get(pm->odd), vv_get(pm->even));
 }
 
 /* Eq. 2.9/2.10's local part for the lanes of m on one material:
  * C (ka Ia + sum S kd N·L IL) + sum S ks (V·R)^h IL, shadow rays included. */
 static ALWAYS_INLINE vvec3 packet_local_shading(
-    const scene_r *s, const material_r *mat, vvec3 c, const packet_surface *f,
-    vvec3 d, vmask m, glint_math math, int newton, glint_stats *st) {
-  vvec3 diffuse = vv_set1(v3_scale(s->ambient, mat->ka));
+    const packet_scene *ps, const material_r *mat, const pmaterial *pm,
+    vvec3 c, const packet_surface *f, vvec3 d, vmask m, glint_math math,
+    int newton, glint_stats *st) {
+  const scene_r *s = ps->s;
+  vvec3 diffuse = vv_get(pm->ambient);
   vvec3 highlight = {vf_zero(), vf_zero(), vf_zero()};
-  vvec3 v = vv_neg(d);
   for (size_t j = 0; j < s->light_count; j++) {
-    const light_r *li = &s->lights[j];
-    vvec3 l = vv_sub(vv_set1(li->position), f->p);
-    vfloat dist = vf_sqrt(vv_dot(l, l));
-    l = vv_scale(l, vf_rcp(dist, newton));
+    const plight *li = &ps->lights[j];
+    vvec3 l = vv_sub(vv_get(li->position), f->p);
+    vfloat dist2 = vv_dot(l, l);
+    vfloat inv = vf_rsqrt(dist2, newton);
+    vfloat dist = vf_mul(dist2, inv);
+    l = vv_scale(l, inv);
     vfloat nl = vv_dot(f->n, l);
     vmask lit = vm_and(m, vf_gt(nl, vf_zero()));
     if (vm_none(lit))
       continue;
     st->shadow_rays += (uint64_t)vm_count(lit);
-    vvec3 sj = packet_transmission(s, f->p, l, dist, lit, math, newton, st);
-    vvec3 il = vv_mul(sj, vv_set1(li->color));
-    vfloat kdnl = vf_select(lit, vf_mul(vf_set1(mat->kd), nl), vf_zero());
+    vvec3 sj = packet_transmission(ps, f->p, l, dist, lit, math, newton, st);
+    vvec3 il = vv_mul(sj, vv_get(li->color));
+    vfloat kdnl = vf_keep(lit, vf_mul(vs_get(&pm->kd), nl));
     diffuse = vv_madd(diffuse, kdnl, il);
     if (mat->ks > 0) {
-      /* R = 2(L·N)N - L */
-      vvec3 r = vv_sub(vv_scale(f->n, vf_add(nl, nl)), l);
-      vfloat vr = vv_dot(v, r);
+      /* R = 2(L·N)N - L, and V = -D: V·R = 2(L·N)(-D·N) + D·L */
+      vfloat vr = vf_fmadd(vf_add(nl, nl), vf_neg(vv_dot(d, f->n)),
+                           vv_dot(d, l));
       vmask hl = vm_and(lit, vf_gt(vr, vf_zero()));
       if (vm_any(hl)) {
-        vfloat p = vm_pow(vf_max(vr, vf_set1(FLT_MIN)), vf_set1(mat->h), math);
-        vfloat k = vf_select(hl, vf_mul(vf_set1(mat->ks), p), vf_zero());
+        vfloat p = vm_pow(vf_max(vr, vf_set1(FLT_MIN)), vs_get(&pm->h), math);
+        vfloat k = vf_keep(hl, vf_mul(vs_get(&pm->ks), p));
         highlight = vv_madd(highlight, k, il);
       }
     }
@@ -462,29 +472,32 @@ static ALWAYS_INLINE vvec3 packet_local_shading(
  * in *refract_mask; lanes with total internal reflection are not in it and
  * their reflection weight is kr + kt. */
 static ALWAYS_INLINE void packet_secondary(const material_r *mat,
+                                           const pmaterial *pm,
                                            const packet_surface *f, vvec3 d,
                                            vmask m, vvec3 *reflected,
                                            vfloat *kr, vvec3 *refracted,
                                            vmask *refract_mask, vmask *tir) {
   vfloat cosi = vf_neg(vv_dot(d, f->n));
   *reflected = vv_madd(d, vf_add(cosi, cosi), f->n);
-  *kr = vf_set1(mat->kr);
+  *kr = vs_get(&pm->kr);
   *refract_mask = vm_false();
   *tir = vm_false();
   if (mat->kt > 0) {
-    vfloat eta = vf_select(f->front, vf_set1(1 / mat->ior), vf_set1(mat->ior));
+    vfloat eta =
+        vf_select(f->front, vs_get(&pm->eta_in), vs_get(&pm->eta_out));
     vfloat k = vf_fnmadd(vf_mul(eta, eta),
                          vf_fnmadd(cosi, cosi, vf_set1(1)), vf_set1(1));
     *tir = vm_and(m, vf_lt(k, vf_zero()));
     *refract_mask = vm_andnot(m, *tir);
     vfloat coef = vf_sub(vf_mul(eta, cosi), vf_sqrt(vf_max(k, vf_zero())));
     *refracted = vv_madd(vv_scale(d, eta), coef, f->n);
-    *kr = vf_select(*tir, vf_set1(mat->kr + mat->kt), *kr);
+    *kr = vf_select(*tir, vs_get(&pm->kr_tir), *kr);
   }
 }
 
 /* Beer's law (eq. 2.11) on the lanes that travelled inside the object. */
 static ALWAYS_INLINE vvec3 packet_beer(const material_r *mat,
+                                       const pmaterial *pm,
                                        const packet_surface *f, vfloat t,
                                        vmask m, vvec3 color, glint_math math) {
   if (!mat->absorbs)
@@ -495,20 +508,17 @@ static ALWAYS_INLINE vvec3 packet_beer(const material_r *mat,
   vfloat nt = vf_neg(t);
   /* exp(0) = 1: channels that absorb nothing are left alone. */
   if (mat->absorb.x != 0)
-    color.x = vf_select(inside,
-                        vf_mul(color.x, vm_exp(vf_mul(vf_set1(mat->absorb.x),
-                                                      nt), math)),
-                        color.x);
+    color.x = vf_select(
+        inside, vf_mul(color.x, vm_exp(vf_mul(vs_get(&pm->absorb[0]), nt), math)),
+        color.x);
   if (mat->absorb.y != 0)
-    color.y = vf_select(inside,
-                        vf_mul(color.y, vm_exp(vf_mul(vf_set1(mat->absorb.y),
-                                                      nt), math)),
-                        color.y);
+    color.y = vf_select(
+        inside, vf_mul(color.y, vm_exp(vf_mul(vs_get(&pm->absorb[1]), nt), math)),
+        color.y);
   if (mat->absorb.z != 0)
-    color.z = vf_select(inside,
-                        vf_mul(color.z, vm_exp(vf_mul(vf_set1(mat->absorb.z),
-                                                      nt), math)),
-                        color.z);
+    color.z = vf_select(
+        inside, vf_mul(color.z, vm_exp(vf_mul(vs_get(&pm->absorb[2]), nt), math)),
+        color.z);
   return color;
 }
 

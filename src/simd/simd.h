@@ -62,9 +62,15 @@ static inline vfloat vf_rcp(vfloat a, int newton) {
   return vf_mul(x0, vf_fnmadd(a, x0, vf_set1(2.0f)));
 }
 
-/* 1/sqrt(a) as listing 3.4: sqrt, then rcp refined by eq. 3.1. */
+/* 1/sqrt(a) by the hardware estimate refined with one Newton–Raphson step,
+ * eq. 3.2: x1 = 3/2 x0 - 1/2 a x0^3 = x0 (3/2 - a/2 x0^2). SPEC §7 allows
+ * this or listing 3.4's sqrt + rcp; this one avoids sqrt's long latency. */
 static inline vfloat vf_rsqrt(vfloat a, int newton) {
-  return vf_rcp(vf_sqrt(a), newton);
+  vfloat x0 = vf_rsqrt_estimate(a);
+  if (!newton)
+    return x0;
+  vfloat half_a = vf_mul(a, vf_set1(0.5f));
+  return vf_mul(x0, vf_fnmadd(vf_mul(half_a, x0), x0, vf_set1(1.5f)));
 }
 
 /* Lane i holds i. */

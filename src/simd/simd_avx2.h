@@ -10,6 +10,12 @@ typedef __m256 vfloat;
 typedef __m256 vmask; /* all-ones or all-zeros per lane */
 typedef __m256i vint;
 
+/* A scalar stored the way this ISA broadcasts it fastest: a float, which
+ * vbroadcastss loads into every lane in one instruction. */
+typedef float vscalar;
+static inline vscalar vs_make(float a) { return a; }
+static inline vfloat vs_get(const vscalar *p) { return _mm256_broadcast_ss(p); }
+
 static inline vfloat vf_set1(float a) { return _mm256_set1_ps(a); }
 static inline vfloat vf_zero(void) { return _mm256_setzero_ps(); }
 static inline vfloat vf_load(const float *p) { return _mm256_load_ps(p); }
@@ -26,6 +32,7 @@ static inline vfloat vf_min(vfloat a, vfloat b) { return _mm256_min_ps(a, b); }
 static inline vfloat vf_max(vfloat a, vfloat b) { return _mm256_max_ps(a, b); }
 static inline vfloat vf_sqrt(vfloat a) { return _mm256_sqrt_ps(a); }
 static inline vfloat vf_rcp_estimate(vfloat a) { return _mm256_rcp_ps(a); }
+static inline vfloat vf_rsqrt_estimate(vfloat a) { return _mm256_rsqrt_ps(a); }
 static inline vfloat vf_floor(vfloat a) { return _mm256_floor_ps(a); }
 
 static inline vmask vf_lt(vfloat a, vfloat b) { return _mm256_cmp_ps(a, b, _CMP_LT_OQ); }
@@ -37,6 +44,9 @@ static inline vmask vf_neq(vfloat a, vfloat b) { return _mm256_cmp_ps(a, b, _CMP
 static inline vfloat vf_select(vmask m, vfloat a, vfloat b) {
   return _mm256_blendv_ps(b, a, m);
 }
+
+/* m ? a : 0, a single AND */
+static inline vfloat vf_keep(vmask m, vfloat a) { return _mm256_and_ps(m, a); }
 
 static inline vmask vm_and(vmask a, vmask b) { return _mm256_and_ps(a, b); }
 static inline vmask vm_or(vmask a, vmask b) { return _mm256_or_ps(a, b); }

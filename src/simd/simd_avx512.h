@@ -10,6 +10,12 @@ typedef __m512 vfloat;
 typedef __mmask16 vmask; /* one bit per lane */
 typedef __m512i vint;
 
+/* A scalar stored the way this ISA broadcasts it fastest: a float, which
+ * an embedded {1to16} broadcast folds into the instruction using it. */
+typedef float vscalar;
+static inline vscalar vs_make(float a) { return a; }
+static inline vfloat vs_get(const vscalar *p) { return _mm512_set1_ps(*p); }
+
 static inline vfloat vf_set1(float a) { return _mm512_set1_ps(a); }
 static inline vfloat vf_zero(void) { return _mm512_setzero_ps(); }
 static inline vfloat vf_load(const float *p) { return _mm512_load_ps(p); }
@@ -27,6 +33,7 @@ static inline vfloat vf_max(vfloat a, vfloat b) { return _mm512_max_ps(a, b); }
 static inline vfloat vf_sqrt(vfloat a) { return _mm512_sqrt_ps(a); }
 /* rcp14: a 14-bit estimate (SSE/AVX2 give about 12). */
 static inline vfloat vf_rcp_estimate(vfloat a) { return _mm512_rcp14_ps(a); }
+static inline vfloat vf_rsqrt_estimate(vfloat a) { return _mm512_rsqrt14_ps(a); }
 static inline vfloat vf_floor(vfloat a) {
   return _mm512_roundscale_ps(a, _MM_FROUND_TO_NEG_INF | _MM_FROUND_NO_EXC);
 }
@@ -40,6 +47,9 @@ static inline vmask vf_neq(vfloat a, vfloat b) { return _mm512_cmp_ps_mask(a, b,
 static inline vfloat vf_select(vmask m, vfloat a, vfloat b) {
   return _mm512_mask_blend_ps(m, b, a);
 }
+
+/* m ? a : 0, a zero-masking move */
+static inline vfloat vf_keep(vmask m, vfloat a) { return _mm512_maskz_mov_ps(m, a); }
 
 static inline vmask vm_and(vmask a, vmask b) { return (vmask)(a & b); }
 static inline vmask vm_or(vmask a, vmask b) { return (vmask)(a | b); }

@@ -10,6 +10,13 @@ typedef __m128 vfloat;
 typedef __m128 vmask; /* all-ones or all-zeros per lane */
 typedef __m128i vint;
 
+/* A scalar stored the way this ISA broadcasts it fastest. SSE has no
+ * broadcast load, so scene constants are stored already splat: loading
+ * one is a plain (foldable) 16-byte load. */
+typedef __m128 vscalar;
+static inline vscalar vs_make(float a) { return _mm_set1_ps(a); }
+static inline vfloat vs_get(const vscalar *p) { return *p; }
+
 static inline vfloat vf_set1(float a) { return _mm_set1_ps(a); }
 static inline vfloat vf_zero(void) { return _mm_setzero_ps(); }
 static inline vfloat vf_load(const float *p) { return _mm_load_ps(p); }
@@ -27,6 +34,7 @@ static inline vfloat vf_min(vfloat a, vfloat b) { return _mm_min_ps(a, b); }
 static inline vfloat vf_max(vfloat a, vfloat b) { return _mm_max_ps(a, b); }
 static inline vfloat vf_sqrt(vfloat a) { return _mm_sqrt_ps(a); }
 static inline vfloat vf_rcp_estimate(vfloat a) { return _mm_rcp_ps(a); }
+static inline vfloat vf_rsqrt_estimate(vfloat a) { return _mm_rsqrt_ps(a); }
 static inline vfloat vf_floor(vfloat a) { return _mm_floor_ps(a); }
 
 static inline vmask vf_lt(vfloat a, vfloat b) { return _mm_cmplt_ps(a, b); }
@@ -39,6 +47,9 @@ static inline vmask vf_neq(vfloat a, vfloat b) { return _mm_cmpneq_ps(a, b); }
 static inline vfloat vf_select(vmask m, vfloat a, vfloat b) {
   return _mm_blendv_ps(b, a, m);
 }
+
+/* m ? a : 0, a single AND */
+static inline vfloat vf_keep(vmask m, vfloat a) { return _mm_and_ps(m, a); }
 
 static inline vmask vm_and(vmask a, vmask b) { return _mm_and_ps(a, b); }
 static inline vmask vm_or(vmask a, vmask b) { return _mm_or_ps(a, b); }

@@ -1,0 +1,106 @@
+/* Building the packet scene (see packet_scene.h). Compiled once per ISA. */
+#include "render/packet_scene.h"
+
+#include "core/error.h"
+#include "core/memory.h"
+#include "scene/scene.h"
+
+#include <stdlib.h>
+
+static void put3(vscalar *dst, vec3 v) {
+  dst[0] = vs_make(v.x);
+  dst[1] = vs_make(v.y);
+  dst[2] = vs_make(v.z);
+}
+
+glint_status packet_scene_prepare(const glint_scene *scene,
+                                  const glint_frame *frame,
+                                  packet_scene **out, glint_stats *stats,
+                                  glint_error *error) {
+  packet_scene *ps = glint_aligned_calloc(1, sizeof *ps);
+  if (!ps)
+    return glint_fail(error, GLINT_E_MEMORY, "out of memory");
+  glint_status st =
+      glint_scalar_scene_prepare_float(scene, frame, &ps->s, stats, error);
+  if (st) {
+    glint_aligned_free(ps);
+    return st;
+  }
+  const scene_r *s = ps->s;
+  size_t materials = scene->material_count;
+  ps->spheres = glint_aligned_calloc(s->sphere_count, sizeof *ps->spheres);
+  ps->planes = glint_aligned_calloc(s->plane_count, sizeof *ps->planes);
+  ps->triangles = glint_aligned_calloc(s->triangle_count, sizeof *ps->triangles);
+  ps->materials = glint_aligned_calloc(materials, sizeof *ps->materials);
+  ps->lights = glint_aligned_calloc(s->light_count, sizeof *ps->lights);
+  if (!ps->spheres || !ps->planes || !ps->triangles || !ps->materials ||
+      !ps->lights) {
+    packet_scene_release(ps);
+    return glint_fail(error, GLINT_E_MEMORY,
+                      "out of memory preparing the scene");
+  }
+  for (size_t i = 0; i < s->sphere_count; i++) {
+    put3(ps->spheres[i].center, s->spheres[i].center);
+    ps->spheres[i].r2 = vs_make(s->spheres[i].r2);
+    ps->spheres[i].object = (int32_t)s->spheres[i].object;
+  }
+  for (size_t i = 0; i < s->plane_count; i++) {
+    put3(ps->planes[i].n, s->planes[i].n);
+    ps->planes[i].d = vs_make(s->planes[i].d);
+    ps->planes[i].object = (int32_t)s->planes[i].object;
+  }
+  for (size_t i = 0; i < s->triangle_count; i++) {
+    const triangle_r *t = &s->triangles[i];
+    ptriangle *p = &ps->triangles[i];
+    put3(p->a, t->a);
+    put3(p->e1, t->e1);
+    put3(p->e2, t->e2);
+    put3(p->n, t->n);
+    p->object = (int32_t)t->object;
+  }
+  for (size_t i = 0; i < materials; i++) {
+    const material_r *m = &s->materials[i];
+    pmaterial *p = &ps->materials[i];
+    put3(p->color, m->color);
+    put3(p->odd, m->odd);
+    put3(p->even, m->even);
+    put3(p->ambient, v3_scale(s->ambient, m->ka));
+    p->kd = vs_make(m->kd);
+    p->ks = vs_make(m->ks);
+    p->h = vs_make(m->h);
+    p->kr = vs_make(m->kr);
+    p->kt = vs_make(m->kt);
+    p->kr_tir = vs_make(m->kr + m->kt);
+    p->eta_in = vs_make(1 / m->ior);
+    p->eta_out = vs_make(m->ior);
+    put3(p->absorb, m->absorb);
+    p->inv_size = vs_make(m->inv_size);
+  }
+  for (size_t i = 0; i < s->light_count; i++) {
+    put3(ps->lights[i].position, s->lights[i].position);
+    put3(ps->lights[i].color, s->lights[i].color);
+  }
+  ps->eps = vs_make(s->eps);
+  put3(ps->background, s->background);
+  ps->math = frame->math;
+  ps->newton = frame->rcp_newton;
+  stats->scene_bytes += s->sphere_count * sizeof *ps->spheres +
+                        s->plane_count * sizeof *ps->planes +
+                        s->triangle_count * sizeof *ps->triangles +
+                        materials * sizeof *ps->materials +
+                        s->light_count * sizeof *ps->lights;
+  *out = ps;
+  return GLINT_OK;
+}
+
+void packet_scene_release(packet_scene *ps) {
+  if (!ps)
+    return;
+  glint_scalar_scene_release_float(ps->s);
+  glint_aligned_free(ps->spheres);
+  glint_aligned_free(ps->planes);
+  glint_aligned_free(ps->triangles);
+  glint_aligned_free(ps->materials);
+  glint_aligned_free(ps->lights);
+  glint_aligned_free(ps);
+}

@@ -1,0 +1,68 @@
+/* The scene as the packet kernels read it: every constant a kernel
+ * broadcasts across its lanes (primitive fields, material coefficients,
+ * light positions) stored as a vscalar, the form the ISA broadcasts fastest
+ * (pre-splat on SSE, a plain float on AVX2 and AVX-512; see simd/simd.h).
+ * Built once per render from the float scalar scene, which it keeps for
+ * everything read as scalars (object table, flags) or gathered per lane
+ * (triangle normals). Compiled once per ISA. */
+#ifndef GLINT_RENDER_PACKET_SCENE_H
+#define GLINT_RENDER_PACKET_SCENE_H
+
+#ifndef GLINT_REAL_FLOAT
+#define GLINT_REAL_FLOAT
+#endif
+#include "render/frame.h"
+#include "render/scalar_scene.h"
+#include "simd/simd.h"
+
+typedef struct psphere {
+  vscalar center[3], r2;
+  int32_t object;
+} psphere;
+
+typedef struct pplane {
+  vscalar n[3], d;
+  int32_t object;
+} pplane;
+
+typedef struct ptriangle {
+  vscalar a[3], e1[3], e2[3];
+  vscalar n[3]; /* e1 x e2, unnormalised */
+  int32_t object;
+} ptriangle;
+
+typedef struct pmaterial {
+  vscalar color[3], odd[3], even[3];
+  vscalar ambient[3]; /* ka Ia */
+  vscalar kd, ks, h, kr, kt;
+  vscalar kr_tir;           /* kr + kt: reflection's weight under TIR */
+  vscalar eta_in, eta_out;  /* 1/ior entering, ior leaving */
+  vscalar absorb[3], inv_size;
+} pmaterial;
+
+typedef struct plight {
+  vscalar position[3], color[3];
+} plight;
+
+typedef struct packet_scene {
+  scene_r *s;
+  psphere *spheres;
+  pplane *planes;
+  ptriangle *triangles;
+  pmaterial *materials;
+  plight *lights;
+  vscalar eps, background[3];
+  glint_math math;
+  int newton;
+} packet_scene;
+
+#define packet_scene_prepare ISA_NAME(glint_packet_scene_prepare)
+#define packet_scene_release ISA_NAME(glint_packet_scene_release)
+
+glint_status packet_scene_prepare(const glint_scene *scene,
+                                  const glint_frame *frame,
+                                  packet_scene **out, glint_stats *stats,
+                                  glint_error *error);
+void packet_scene_release(packet_scene *ps);
+
+#endif
