@@ -39,6 +39,7 @@ static void render_usage(FILE *f) {
       "5.7)\n"
       "      --accel NAME     bvh or none (default: bvh)\n"
       "      --gamma G        encode with gamma G (default: 1, linear)\n"
+      "      --region X,Y,W,H render only this window of the image (pixels)\n"
       "  -q, --quiet          no progress bar and no summary line\n"
       "      --stats          detailed statistics after rendering\n"
       "  -h, --help           this help\n"
@@ -209,6 +210,17 @@ int cmd_render(int argc, char **argv) {
         cli_error("--accel: %s", err.message);
         return EXIT_USAGE;
       }
+    } else if (arg_is(&c, NULL, "--region")) {
+      if (!(v = arg_value(&c, "--region")))
+        return EXIT_USAGE;
+      char extra;
+      if (sscanf(v, "%d,%d,%d,%d%c", &rs.region_x, &rs.region_y,
+                 &rs.region_width, &rs.region_height, &extra) != 4 ||
+          rs.region_width < 1 || rs.region_height < 1 || rs.region_x < 0 ||
+          rs.region_y < 0) {
+        cli_error("--region: '%s' is not X,Y,WIDTH,HEIGHT in pixels", v);
+        return EXIT_USAGE;
+      }
     } else if (arg_is(&c, NULL, "--gamma")) {
       if (parse_double("--gamma", arg_value(&c, "--gamma"), 0, &rs.gamma))
         return EXIT_USAGE;
@@ -272,6 +284,7 @@ int cmd_render(int argc, char **argv) {
   sigprocmask(SIG_BLOCK, &block, &old);
   st = glint_image_write(image, output, &err);
   sigprocmask(SIG_SETMASK, &old, NULL);
+  int out_w = glint_image_width(image), out_h = glint_image_height(image);
   glint_image_destroy(image);
   if (st) {
     cli_error("%s", err.message);
@@ -283,7 +296,7 @@ int cmd_render(int argc, char **argv) {
         stats.primary_rays + stats.secondary_rays + stats.shadow_rays;
     printf("%s: %dx%d, %s, %.3f s, %.2f M rays (%.2f M primary, %.2f M "
            "secondary, %.2f M shadow), %.2f Mrays/s\n",
-           output, stats.width, stats.height, glint_backend_name(stats.backend),
+           output, out_w, out_h, glint_backend_name(stats.backend),
            stats.render_seconds, mega(rays), mega(stats.primary_rays),
            mega(stats.secondary_rays), mega(stats.shadow_rays),
            stats.render_seconds > 0 ? mega(rays) / stats.render_seconds : 0.0);

@@ -284,6 +284,10 @@ typedef struct glint_render_settings {
   int rcp_newton; /* 1: refine rcp by a Newton step (eq. 3.1); 0: the
                      thesis's figure 5.7 without it */
   glint_accel accel;
+  /* Render only this window of the frame (pixels of the full width x
+   * height image); region_width = 0 renders it all. The image returned is
+   * region_width x region_height. */
+  int region_x, region_y, region_width, region_height;
   int threads;  /* 0: all cores */
   double gamma; /* 1: linear output (the default); else c^(1/gamma) */
   glint_progress_fn progress;

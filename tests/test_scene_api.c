@@ -206,6 +206,44 @@ static void mesh_indices_checked(void **state) {
   glint_scene_destroy(s);
 }
 
+/* A region is exactly that window of the full frame, on every backend. */
+static void region_is_a_window_of_the_frame(void **state) {
+  (void)state;
+  glint_scene *s;
+  ASSERT_OK(glint_scene_builtin("billiard", &s, &e_));
+  for (int be = GLINT_BACKEND_SCALAR_FLOAT; be <= GLINT_BACKEND_AVX512; be++) {
+    if (!glint_backend_supported((glint_backend)be))
+      continue;
+    glint_render_settings rs;
+    glint_render_settings_default(&rs);
+    rs.width = 96;
+    rs.height = 72;
+    rs.backend = (glint_backend)be;
+    glint_image *full, *part;
+    ASSERT_OK(glint_render(s, &rs, &full, NULL, &e_));
+    rs.region_x = 13;
+    rs.region_y = 7;
+    rs.region_width = 41;
+    rs.region_height = 30;
+    ASSERT_OK(glint_render(s, &rs, &part, NULL, &e_));
+    assert_int_equal(glint_image_width(part), 41);
+    assert_int_equal(glint_image_height(part), 30);
+    const uint8_t *f = glint_image_pixels_const(full);
+    const uint8_t *p = glint_image_pixels_const(part);
+    for (int y = 0; y < 30; y++)
+      assert_memory_equal(p + (size_t)y * 41 * 3,
+                          f + ((size_t)(y + 7) * 96 + 13) * 3, 41 * 3);
+    rs.region_x = 60; /* 60 + 41 > 96 */
+    glint_image *bad = NULL;
+    glint_error e;
+    assert_int_equal(glint_render(s, &rs, &bad, NULL, &e), GLINT_E_ARGUMENT);
+    assert_non_null(strstr(e.message, "region"));
+    glint_image_destroy(full);
+    glint_image_destroy(part);
+  }
+  glint_scene_destroy(s);
+}
+
 int main(void) {
   const struct CMUnitTest tests[] = {
       cmocka_unit_test(primitives_refuse_bad_numbers),
@@ -215,6 +253,7 @@ int main(void) {
       cmocka_unit_test(names_parse_and_print),
       cmocka_unit_test(builtin_scenes_match_the_spec),
       cmocka_unit_test(mesh_indices_checked),
+      cmocka_unit_test(region_is_a_window_of_the_frame),
   };
   return cmocka_run_group_tests(tests, NULL, NULL);
 }

@@ -188,6 +188,15 @@ static glint_status validate(const glint_scene *scene,
     return glint_fail(e, GLINT_E_ARGUMENT,
                       "samples per pixel %d is outside 1..%d", s->spp,
                       GLINT_MAX_SPP);
+  if (s->region_width != 0 || s->region_height != 0) {
+    if (s->region_width < 1 || s->region_height < 1 || s->region_x < 0 ||
+        s->region_y < 0 || s->region_x > *w - s->region_width ||
+        s->region_y > *h - s->region_height)
+      return glint_fail(e, GLINT_E_ARGUMENT,
+                        "region %d,%d %dx%d is not inside the %dx%d image",
+                        s->region_x, s->region_y, s->region_width,
+                        s->region_height, *w, *h);
+  }
   if (s->threads < 0 || s->threads > GLINT_MAX_THREADS)
     return glint_fail(e, GLINT_E_ARGUMENT, "threads %d is outside 0..%d",
                       s->threads, GLINT_MAX_THREADS);
@@ -212,6 +221,7 @@ typedef struct render_job {
   const glint_backend_ops *ops;
   const void *prepared;
   glint_image *image;
+  int x0, y0, x1, y1; /* the region rendered, in frame pixels */
   int tiles_x, tile_count;
   double inv_gamma;
   atomic_int next_tile;
@@ -265,7 +275,6 @@ static void *worker_main(void *arg) {
   render_job *job = w->job;
   uint8_t *pixels = glint_image_pixels(job->image);
   int width = glint_image_width(job->image);
-  int height = glint_image_height(job->image);
   for (;;) {
     if (atomic_load(&job->cancelled))
       break;
@@ -273,17 +282,18 @@ static void *worker_main(void *arg) {
     if (t >= job->tile_count)
       break;
     glint_tile tile;
-    tile.x0 = (t % job->tiles_x) * GLINT_TILE_SIZE;
-    tile.y0 = (t / job->tiles_x) * GLINT_TILE_SIZE;
-    tile.x1 =
-        tile.x0 + GLINT_TILE_SIZE < width ? tile.x0 + GLINT_TILE_SIZE : width;
-    tile.y1 =
-        tile.y0 + GLINT_TILE_SIZE < height ? tile.y0 + GLINT_TILE_SIZE : height;
+    tile.x0 = job->x0 + (t % job->tiles_x) * GLINT_TILE_SIZE;
+    tile.y0 = job->y0 + (t / job->tiles_x) * GLINT_TILE_SIZE;
+    tile.x1 = tile.x0 + GLINT_TILE_SIZE < job->x1 ? tile.x0 + GLINT_TILE_SIZE
+                                                  : job->x1;
+    tile.y1 = tile.y0 + GLINT_TILE_SIZE < job->y1 ? tile.y0 + GLINT_TILE_SIZE
+                                                  : job->y1;
     job->ops->render_tile(job->prepared, &tile, w->scratch, w->rgb, &w->stats);
     int tw = tile.x1 - tile.x0;
     for (int y = tile.y0; y < tile.y1; y++) {
       float *src = w->rgb + (size_t)(y - tile.y0) * tw * 3;
-      uint8_t *dst = pixels + ((size_t)y * width + tile.x0) * 3;
+      uint8_t *dst =
+          pixels + ((size_t)(y - job->y0) * width + (tile.x0 - job->x0)) * 3;
       if (job->inv_gamma != 1)
         for (int i = 0; i < tw * 3; i++)
           src[i] = powf(fminf(fmaxf(src[i], 0.0f), 1.0f),
@@ -378,15 +388,20 @@ glint_status glint_render(const glint_scene *scene,
     return st;
   }
 
+  int rx = 0, ry = 0, rw = width, rh = height;
+  if (settings->region_width) {
+    rx = settings->region_x, ry = settings->region_y;
+    rw = settings->region_width, rh = settings->region_height;
+  }
   glint_image *image = NULL;
-  if ((st = glint_image_create(width, height, &image, error))) {
+  if ((st = glint_image_create(rw, rh, &image, error))) {
     ops->release(prepared);
     free(samples);
     return st;
   }
 
-  int tiles_x = (width + GLINT_TILE_SIZE - 1) / GLINT_TILE_SIZE;
-  int tiles_y = (height + GLINT_TILE_SIZE - 1) / GLINT_TILE_SIZE;
+  int tiles_x = (rw + GLINT_TILE_SIZE - 1) / GLINT_TILE_SIZE;
+  int tiles_y = (rh + GLINT_TILE_SIZE - 1) / GLINT_TILE_SIZE;
   int threads = settings->threads ? settings->threads : glint_cpu_count();
   if (threads > tiles_x * tiles_y)
     threads = tiles_x * tiles_y;
@@ -396,6 +411,10 @@ glint_status glint_render(const glint_scene *scene,
   job.ops = ops;
   job.prepared = prepared;
   job.image = image;
+  job.x0 = rx;
+  job.y0 = ry;
+  job.x1 = rx + rw;
+  job.y1 = ry + rh;
   job.tiles_x = tiles_x;
   job.tile_count = tiles_x * tiles_y;
   job.inv_gamma = 1.0 / settings->gamma;
