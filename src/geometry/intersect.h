@@ -90,4 +90,62 @@ static inline int triangle_hit(vec3 a, vec3 e1, vec3 e2, vec3 o, vec3 d,
   return 1;
 }
 
+/* An open cone or cylinder (no end caps, as NFF specifies): base B with
+ * radius rb, unit axis a, height H, slope k = (ra - rb) / H. With w = O - B
+ * and h(t) = w·a + t D·a the height of the point along the axis, a point is
+ * on the surface where its squared distance from the axis equals the
+ * radius there:  |w + tD|^2 - h^2 = (rb + k h)^2,  0 <= h <= H,
+ * a quadratic A t^2 + B t + C = 0 with (D unit)
+ *   A = 1 - (1 + k^2)(D·a)^2
+ *   B = 2 (w·D - (w·a)(D·a) - k (D·a)(rb + k w·a))
+ *   C = w·w - (w·a)^2 - (rb + k w·a)^2.
+ * Returns both crossings within (tmin, tmax) and the height window, nearest
+ * first, and how many there are (0, 1 or 2). */
+static inline int cone_roots(vec3 base, vec3 axis, real height, real rb,
+                             real k, vec3 o, vec3 d, real tmin, real tmax,
+                             real t[2]) {
+  vec3 w = v3_sub(o, base);
+  real wa = v3_dot(w, axis), da = v3_dot(d, axis);
+  real rw = rb + k * wa;
+  real qa = 1 - (1 + k * k) * da * da;
+  real qb = 2 * (v3_dot(w, d) - wa * da - k * da * rw);
+  real qc = v3_dot(w, w) - wa * wa - rw * rw;
+  real r0, r1;
+  if (r_fabs(qa) < (real)1e-12) { /* along a line of the surface */
+    if (qb == 0)
+      return 0;
+    r0 = r1 = -qc / qb;
+  } else {
+    real disc = qb * qb - 4 * qa * qc;
+    if (disc < 0)
+      return 0;
+    real sq = r_sqrt(disc);
+    /* The stable form of the two roots (no cancellation). */
+    real q = qb < 0 ? (real)-0.5 * (qb - sq) : (real)-0.5 * (qb + sq);
+    r0 = q / qa;
+    r1 = q != 0 ? qc / q : r0;
+    if (r0 > r1) {
+      real tmp = r0;
+      r0 = r1;
+      r1 = tmp;
+    }
+  }
+  int n = 0;
+  real roots[2] = {r0, r1};
+  for (int i = 0; i < (r0 == r1 ? 1 : 2); i++) {
+    real h = wa + roots[i] * da;
+    if (roots[i] > tmin && roots[i] < tmax && h >= 0 && h <= height)
+      t[n++] = roots[i];
+  }
+  return n;
+}
+
+/* The outward normal at p: the gradient of |q|^2 - h^2 - (rb + k h)^2 with
+ * q = p - B, that is q - h a - k (rb + k h) a (unnormalised). */
+static inline vec3 cone_normal(vec3 base, vec3 axis, real rb, real k, vec3 p) {
+  vec3 q = v3_sub(p, base);
+  real h = v3_dot(q, axis);
+  return v3_madd(q, -(h + k * (rb + k * h)), axis);
+}
+
 #endif

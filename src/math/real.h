@@ -33,6 +33,11 @@ typedef float real;
 #error "define GLINT_REAL_FLOAT or GLINT_REAL_DOUBLE before including real.h"
 #endif
 
+/* min and max as single instructions (minss/maxsd): fmin and fmax are
+ * library calls, being defined for NaN operands, which never occur here. */
+static inline real r_min(real a, real b) { return a < b ? a : b; }
+static inline real r_max(real a, real b) { return a > b ? a : b; }
+
 #define REAL_GLUE2(a, b) a##_##b
 #define REAL_GLUE(a, b) REAL_GLUE2(a, b)
 #define REAL_NAME(name) REAL_GLUE(name, REAL_SUFFIX)

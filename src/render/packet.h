@@ -225,6 +225,138 @@ static ALWAYS_INLINE void packet_triangle(const ptriangle *tr, uint32_t index,
   h->prim = vi_select(win, vi_set1((int)index), h->prim);
 }
 
+/* The cone quadratic of cone_roots (geometry/intersect.h) for all lanes:
+ * the lanes with a first and a second crossing within (eps, tmax) and the
+ * height window, nearest first in *t0. */
+static ALWAYS_INLINE void packet_cone_roots(const pcone *c, vvec3 o, vvec3 d,
+                                            vmask active, vfloat eps,
+                                            vfloat tmax, vfloat *t0,
+                                            vmask *m0, vfloat *t1,
+                                            vmask *m1) {
+  vvec3 axis = vv_get(c->axis);
+  vvec3 w = vv_sub(o, vv_get(c->base));
+  vfloat k = vs_get(&c->k), rb = vs_get(&c->rb), height = vs_get(&c->height);
+  vfloat wa = vv_dot(w, axis), da = vv_dot(d, axis);
+  vfloat rw = vf_fmadd(k, wa, rb);
+  vfloat qa = vf_fnmadd(vf_fmadd(k, k, vf_set1(1)), vf_mul(da, da),
+                        vf_set1(1));
+  vfloat qb = vf_mul(vf_set1(2), vf_fnmadd(vf_mul(k, da), rw,
+                                           vf_fnmadd(wa, da, vv_dot(w, d))));
+  vfloat qc = vf_fnmadd(rw, rw, vf_fnmadd(wa, wa, vv_dot(w, w)));
+  vfloat disc = vf_fnmadd(vf_mul(vf_set1(4), qa), qc, vf_mul(qb, qb));
+  vmask m = vm_and(active, vf_ge(disc, vf_zero()));
+  *m0 = *m1 = vm_false();
+  if (vm_none(m))
+    return;
+  vfloat sq = vf_sqrt(vf_max(disc, vf_zero()));
+  /* The stable pair: q = -(b + sign(b) sq) / 2, roots q/a and c/q. */
+  vfloat q = vf_mul(vf_set1(-0.5f),
+                    vf_select(vf_lt(qb, vf_zero()), vf_sub(qb, sq),
+                              vf_add(qb, sq)));
+  vmask linear = vf_lt(vf_abs(qa), vf_set1(1e-12f));
+  vfloat ra = vf_div(q, qa), rc = vf_div(qc, q);
+  vfloat lin = vf_div(vf_neg(qc), qb);
+  vfloat a0 = vf_select(linear, lin, vf_min(ra, rc));
+  vfloat a1 = vf_select(linear, lin, vf_max(ra, rc));
+  vfloat h0 = vf_fmadd(a0, da, wa), h1 = vf_fmadd(a1, da, wa);
+  vmask v0 = vm_and(vm_and(m, vm_and(vf_gt(a0, eps), vf_lt(a0, tmax))),
+                    vm_and(vf_ge(h0, vf_zero()), vf_le(h0, height)));
+  vmask v1 = vm_and(vm_and(vm_andnot(m, linear),
+                           vm_and(vf_gt(a1, eps), vf_lt(a1, tmax))),
+                    vm_and(vf_ge(h1, vf_zero()), vf_le(h1, height)));
+  /* Nearest first. */
+  *t0 = vf_select(v0, a0, a1);
+  *m0 = vm_or(v0, v1);
+  *t1 = a1;
+  *m1 = vm_and(v0, v1);
+}
+
+static ALWAYS_INLINE void packet_cone(const pcone *c, vvec3 o, vvec3 d,
+                                      vmask active, vfloat eps,
+                                      packet_hit *h) {
+  vfloat t0, t1;
+  vmask m0, m1;
+  packet_cone_roots(c, o, d, active, eps, h->t, &t0, &m0, &t1, &m1);
+  if (vm_none(m0))
+    return;
+  h->t = vf_select(m0, t0, h->t);
+  h->object = vi_select(m0, vi_set1(c->object), h->object);
+}
+
+/* ---- the BVH for packets ------------------------------------------------ */
+
+/* What the slab tests of a packet need: 1/D (a zero component made tiny,
+ * so 0 * inf never makes a NaN) and -O/D. */
+typedef struct packet_inv {
+  vvec3 inv, neg_o_inv;
+  int neg[3]; /* the packet's direction sign per axis (first active lane) */
+} packet_inv;
+
+static ALWAYS_INLINE vfloat vf_nonzero(vfloat a) {
+  vfloat tiny = vf_set1(1e-30f);
+  vfloat signed_tiny =
+      vi_as_vf(vi_or(vf_bits(tiny), vi_and(vf_bits(a), vi_set1((int)0x80000000u))));
+  return vf_select(vf_lt(vf_abs(a), tiny), signed_tiny, a);
+}
+
+static ALWAYS_INLINE packet_inv packet_inverse(vvec3 o, vvec3 d, vmask active,
+                                               int newton) {
+  packet_inv r;
+  r.inv.x = vf_rcp(vf_nonzero(d.x), newton);
+  r.inv.y = vf_rcp(vf_nonzero(d.y), newton);
+  r.inv.z = vf_rcp(vf_nonzero(d.z), newton);
+  r.neg_o_inv = vv_neg(vv_mul(o, r.inv));
+  SIMD_ALIGN float dx[W], dy[W], dz[W];
+  vf_store(dx, d.x);
+  vf_store(dy, d.y);
+  vf_store(dz, d.z);
+  int lane = vm_any(active) ? vm_first(active) : 0;
+  r.neg[0] = dx[lane] < 0;
+  r.neg[1] = dy[lane] < 0;
+  r.neg[2] = dz[lane] < 0;
+  return r;
+}
+
+/* The slab test for all lanes of `active` against a node's box within
+ * (tmin, tmax). The far distance is widened by a few ulps so rounding in
+ * the reciprocal cannot cull a hit on the box's surface. */
+static ALWAYS_INLINE vmask packet_box(const glint_bvh_node *n,
+                                      const packet_inv *r, vfloat tmin,
+                                      vfloat tmax, vmask active) {
+  vfloat lx, ly, lz, hx, hy, hz, unused0, unused1;
+  vf_splat4(&n->lo[0], &lx, &ly, &lz, &hx);
+  vf_splat4(&n->hi[1], &hy, &hz, &unused0, &unused1);
+  vfloat t0x = vf_fmadd(lx, r->inv.x, r->neg_o_inv.x);
+  vfloat t1x = vf_fmadd(hx, r->inv.x, r->neg_o_inv.x);
+  vfloat t0y = vf_fmadd(ly, r->inv.y, r->neg_o_inv.y);
+  vfloat t1y = vf_fmadd(hy, r->inv.y, r->neg_o_inv.y);
+  vfloat t0z = vf_fmadd(lz, r->inv.z, r->neg_o_inv.z);
+  vfloat t1z = vf_fmadd(hz, r->inv.z, r->neg_o_inv.z);
+  vfloat near = vf_max(vf_max(vf_min(t0x, t1x), vf_min(t0y, t1y)),
+                       vf_max(vf_min(t0z, t1z), tmin));
+  vfloat far = vf_min(vf_min(vf_max(t0x, t1x), vf_max(t0y, t1y)),
+                      vf_min(vf_max(t0z, t1z), tmax));
+  return vm_and(active, vf_le(near, vf_mul(far, vf_set1(1.0000005f))));
+}
+
+/* One referenced primitive against the lanes of m. */
+static ALWAYS_INLINE void packet_prim(const packet_scene *ps, uint32_t ref,
+                                      vvec3 o, vvec3 d, vmask m, vfloat eps,
+                                      int newton, packet_hit *h) {
+  uint32_t i = GLINT_REF_INDEX(ref);
+  switch (GLINT_REF_SHAPE(ref)) {
+  case GLINT_SHAPE_SPHERE:
+    packet_sphere(&ps->spheres[i], o, d, m, eps, h);
+    break;
+  case GLINT_SHAPE_TRIANGLE:
+    packet_triangle(&ps->triangles[i], i, o, d, m, eps, newton, h);
+    break;
+  default:
+    packet_cone(&ps->cones[i], o, d, m, eps, h);
+    break;
+  }
+}
+
 /* Every object against every active lane (the thesis's brute force, §4.3):
  * per lane the nearest hit wins. */
 static ALWAYS_INLINE void packet_nearest(const packet_scene *ps, vvec3 o,
@@ -233,15 +365,46 @@ static ALWAYS_INLINE void packet_nearest(const packet_scene *ps, vvec3 o,
   const scene_r *s = ps->s;
   packet_hit_init(h);
   vfloat eps = vs_get(&ps->eps);
-  count_tests(st, s->sphere_count + s->plane_count + s->triangle_count,
-              vm_count(active));
-  for (size_t i = 0; i < s->sphere_count; i++)
-    packet_sphere(&ps->spheres[i], o, d, active, eps, h);
+  int lanes = vm_count(active);
+  count_tests(st, s->plane_count, lanes);
   for (size_t i = 0; i < s->plane_count; i++)
     packet_plane(&ps->planes[i], o, d, active, eps, newton, h);
-  for (size_t i = 0; i < s->triangle_count; i++)
-    packet_triangle(&ps->triangles[i], (uint32_t)i, o, d, active, eps, newton,
-                    h);
+  const glint_bvh *bvh = &s->bvh;
+  if (bvh->node_count == 0) {
+    count_tests(st, s->sphere_count + s->triangle_count + s->cone_count,
+                lanes);
+    for (size_t i = 0; i < s->sphere_count; i++)
+      packet_sphere(&ps->spheres[i], o, d, active, eps, h);
+    for (size_t i = 0; i < s->triangle_count; i++)
+      packet_triangle(&ps->triangles[i], (uint32_t)i, o, d, active, eps,
+                      newton, h);
+    for (size_t i = 0; i < s->cone_count; i++)
+      packet_cone(&ps->cones[i], o, d, active, eps, h);
+    return;
+  }
+  /* Depth first; the child the packet's direction meets first is pushed
+   * last. A node's box is tested when it is popped, against the lanes'
+   * nearest hits so far, so boxes behind a hit are skipped. */
+  packet_inv r = packet_inverse(o, d, active, newton);
+  uint32_t stack[GLINT_BVH_MAX_DEPTH];
+  int sp = 0;
+  stack[sp++] = 0;
+  while (sp > 0) {
+    const glint_bvh_node *n = &bvh->nodes[stack[--sp]];
+    vmask m = packet_box(n, &r, eps, h->t, active);
+    count_tests(st, 1, lanes);
+    if (vm_none(m))
+      continue;
+    if (n->count == 0) {
+      int far = !r.neg[n->axis];
+      stack[sp++] = n->offset + (uint32_t)far;
+      stack[sp++] = n->offset + (uint32_t)!far;
+    } else {
+      count_tests(st, n->count, vm_count(m));
+      for (uint32_t k = 0; k < n->count; k++)
+        packet_prim(ps, bvh->refs[n->offset + k], o, d, m, eps, newton, h);
+    }
+  }
 }
 
 /* ---- shadow rays ------------------------------------------------------ */
@@ -279,6 +442,63 @@ static ALWAYS_INLINE void shadow_cross(const packet_scene *ps, int object,
   }
 }
 
+/* Every crossing of one primitive by the shadow lanes within (eps, dist). */
+static ALWAYS_INLINE void packet_cross_prim(const packet_scene *ps,
+                                            uint32_t shape, uint32_t i,
+                                            vvec3 o, vvec3 d, vfloat dist,
+                                            vfloat eps, int newton,
+                                            shadow_state *sh) {
+  switch (shape) {
+  case GLINT_SHAPE_SPHERE: {
+    const psphere *sp = &ps->spheres[i];
+    vvec3 v = vv_sub(vv_get(sp->center), o);
+    vfloat proj = vv_dot(v, d);
+    vvec3 perp = vv_madd(v, vf_neg(proj), d);
+    vfloat dist2 = vv_dot(perp, perp);
+    vfloat r2 = vs_get(&sp->r2);
+    vmask m = vm_and(sh->alive, vf_le(dist2, r2));
+    if (vm_none(m))
+      return;
+    vfloat half = vf_sqrt(vf_sub(r2, dist2));
+    vfloat l1 = vf_sub(proj, half), l2 = vf_add(proj, half);
+    vmask c1 = vm_and(m, vm_and(vf_gt(l1, eps), vf_lt(l1, dist)));
+    vmask c2 = vm_and(m, vm_and(vf_gt(l2, eps), vf_lt(l2, dist)));
+    shadow_cross(ps, sp->object, c1, l1, vm_true(), sh);
+    shadow_cross(ps, sp->object, c2, l2, vm_false(), sh);
+    break;
+  }
+  case GLINT_SHAPE_TRIANGLE: {
+    const ptriangle *tr = &ps->triangles[i];
+    vfloat t, u, v;
+    vmask c = packet_triangle_cross(tr, o, d, sh->alive, eps, dist, newton,
+                                    &t, &u, &v);
+    /* Entering: against the normal, which the unnormalised one shares. */
+    shadow_cross(ps, tr->object, c, t,
+                 vf_lt(vv_dot(vv_get(tr->n), d), vf_zero()), sh);
+    break;
+  }
+  default: {
+    const pcone *c = &ps->cones[i];
+    vfloat t0, t1;
+    vmask m0, m1;
+    packet_cone_roots(c, o, d, sh->alive, eps, dist, &t0, &m0, &t1, &m1);
+    for (int k = 0; k < 2 && vm_any(k ? m1 : m0); k++) {
+      vfloat t = k ? t1 : t0;
+      vvec3 q = vv_sub(vv_madd(o, t, d), vv_get(c->base));
+      vvec3 axis = vv_get(c->axis);
+      vfloat hq = vv_dot(q, axis);
+      vfloat kk = vs_get(&c->k);
+      vvec3 n = vv_madd(q, vf_neg(vf_fmadd(kk, vf_fmadd(kk, hq, vs_get(&c->rb)),
+                                           hq)),
+                        axis);
+      shadow_cross(ps, c->object, k ? m1 : m0, t,
+                   vf_lt(vv_dot(n, d), vf_zero()), sh);
+    }
+    break;
+  }
+  }
+}
+
 static ALWAYS_INLINE vvec3 packet_transmission(const packet_scene *ps,
                                                vvec3 o, vvec3 d, vfloat dist,
                                                vmask active, glint_math math,
@@ -289,25 +509,8 @@ static ALWAYS_INLINE vvec3 packet_transmission(const packet_scene *ps,
                      active,
                      0};
   vfloat eps = vs_get(&ps->eps);
-  count_tests(st, s->sphere_count + s->plane_count + s->triangle_count,
-              vm_count(active));
-  for (size_t i = 0; i < s->sphere_count && vm_any(sh.alive); i++) {
-    const psphere *sp = &ps->spheres[i];
-    vvec3 v = vv_sub(vv_get(sp->center), o);
-    vfloat proj = vv_dot(v, d);
-    vvec3 perp = vv_madd(v, vf_neg(proj), d);
-    vfloat dist2 = vv_dot(perp, perp);
-    vfloat r2 = vs_get(&sp->r2);
-    vmask m = vm_and(sh.alive, vf_le(dist2, r2));
-    if (vm_none(m))
-      continue;
-    vfloat half = vf_sqrt(vf_sub(r2, dist2));
-    vfloat l1 = vf_sub(proj, half), l2 = vf_add(proj, half);
-    vmask c1 = vm_and(m, vm_and(vf_gt(l1, eps), vf_lt(l1, dist)));
-    vmask c2 = vm_and(m, vm_and(vf_gt(l2, eps), vf_lt(l2, dist)));
-    shadow_cross(ps, sp->object, c1, l1, vm_true(), &sh);
-    shadow_cross(ps, sp->object, c2, l2, vm_false(), &sh);
-  }
+  int lanes = vm_count(active);
+  count_tests(st, s->plane_count, lanes);
   for (size_t i = 0; i < s->plane_count && vm_any(sh.alive); i++) {
     const pplane *pl = &ps->planes[i];
     vvec3 n = vv_get(pl->n);
@@ -318,14 +521,47 @@ static ALWAYS_INLINE vvec3 packet_transmission(const packet_scene *ps,
                      vm_and(vf_gt(t, eps), vf_lt(t, dist)));
     shadow_cross(ps, pl->object, c, t, vf_lt(denom, vf_zero()), &sh);
   }
-  for (size_t i = 0; i < s->triangle_count && vm_any(sh.alive); i++) {
-    const ptriangle *tr = &ps->triangles[i];
-    vfloat t, u, v;
-    vmask c = packet_triangle_cross(tr, o, d, sh.alive, eps, dist, newton, &t,
-                                    &u, &v);
-    /* Entering: against the normal, which the unnormalised one shares. */
-    shadow_cross(ps, tr->object, c, t,
-                 vf_lt(vv_dot(vv_get(tr->n), d), vf_zero()), &sh);
+  const glint_bvh *bvh = &s->bvh;
+  if (bvh->node_count == 0) {
+    count_tests(st, s->sphere_count + s->triangle_count + s->cone_count,
+                lanes);
+    for (size_t i = 0; i < s->sphere_count && vm_any(sh.alive); i++)
+      packet_cross_prim(ps, GLINT_SHAPE_SPHERE, (uint32_t)i, o, d, dist, eps,
+                        newton, &sh);
+    for (size_t i = 0; i < s->triangle_count && vm_any(sh.alive); i++)
+      packet_cross_prim(ps, GLINT_SHAPE_TRIANGLE, (uint32_t)i, o, d, dist,
+                        eps, newton, &sh);
+    for (size_t i = 0; i < s->cone_count && vm_any(sh.alive); i++)
+      packet_cross_prim(ps, GLINT_SHAPE_CONE, (uint32_t)i, o, d, dist, eps,
+                        newton, &sh);
+  } else if (vm_any(sh.alive)) {
+    /* Every node the lanes' segments pass through; done when every lane
+     * is blocked. */
+    packet_inv r = packet_inverse(o, d, sh.alive, newton);
+    uint32_t stack[GLINT_BVH_MAX_DEPTH];
+    int sp = 0;
+    stack[sp++] = 0;
+    while (sp > 0 && vm_any(sh.alive)) {
+      const glint_bvh_node *n = &bvh->nodes[stack[--sp]];
+      vmask m = packet_box(n, &r, eps, dist, sh.alive);
+      count_tests(st, 1, vm_count(sh.alive));
+      if (vm_none(m))
+        continue;
+      if (n->count == 0) {
+        stack[sp++] = n->offset + 1;
+        stack[sp++] = n->offset;
+      } else {
+        vmask keep = vm_andnot(sh.alive, m); /* lanes not in this box */
+        sh.alive = m;
+        count_tests(st, n->count, vm_count(m));
+        for (uint32_t k = 0; k < n->count && vm_any(sh.alive); k++) {
+          uint32_t ref = bvh->refs[n->offset + k];
+          packet_cross_prim(ps, GLINT_REF_SHAPE(ref), GLINT_REF_INDEX(ref), o,
+                            d, dist, eps, newton, &sh);
+        }
+        sh.alive = vm_or(sh.alive, keep);
+      }
+    }
   }
   vvec3 z = {vf_zero(), vf_zero(), vf_zero()};
   if (vm_none(sh.alive))
@@ -370,6 +606,19 @@ static ALWAYS_INLINE packet_surface packet_surface_at(
     ng = vv_get(ps->planes[ob->first].n);
     f.front = vf_lt(vv_dot(ng, d), vf_zero());
     break;
+  case GLINT_SHAPE_CONE: {
+    /* q - h a - k (rb + k h) a: see cone_normal in geometry/intersect.h */
+    const pcone *c = &ps->cones[ob->first];
+    vvec3 axis = vv_get(c->axis);
+    vvec3 q = vv_sub(f.p, vv_get(c->base));
+    vfloat hq = vv_dot(q, axis), k = vs_get(&c->k);
+    ng = vv_normalize(
+        vv_madd(q, vf_neg(vf_fmadd(k, vf_fmadd(k, hq, vs_get(&c->rb)), hq)),
+                axis),
+        newton);
+    f.front = vf_lt(vv_dot(ng, d), vf_zero());
+    break;
+  }
   default: /* triangles */
     if (ob->count == 1)
       ng = vv_set1(s->triangles[ob->first].ng);

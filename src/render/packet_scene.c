@@ -31,9 +31,11 @@ glint_status packet_scene_prepare(const glint_scene *scene,
   ps->spheres = glint_aligned_calloc(s->sphere_count, sizeof *ps->spheres);
   ps->planes = glint_aligned_calloc(s->plane_count, sizeof *ps->planes);
   ps->triangles = glint_aligned_calloc(s->triangle_count, sizeof *ps->triangles);
+  ps->cones = glint_aligned_calloc(s->cone_count, sizeof *ps->cones);
   ps->materials = glint_aligned_calloc(materials, sizeof *ps->materials);
   ps->lights = glint_aligned_calloc(s->light_count, sizeof *ps->lights);
-  if (!ps->spheres || !ps->planes || !ps->triangles || !ps->materials ||
+  if (!ps->spheres || !ps->planes || !ps->triangles || !ps->cones ||
+      !ps->materials ||
       !ps->lights) {
     packet_scene_release(ps);
     return glint_fail(error, GLINT_E_MEMORY,
@@ -57,6 +59,16 @@ glint_status packet_scene_prepare(const glint_scene *scene,
     put3(p->e2, t->e2);
     put3(p->n, t->n);
     p->object = (int32_t)t->object;
+  }
+  for (size_t i = 0; i < s->cone_count; i++) {
+    const cone_r *c = &s->cones[i];
+    pcone *p = &ps->cones[i];
+    put3(p->base, c->base);
+    put3(p->axis, c->axis);
+    p->height = vs_make(c->height);
+    p->rb = vs_make(c->rb);
+    p->k = vs_make(c->k);
+    p->object = (int32_t)c->object;
   }
   for (size_t i = 0; i < materials; i++) {
     const material_r *m = &s->materials[i];
@@ -87,6 +99,7 @@ glint_status packet_scene_prepare(const glint_scene *scene,
   stats->scene_bytes += s->sphere_count * sizeof *ps->spheres +
                         s->plane_count * sizeof *ps->planes +
                         s->triangle_count * sizeof *ps->triangles +
+                        s->cone_count * sizeof *ps->cones +
                         materials * sizeof *ps->materials +
                         s->light_count * sizeof *ps->lights;
   *out = ps;
@@ -100,6 +113,7 @@ void packet_scene_release(packet_scene *ps) {
   glint_aligned_free(ps->spheres);
   glint_aligned_free(ps->planes);
   glint_aligned_free(ps->triangles);
+  glint_aligned_free(ps->cones);
   glint_aligned_free(ps->materials);
   glint_aligned_free(ps->lights);
   glint_aligned_free(ps);

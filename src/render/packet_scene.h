@@ -31,6 +31,12 @@ typedef struct ptriangle {
   int32_t object;
 } ptriangle;
 
+typedef struct pcone {
+  vscalar base[3], axis[3];
+  vscalar height, rb, k; /* see cone_roots in geometry/intersect.h */
+  int32_t object;
+} pcone;
+
 typedef struct pmaterial {
   vscalar color[3], odd[3], even[3];
   vscalar ambient[3]; /* ka Ia */
@@ -49,6 +55,7 @@ typedef struct packet_scene {
   psphere *spheres;
   pplane *planes;
   ptriangle *triangles;
+  pcone *cones;
   pmaterial *materials;
   plight *lights;
   vscalar eps, background[3];

@@ -36,11 +36,13 @@ glint_status scalar_scene_prepare(const glint_scene *g,
   s->spheres = glint_aligned_calloc(g->sphere_count, sizeof *s->spheres);
   s->planes = glint_aligned_calloc(g->plane_count, sizeof *s->planes);
   s->triangles = glint_aligned_calloc(g->triangle_count, sizeof *s->triangles);
+  s->cone_count = g->cone_count;
+  s->cones = glint_aligned_calloc(g->cone_count, sizeof *s->cones);
   s->normals = glint_aligned_calloc(g->tri_normal_count, sizeof *s->normals);
   s->objects = glint_aligned_calloc(g->object_count, sizeof *s->objects);
   s->materials = glint_aligned_calloc(g->material_count, sizeof *s->materials);
   s->lights = glint_aligned_calloc(g->light_count, sizeof *s->lights);
-  if (!s->spheres || !s->planes || !s->triangles || !s->normals ||
+  if (!s->spheres || !s->planes || !s->triangles || !s->cones || !s->normals ||
       !s->objects || !s->materials || !s->lights) {
     scalar_scene_release(s);
     return glint_fail(error, GLINT_E_MEMORY,
@@ -76,6 +78,19 @@ glint_status scalar_scene_prepare(const glint_scene *g,
     } /* else degenerate: zero edges, never hit */
     t->object = p->object;
     t->normals = p->normals;
+  }
+  for (size_t i = 0; i < g->cone_count; i++) {
+    const glint_cone_prim *c = &g->cones[i];
+    glint_vec3 a = {c->apex.x - c->base.x, c->apex.y - c->base.y,
+                    c->apex.z - c->base.z};
+    double h = sqrt(a.x * a.x + a.y * a.y + a.z * a.z);
+    cone_r *r = &s->cones[i];
+    r->base = from_d(c->base);
+    r->axis = v3((real)(a.x / h), (real)(a.y / h), (real)(a.z / h));
+    r->height = (real)h;
+    r->rb = (real)c->base_radius;
+    r->k = (real)((c->apex_radius - c->base_radius) / h);
+    r->object = c->object;
   }
   for (size_t i = 0; i < g->tri_normal_count; i++)
     s->normals[i] = from_d(g->tri_normals[i]);
@@ -121,9 +136,20 @@ glint_status scalar_scene_prepare(const glint_scene *g,
   s->spp = frame->spp;
   s->max_depth = frame->max_depth;
   s->samples = frame->samples;
+  if (frame->accel == GLINT_ACCEL_BVH) {
+    glint_status st = glint_bvh_build(g, &s->bvh, error);
+    if (st) {
+      scalar_scene_release(s);
+      return st;
+    }
+    stats->bvh_nodes = s->bvh.node_count;
+    stats->bvh_bytes = glint_bvh_bytes(&s->bvh);
+    stats->bvh_build_seconds = s->bvh.build_seconds;
+  }
   stats->scene_bytes = sizeof *s + g->sphere_count * sizeof *s->spheres +
                        g->plane_count * sizeof *s->planes +
                        g->triangle_count * sizeof *s->triangles +
+      g->cone_count * sizeof *s->cones + glint_bvh_bytes(&s->bvh) +
                        g->tri_normal_count * sizeof *s->normals +
                        g->object_count * sizeof *s->objects +
                        g->material_count * sizeof *s->materials +
@@ -138,6 +164,8 @@ void scalar_scene_release(scene_r *s) {
   glint_aligned_free(s->spheres);
   glint_aligned_free(s->planes);
   glint_aligned_free(s->triangles);
+  glint_aligned_free(s->cones);
+  glint_bvh_free(&s->bvh);
   glint_aligned_free(s->normals);
   glint_aligned_free(s->objects);
   glint_aligned_free(s->materials);
@@ -145,44 +173,156 @@ void scalar_scene_release(scene_r *s) {
   free(s);
 }
 
-/* Every object tested in turn: the thesis's brute force (§4.3). */
+/* ---- nearest hit ------------------------------------------------------- */
+
+/* One primitive of the BVH's (or the brute-force loop's) against the ray;
+ * narrows *tmax on a nearer hit. */
+static inline void hit_prim(const scene_r *s, uint32_t shape, uint32_t i,
+                            vec3 o, vec3 d, real *tmax, hit_r *hit,
+                            int *found) {
+  real t, u, v;
+  switch (shape) {
+  case GLINT_SHAPE_SPHERE: {
+    int inside;
+    if (sphere_hit(s->spheres[i].center, s->spheres[i].r2, o, d, s->eps,
+                   *tmax, &t, &inside)) {
+      *tmax = hit->t = t;
+      hit->shape = GLINT_SHAPE_SPHERE;
+      hit->prim = i;
+      hit->inside = inside;
+      *found = 1;
+    }
+    break;
+  }
+  case GLINT_SHAPE_TRIANGLE: {
+    const triangle_r *tr = &s->triangles[i];
+    if (triangle_hit(tr->a, tr->e1, tr->e2, o, d, s->eps, *tmax, &t, &u, &v)) {
+      *tmax = hit->t = t;
+      hit->shape = GLINT_SHAPE_TRIANGLE;
+      hit->prim = i;
+      hit->u = u;
+      hit->v = v;
+      *found = 1;
+    }
+    break;
+  }
+  default: { /* GLINT_SHAPE_CONE */
+    const cone_r *c = &s->cones[i];
+    real ts[2];
+    if (cone_roots(c->base, c->axis, c->height, c->rb, c->k, o, d, s->eps,
+                   *tmax, ts)) {
+      *tmax = hit->t = ts[0];
+      hit->shape = GLINT_SHAPE_CONE;
+      hit->prim = i;
+      *found = 1;
+    }
+    break;
+  }
+  }
+}
+
+/* The ray's reciprocal direction for slab tests; a zero component becomes
+ * a huge one of the same sign, so 0 * inf never makes a NaN. */
+static inline vec3 safe_inverse(vec3 d) {
+  const real tiny = (real)1e-30;
+  real x = r_fabs(d.x) < tiny ? (d.x < 0 ? -tiny : tiny) : d.x;
+  real y = r_fabs(d.y) < tiny ? (d.y < 0 ? -tiny : tiny) : d.y;
+  real z = r_fabs(d.z) < tiny ? (d.z < 0 ? -tiny : tiny) : d.z;
+  return v3(1 / x, 1 / y, 1 / z);
+}
+
+/* The slab test (Kay and Kajiya 1986): the entry distance into the node's
+ * box, or a value > tmax when the ray misses it within (tmin, tmax). */
+static inline real box_entry(const glint_bvh_node *n, vec3 o, vec3 inv,
+                             real tmin, real tmax) {
+  real t0x = ((real)n->lo[0] - o.x) * inv.x, t1x = ((real)n->hi[0] - o.x) * inv.x;
+  real t0y = ((real)n->lo[1] - o.y) * inv.y, t1y = ((real)n->hi[1] - o.y) * inv.y;
+  real t0z = ((real)n->lo[2] - o.z) * inv.z, t1z = ((real)n->hi[2] - o.z) * inv.z;
+  real near = r_max(r_max(r_min(t0x, t1x), r_min(t0y, t1y)),
+                     r_max(r_min(t0z, t1z), tmin));
+  real far = r_min(r_min(r_max(t0x, t1x), r_max(t0y, t1y)),
+                    r_min(r_max(t0z, t1z), tmax));
+  return near <= far ? near : REAL_MAX;
+}
+
 int scalar_nearest_hit(const scene_r *s, vec3 o, vec3 d, real tmax,
                        hit_r *hit) {
   int found = 0;
-  real t, u, v;
-  int inside;
-  for (size_t i = 0; i < s->sphere_count; i++)
-    if (sphere_hit(s->spheres[i].center, s->spheres[i].r2, o, d, s->eps, tmax,
-                   &t, &inside)) {
-      tmax = t;
-      hit->t = t;
-      hit->shape = GLINT_SHAPE_SPHERE;
-      hit->prim = (uint32_t)i;
-      hit->inside = inside;
-      found = 1;
-    }
+  real t;
   for (size_t i = 0; i < s->plane_count; i++)
     if (plane_hit(s->planes[i].n, s->planes[i].d, o, d, s->eps, tmax, &t)) {
-      tmax = t;
-      hit->t = t;
+      tmax = hit->t = t;
       hit->shape = GLINT_SHAPE_PLANE;
       hit->prim = (uint32_t)i;
       found = 1;
     }
-  for (size_t i = 0; i < s->triangle_count; i++) {
-    const triangle_r *tr = &s->triangles[i];
-    if (triangle_hit(tr->a, tr->e1, tr->e2, o, d, s->eps, tmax, &t, &u, &v)) {
-      tmax = t;
-      hit->t = t;
-      hit->shape = GLINT_SHAPE_TRIANGLE;
-      hit->prim = (uint32_t)i;
-      hit->u = u;
-      hit->v = v;
-      found = 1;
-    }
+  if (s->bvh.node_count == 0) { /* the thesis's brute force (§4.3) */
+    for (size_t i = 0; i < s->sphere_count; i++)
+      hit_prim(s, GLINT_SHAPE_SPHERE, (uint32_t)i, o, d, &tmax, hit, &found);
+    for (size_t i = 0; i < s->triangle_count; i++)
+      hit_prim(s, GLINT_SHAPE_TRIANGLE, (uint32_t)i, o, d, &tmax, hit, &found);
+    for (size_t i = 0; i < s->cone_count; i++)
+      hit_prim(s, GLINT_SHAPE_CONE, (uint32_t)i, o, d, &tmax, hit, &found);
+    return found;
   }
-  return found;
+  /* Front to back: at an inner node both children's boxes are tested and
+   * the nearer is visited first; the farther waits on the stack with its
+   * entry distance, and is skipped if a hit has come closer since. */
+  const glint_bvh_node *nodes = s->bvh.nodes;
+  if (nodes[0].count) { /* a single leaf: its box test would only cost */
+    for (uint32_t k = 0; k < nodes[0].count; k++) {
+      uint32_t ref = s->bvh.refs[k];
+      hit_prim(s, GLINT_REF_SHAPE(ref), GLINT_REF_INDEX(ref), o, d, &tmax, hit,
+               &found);
+    }
+    return found;
+  }
+  vec3 inv = safe_inverse(d);
+  struct {
+    uint32_t node;
+    real entry;
+  } stack[GLINT_BVH_MAX_DEPTH];
+  int sp = 0;
+  uint32_t node = 0;
+  if (box_entry(&nodes[0], o, inv, s->eps, tmax) > tmax)
+    return found;
+  for (;;) {
+    const glint_bvh_node *n = &nodes[node];
+    if (n->count == 0) {
+      uint32_t a = n->offset, b = n->offset + 1;
+      real ta = box_entry(&nodes[a], o, inv, s->eps, tmax);
+      real tb = box_entry(&nodes[b], o, inv, s->eps, tmax);
+      if (ta > tb) {
+        real tt = ta;
+        ta = tb, tb = tt;
+        uint32_t nn = a;
+        a = b, b = nn;
+      }
+      if (ta <= tmax) {
+        if (tb <= tmax) {
+          stack[sp].node = b;
+          stack[sp++].entry = tb;
+        }
+        node = a;
+        continue;
+      }
+    } else {
+      for (uint32_t k = 0; k < n->count; k++) {
+        uint32_t ref = s->bvh.refs[n->offset + k];
+        hit_prim(s, GLINT_REF_SHAPE(ref), GLINT_REF_INDEX(ref), o, d, &tmax,
+                 hit, &found);
+      }
+    }
+    do {
+      if (sp == 0)
+        return found;
+      --sp;
+    } while (stack[sp].entry > tmax);
+    node = stack[sp].node;
+  }
 }
+
+/* ---- shadow rays ------------------------------------------------------- */
 
 /* The transmission along a shadow ray is a product over crossings, so their
  * order does not matter. The distance travelled inside objects is
@@ -207,32 +347,91 @@ static inline int cross_surface(const scene_r *s, shadow_acc *acc,
   return 1;
 }
 
-vec3 scalar_transmission(const scene_r *s, vec3 o, vec3 d, real dist) {
-  shadow_acc acc = {v3(1, 1, 1), v3(0, 0, 0)};
-  const vec3 black = v3(0, 0, 0);
+/* Every crossing of one primitive within (eps, dist); 0 if opaque. */
+static inline int cross_prim(const scene_r *s, shadow_acc *acc, uint32_t shape,
+                             uint32_t i, vec3 o, vec3 d, real dist) {
   real eps = s->eps;
-  for (size_t i = 0; i < s->sphere_count; i++) {
+  switch (shape) {
+  case GLINT_SHAPE_SPHERE: {
     real l1, l2;
     const sphere_r *sp = &s->spheres[i];
     if (!sphere_roots(sp->center, sp->r2, o, d, &l1, &l2))
-      continue;
-    if (l1 > eps && l1 < dist && !cross_surface(s, &acc, sp->object, l1, 1))
-      return black;
-    if (l2 > eps && l2 < dist && !cross_surface(s, &acc, sp->object, l2, 0))
-      return black;
+      return 1;
+    if (l1 > eps && l1 < dist && !cross_surface(s, acc, sp->object, l1, 1))
+      return 0;
+    if (l2 > eps && l2 < dist && !cross_surface(s, acc, sp->object, l2, 0))
+      return 0;
+    return 1;
   }
-  real t, u, v;
+  case GLINT_SHAPE_TRIANGLE: {
+    real t, u, v;
+    const triangle_r *tr = &s->triangles[i];
+    if (triangle_hit(tr->a, tr->e1, tr->e2, o, d, eps, dist, &t, &u, &v) &&
+        !cross_surface(s, acc, tr->object, t, v3_dot(tr->ng, d) < 0))
+      return 0;
+    return 1;
+  }
+  default: { /* GLINT_SHAPE_CONE */
+    const cone_r *c = &s->cones[i];
+    real ts[2];
+    int n = cone_roots(c->base, c->axis, c->height, c->rb, c->k, o, d, eps,
+                       dist, ts);
+    for (int k = 0; k < n; k++) {
+      vec3 p = v3_madd(o, ts[k], d);
+      int entering = v3_dot(cone_normal(c->base, c->axis, c->rb, c->k, p), d) < 0;
+      if (!cross_surface(s, acc, c->object, ts[k], entering))
+        return 0;
+    }
+    return 1;
+  }
+  }
+}
+
+vec3 scalar_transmission(const scene_r *s, vec3 o, vec3 d, real dist) {
+  shadow_acc acc = {v3(1, 1, 1), v3(0, 0, 0)};
+  const vec3 black = v3(0, 0, 0);
+  real t;
   for (size_t i = 0; i < s->plane_count; i++) {
     const plane_r *p = &s->planes[i];
-    if (plane_hit(p->n, p->d, o, d, eps, dist, &t) &&
+    if (plane_hit(p->n, p->d, o, d, s->eps, dist, &t) &&
         !cross_surface(s, &acc, p->object, t, v3_dot(p->n, d) < 0))
       return black;
   }
-  for (size_t i = 0; i < s->triangle_count; i++) {
-    const triangle_r *tr = &s->triangles[i];
-    if (triangle_hit(tr->a, tr->e1, tr->e2, o, d, eps, dist, &t, &u, &v) &&
-        !cross_surface(s, &acc, tr->object, t, v3_dot(tr->ng, d) < 0))
-      return black;
+  if (s->bvh.node_count == 0) {
+    for (size_t i = 0; i < s->sphere_count; i++)
+      if (!cross_prim(s, &acc, GLINT_SHAPE_SPHERE, (uint32_t)i, o, d, dist))
+        return black;
+    for (size_t i = 0; i < s->triangle_count; i++)
+      if (!cross_prim(s, &acc, GLINT_SHAPE_TRIANGLE, (uint32_t)i, o, d, dist))
+        return black;
+    for (size_t i = 0; i < s->cone_count; i++)
+      if (!cross_prim(s, &acc, GLINT_SHAPE_CONE, (uint32_t)i, o, d, dist))
+        return black;
+  } else {
+    /* Every node the segment passes through, in any order; the first opaque
+     * crossing ends the search. */
+    const glint_bvh_node *nodes = s->bvh.nodes;
+    vec3 inv = safe_inverse(d);
+    uint32_t stack[GLINT_BVH_MAX_DEPTH];
+    int sp = 0;
+    stack[sp++] = 0;
+    while (sp > 0) {
+      const glint_bvh_node *n = &nodes[stack[--sp]];
+      /* (a root that is a single leaf needs no box test) */
+      if (n != nodes && box_entry(n, o, inv, s->eps, dist) > dist)
+        continue;
+      if (n->count == 0) {
+        stack[sp++] = n->offset + 1;
+        stack[sp++] = n->offset;
+      } else {
+        for (uint32_t k = 0; k < n->count; k++) {
+          uint32_t ref = s->bvh.refs[n->offset + k];
+          if (!cross_prim(s, &acc, GLINT_REF_SHAPE(ref), GLINT_REF_INDEX(ref),
+                          o, d, dist))
+            return black;
+        }
+      }
+    }
   }
   if (acc.exponent.x == 0 && acc.exponent.y == 0 && acc.exponent.z == 0)
     return acc.kt;

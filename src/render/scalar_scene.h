@@ -7,6 +7,7 @@
 #include "glint.h"
 #include "math/vec3.h"
 #include "render/camera.h"
+#include "accel/bvh.h"
 #include "render/frame.h"
 
 #include <stdint.h>
@@ -30,6 +31,12 @@ typedef struct triangle_r {
   uint32_t object;
   uint32_t normals; /* first of 3 vertex normals, or GLINT_NO_NORMALS */
 } triangle_r;
+
+typedef struct cone_r {
+  vec3 base, axis; /* axis: unit, from base to apex */
+  real height, rb, k; /* base radius and slope (apex - base radius) / height */
+  uint32_t object;
+} cone_r;
 
 typedef struct material_r {
   vec3 color, odd, even;
@@ -57,11 +64,13 @@ typedef struct scene_r {
   sphere_r *spheres;
   plane_r *planes;
   triangle_r *triangles;
+  cone_r *cones;
   vec3 *normals;
   object_r *objects;
   material_r *materials;
   light_r *lights;
-  size_t sphere_count, plane_count, triangle_count, light_count;
+  size_t sphere_count, plane_count, triangle_count, cone_count, light_count;
+  glint_bvh bvh; /* node_count 0: every primitive is tested (--accel none) */
   vec3 background, ambient;
   real eps;
   int width, height, spp, max_depth;

@@ -5,6 +5,7 @@
 #include "render/backend.h"
 #include "render/scalar_scene.h"
 
+#include "geometry/intersect.h"
 #include "math/optics.h"
 #include "scene/scene.h"
 
@@ -62,6 +63,13 @@ static inline surface surface_at(const scene_r *s, const hit_r *h, vec3 o,
     f.front = v3_dot(ng, d) < 0;
     f.object = s->planes[h->prim].object;
     break;
+  case GLINT_SHAPE_CONE: {
+    const cone_r *c = &s->cones[h->prim];
+    ng = v3_normalize(cone_normal(c->base, c->axis, c->rb, c->k, f.p));
+    f.front = v3_dot(ng, d) < 0;
+    f.object = c->object;
+    break;
+  }
   default: { /* GLINT_SHAPE_TRIANGLE */
     const triangle_r *t = &s->triangles[h->prim];
     ng = t->ng;

@@ -1,0 +1,51 @@
+/* A bounding volume hierarchy over every bounded primitive of a scene
+ * (spheres, triangles, cones; unbounded planes are kept outside it), built
+ * top-down by the surface area heuristic over binned centroids (Wald 2007,
+ * "On fast construction of SAH-based bounding volume hierarchies"). One
+ * BVH serves every backend: boxes are float, rounded outward so they hold
+ * the double-precision primitives too. */
+#ifndef GLINT_ACCEL_BVH_H
+#define GLINT_ACCEL_BVH_H
+
+#include "glint.h"
+
+#include <stdint.h>
+
+/* A primitive reference: its shape in the top two bits, its index in the
+ * shape's array below them. */
+#define GLINT_REF(shape, index) ((uint32_t)(shape) << 30 | (uint32_t)(index))
+#define GLINT_REF_SHAPE(ref) ((ref) >> 30)
+#define GLINT_REF_INDEX(ref) ((ref)&0x3fffffffu)
+#define GLINT_MAX_BVH_PRIMS 0x3fffffffu
+
+/* 32 bytes, two to a cache line. The children of an inner node are
+ * adjacent: offset and offset + 1. */
+typedef struct glint_bvh_node {
+  float lo[3], hi[3];
+  uint32_t offset; /* inner: first child; leaf: first reference */
+  uint16_t count;  /* references in a leaf; 0 for an inner node */
+  uint16_t axis;   /* an inner node's split axis */
+} glint_bvh_node;
+
+#define GLINT_BVH_MAX_DEPTH 64 /* traversal stacks are this deep */
+#define GLINT_BVH_MIN_PRIMS 16 /* fewer bounded primitives: no hierarchy */
+
+typedef struct glint_bvh {
+  glint_bvh_node *nodes;
+  uint32_t node_count;
+  uint32_t *refs;
+  uint32_t ref_count;
+  int depth;
+  double build_seconds;
+} glint_bvh;
+
+/* Builds over the scene's spheres, triangles and cones. A scene with at most
+ * GLINT_BVH_MIN_PRIMS of them gives node_count = 0: test them all. */
+glint_status glint_bvh_build(const glint_scene *scene, glint_bvh *bvh,
+                             glint_error *error);
+void glint_bvh_free(glint_bvh *bvh);
+
+/* Bytes the built hierarchy occupies (nodes and references). */
+uint64_t glint_bvh_bytes(const glint_bvh *bvh);
+
+#endif
