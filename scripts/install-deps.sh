@@ -8,6 +8,8 @@ packages=(
   cmake             # the build
   pkg-config        # finds libpng and friends
   libpng-dev        # PNG output
+  libcjson-dev      # glint's JSON scene format
+  zlib1g-dev        # .gz meshes
   libcmocka-dev     # the unit-test framework
   gnuplot-nox       # glint bench --plot
 )

@@ -26,6 +26,11 @@ typedef struct box {
   float lo[3], hi[3];
 } box;
 
+/* Single-instruction min and max (fminf/fmaxf are calls: they are defined
+ * for NaN, which bounds never hold). */
+static inline float minf(float a, float b) { return a < b ? a : b; }
+static inline float maxf(float a, float b) { return a > b ? a : b; }
+
 static box box_empty(void) {
   box b = {{FLT_MAX, FLT_MAX, FLT_MAX}, {-FLT_MAX, -FLT_MAX, -FLT_MAX}};
   return b;
@@ -33,8 +38,8 @@ static box box_empty(void) {
 
 static void box_grow(box *b, const box *o) {
   for (int k = 0; k < 3; k++) {
-    b->lo[k] = fminf(b->lo[k], o->lo[k]);
-    b->hi[k] = fmaxf(b->hi[k], o->hi[k]);
+    b->lo[k] = minf(b->lo[k], o->lo[k]);
+    b->hi[k] = maxf(b->hi[k], o->hi[k]);
   }
 }
 
@@ -148,8 +153,8 @@ static uint32_t split(builder *b, uint32_t begin, uint32_t end,
   for (uint32_t i = begin; i < end; i++) {
     const float *c = &b->centroids[3 * i];
     for (int k = 0; k < 3; k++) {
-      cb.lo[k] = fminf(cb.lo[k], c[k]);
-      cb.hi[k] = fmaxf(cb.hi[k], c[k]);
+      cb.lo[k] = minf(cb.lo[k], c[k]);
+      cb.hi[k] = maxf(cb.hi[k], c[k]);
     }
   }
   float scale[3];

@@ -232,7 +232,10 @@ static inline vec3 safe_inverse(vec3 d) {
 }
 
 /* The slab test (Kay and Kajiya 1986): the entry distance into the node's
- * box, or a value > tmax when the ray misses it within (tmin, tmax). */
+ * box, or infinity when the ray misses it within (tmin, tmax). (Not
+ * REAL_MAX: a ray without a hit yet has tmax = REAL_MAX, and every missed
+ * box would pass entry <= tmax.) The far distance is widened by a few ulps
+ * so rounding cannot cull a hit on the box's surface. */
 static inline real box_entry(const glint_bvh_node *n, vec3 o, vec3 inv,
                              real tmin, real tmax) {
   real t0x = ((real)n->lo[0] - o.x) * inv.x, t1x = ((real)n->hi[0] - o.x) * inv.x;
@@ -242,7 +245,7 @@ static inline real box_entry(const glint_bvh_node *n, vec3 o, vec3 inv,
                      r_max(r_min(t0z, t1z), tmin));
   real far = r_min(r_min(r_max(t0x, t1x), r_max(t0y, t1y)),
                     r_min(r_max(t0z, t1z), tmax));
-  return near <= far ? near : REAL_MAX;
+  return near <= far * (real)1.0000005 ? near : (real)INFINITY;
 }
 
 int scalar_nearest_hit(const scene_r *s, vec3 o, vec3 d, real tmax,

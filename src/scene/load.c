@@ -7,13 +7,14 @@
 
 glint_status glint_scene_load(const char *path, glint_scene **out,
                               glint_error *error) {
-  (void)out;
-  const char *dot = strrchr(path, '.');
-  if (dot && (strcasecmp(dot, ".nff") == 0 || strcasecmp(dot, ".json") == 0))
-    return glint_fail(error, GLINT_E_UNSUPPORTED,
-                      "%s: scene files are not supported yet", path);
+  const char *slash = strrchr(path, '/');
+  const char *dot = strrchr(slash ? slash : path, '.');
+  if (dot && strcasecmp(dot, ".nff") == 0)
+    return glint_nff_load(path, out, error);
+  if (dot && strcasecmp(dot, ".json") == 0)
+    return glint_json_load(path, out, error);
   return glint_fail(error, GLINT_E_ARGUMENT,
-                    "%s: unknown scene file type (use .nff or .json), or an "
-                    "unknown built-in scene",
+                    "%s: not a built-in scene nor a scene file (.nff or "
+                    ".json)",
                     path);
 }

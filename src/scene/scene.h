@@ -91,6 +91,12 @@ glint_status glint_scene_push_triangle(glint_scene *scene, glint_vec3 a,
                                        const glint_vec3 normals[3],
                                        glint_error *error);
 
+/* File readers (scene/nff.c, scene/json.c). */
+glint_status glint_nff_load(const char *path, glint_scene **out,
+                            glint_error *error);
+glint_status glint_json_load(const char *path, glint_scene **out,
+                             glint_error *error);
+
 /* The smallest t a hit may have (SPEC §3): 1e-4 times the scene's scale, the
  * largest coordinate magnitude among the camera and the bounded primitives. */
 double glint_scene_epsilon(const glint_scene *scene);

@@ -1,0 +1,314 @@
+/* Eric Haines's Neutral File Format (../shared/scenes/spd/NFF.TXT), the
+ * format of the Standard Procedural Databases. Every entity is read:
+ *
+ *   v   from/at/up/angle/hither/resolution: the camera. NFF's angle spans the
+ *       centres of the outer pixel columns; glint's field of view spans the
+ *       outer edges, so fov = 2 atan(tan(angle/2) xres / (xres - 1)).
+ *       hither is read and ignored (every hit beyond epsilon counts).
+ *   b   background colour.
+ *   l   a point light, with an optional colour. NFF leaves the intensity of
+ *       uncoloured lights open; glint gives each 1/sqrt(number of lights),
+ *       the rule Haines suggests so that scenes with many lights are not
+ *       washed out. A given colour is used as it is.
+ *   f   a material: r g b Kd Ks Shine T ior, mapped onto SPEC §4 as
+ *       C = (r, g, b), ka = 0.1 (as Tachyon), kd = Kd, ks = kr = Ks,
+ *       h = Shine, kt = T, ior; no absorption.
+ *   c   an open cylinder or cone (no end caps).
+ *   s   a sphere.
+ *   p   a convex polygon, triangulated as a fan: one object.
+ *   pp  a polygonal patch: the same, with vertex normals, shaded smooth.
+ *   #   a comment to the end of the line.
+ *
+ * NFF's negative radii (only the inside visible) are read as their
+ * magnitude: glint shows both sides of every surface. */
+#include "core/error.h"
+#include "scene/scene.h"
+#include "scene/text.h"
+
+#include <math.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+
+#define MAX_POLYGON_VERTICES 1000000
+
+typedef struct nff_reader {
+  text_file t;
+  glint_scene *scene;
+  int has_material;
+  uint32_t material;
+  size_t uncoloured_lights;
+  glint_vec3 *verts, *norms;
+  size_t vert_cap;
+} nff_reader;
+
+static glint_status expect_word(nff_reader *r, const char *word,
+                                glint_error *e) {
+  char buf[64];
+  const char *tok = text_token(&r->t, buf, sizeof buf);
+  if (!tok)
+    return glint_fail(e, GLINT_E_PARSE,
+                      "%s:%d: the file ends where '%s' was expected",
+                      r->t.path, r->t.line, word);
+  if (strcmp(tok, word) != 0)
+    return glint_fail(e, GLINT_E_PARSE, "%s:%d: expected '%s', found '%s'",
+                      r->t.path, r->t.token_line, word, tok);
+  return GLINT_OK;
+}
+
+/* A library error about an entity, placed at the entity's line. */
+static glint_status at_line(nff_reader *r, int line, glint_status st,
+                            glint_error *e) {
+  if (st && e) {
+    char msg[sizeof e->message];
+    snprintf(msg, sizeof msg, "%s", e->message);
+    glint_fail(e, st, "%s:%d: %s", r->t.path, line, msg);
+  }
+  return st;
+}
+
+static glint_status read_view(nff_reader *r, glint_error *e) {
+  glint_camera cam;
+  double angle, hither;
+  long w, h;
+  glint_status st;
+  int line = r->t.token_line;
+  if ((st = expect_word(r, "from", e)) ||
+      (st = text_vec3(&r->t, "'from'", &cam.from, e)) ||
+      (st = expect_word(r, "at", e)) ||
+      (st = text_vec3(&r->t, "'at'", &cam.at, e)) ||
+      (st = expect_word(r, "up", e)) ||
+      (st = text_vec3(&r->t, "'up'", &cam.up, e)) ||
+      (st = expect_word(r, "angle", e)) ||
+      (st = text_number(&r->t, "the view angle", &angle, e)) ||
+      (st = expect_word(r, "hither", e)) ||
+      (st = text_number(&r->t, "hither", &hither, e)) ||
+      (st = expect_word(r, "resolution", e)) ||
+      (st = text_int(&r->t, "the horizontal resolution", 1,
+                     GLINT_MAX_DIMENSION, &w, e)) ||
+      (st = text_int(&r->t, "the vertical resolution", 1,
+                     GLINT_MAX_DIMENSION, &h, e)))
+    return st;
+  if (!(angle > 0 && angle < 180))
+    return glint_fail(e, GLINT_E_PARSE,
+                      "%s:%d: view angle %g is not between 0 and 180",
+                      r->t.path, line, angle);
+  double half = tan(angle * 3.14159265358979323846 / 360.0);
+  if (w > 1)
+    half *= (double)w / (double)(w - 1);
+  cam.fov_x_degrees = 2 * atan(half) * 180.0 / 3.14159265358979323846;
+  (void)hither;
+  if ((st = glint_scene_set_camera(r->scene, &cam, e)) ||
+      (st = glint_scene_set_resolution(r->scene, (int)w, (int)h, e)))
+    return at_line(r, line, st, e);
+  return GLINT_OK;
+}
+
+static glint_status read_light(nff_reader *r, glint_error *e) {
+  int line = r->t.token_line;
+  glint_vec3 p, c = {1, 1, 1};
+  glint_status st = text_vec3(&r->t, "the light position", &p, e);
+  if (st)
+    return st;
+  int coloured = text_more_on_line(&r->t);
+  if (coloured && (st = text_vec3(&r->t, "the light colour", &c, e)))
+    return st;
+  if ((st = glint_scene_add_light(r->scene, p, c, e)))
+    return at_line(r, line, st, e);
+  if (!coloured) { /* its intensity is set once all lights are known */
+    r->scene->lights[r->scene->light_count - 1].color =
+        (glint_vec3){-1, -1, -1};
+    r->uncoloured_lights++;
+  }
+  return GLINT_OK;
+}
+
+static glint_status read_material(nff_reader *r, glint_error *e) {
+  int line = r->t.token_line;
+  static const char *names[8] = {"red", "green", "blue", "Kd", "Ks",
+                                 "Shine", "T", "the index of refraction"};
+  double v[8];
+  for (int i = 0; i < 8; i++) {
+    char what[64];
+    snprintf(what, sizeof what, "the material's %s", names[i]);
+    glint_status st = text_number(&r->t, what, &v[i], e);
+    if (st)
+      return st;
+  }
+  glint_material m;
+  glint_material_default(&m);
+  m.color = (glint_vec3){v[0], v[1], v[2]};
+  m.ka = 0.1;
+  m.kd = v[3];
+  m.ks = m.kr = v[4];
+  m.h = v[5];
+  m.kt = v[6];
+  /* SPD files write ior 0 for materials that transmit nothing. */
+  m.ior = v[6] == 0 && v[7] <= 0 ? 1 : v[7];
+  glint_status st = glint_scene_add_material(r->scene, &m, &r->material, e);
+  if (st)
+    return at_line(r, line, st, e);
+  r->has_material = 1;
+  return GLINT_OK;
+}
+
+static glint_status need_material(nff_reader *r, const char *entity,
+                                  glint_error *e) {
+  if (r->has_material)
+    return GLINT_OK;
+  return glint_fail(e, GLINT_E_PARSE,
+                    "%s:%d: '%s' before any 'f' material line", r->t.path,
+                    r->t.token_line, entity);
+}
+
+static glint_status read_sphere(nff_reader *r, glint_error *e) {
+  int line = r->t.token_line;
+  glint_vec3 c;
+  double radius;
+  glint_status st;
+  if ((st = need_material(r, "s", e)) ||
+      (st = text_vec3(&r->t, "the sphere's centre", &c, e)) ||
+      (st = text_number(&r->t, "the sphere's radius", &radius, e)))
+    return st;
+  return at_line(r, line,
+                 glint_scene_add_sphere(r->scene, c, fabs(radius),
+                                        r->material, e),
+                 e);
+}
+
+static glint_status read_cone(nff_reader *r, glint_error *e) {
+  int line = r->t.token_line;
+  glint_vec3 base, apex;
+  double rb, ra;
+  glint_status st;
+  if ((st = need_material(r, "c", e)) ||
+      (st = text_vec3(&r->t, "the cone's base", &base, e)) ||
+      (st = text_number(&r->t, "the cone's base radius", &rb, e)) ||
+      (st = text_vec3(&r->t, "the cone's apex", &apex, e)) ||
+      (st = text_number(&r->t, "the cone's apex radius", &ra, e)))
+    return st;
+  if ((rb < 0) != (ra < 0) && rb != 0 && ra != 0)
+    return glint_fail(e, GLINT_E_PARSE,
+                      "%s:%d: the cone's radii %g and %g have different "
+                      "signs",
+                      r->t.path, line, rb, ra);
+  return at_line(r, line,
+                 glint_scene_add_cone(r->scene, base, fabs(rb), apex,
+                                      fabs(ra), r->material, e),
+                 e);
+}
+
+/* p and pp: a convex polygon of n vertices as a fan of n - 2 triangles. */
+static glint_status read_polygon(nff_reader *r, int patch, glint_error *e) {
+  int line = r->t.token_line;
+  const char *entity = patch ? "pp" : "p";
+  long n;
+  glint_status st;
+  if ((st = need_material(r, entity, e)) ||
+      (st = text_int(&r->t, "the vertex count", 3, MAX_POLYGON_VERTICES, &n,
+                     e)))
+    return st;
+  if ((size_t)n > r->vert_cap) {
+    glint_vec3 *v = realloc(r->verts, sizeof *v * (size_t)n);
+    glint_vec3 *m = v ? realloc(r->norms, sizeof *m * (size_t)n) : NULL;
+    if (v)
+      r->verts = v;
+    if (m)
+      r->norms = m;
+    if (!v || !m)
+      return glint_fail(e, GLINT_E_MEMORY, "%s:%d: out of memory", r->t.path,
+                        line);
+    r->vert_cap = (size_t)n;
+  }
+  for (long i = 0; i < n; i++) {
+    char what[96];
+    snprintf(what, sizeof what, "vertex %ld of %ld of the polygon on line %d",
+             i + 1, n, line);
+    if ((st = text_vec3(&r->t, what, &r->verts[i], e)))
+      return st;
+    if (patch) {
+      snprintf(what, sizeof what, "normal %ld of %ld of the patch on line %d",
+               i + 1, n, line);
+      if ((st = text_vec3(&r->t, what, &r->norms[i], e)))
+        return st;
+    }
+  }
+  if ((st = glint_scene_begin_object(r->scene, GLINT_SHAPE_TRIANGLE,
+                                     r->material, e)))
+    return at_line(r, line, st, e);
+  for (long i = 1; i + 1 < n; i++) {
+    glint_vec3 nrm[3];
+    if (patch) {
+      nrm[0] = r->norms[0];
+      nrm[1] = r->norms[i];
+      nrm[2] = r->norms[i + 1];
+    }
+    st = glint_scene_push_triangle(r->scene, r->verts[0], r->verts[i],
+                                   r->verts[i + 1], patch ? nrm : NULL, e);
+    if (st)
+      return at_line(r, line, st, e);
+  }
+  return GLINT_OK;
+}
+
+static glint_status read_nff(nff_reader *r, glint_error *e) {
+  char buf[64];
+  const char *tok;
+  glint_status st = GLINT_OK;
+  while (!st && (tok = text_token(&r->t, buf, sizeof buf))) {
+    if (strcmp(tok, "v") == 0)
+      st = read_view(r, e);
+    else if (strcmp(tok, "b") == 0) {
+      glint_vec3 c;
+      int line = r->t.token_line;
+      if (!(st = text_vec3(&r->t, "the background colour", &c, e)))
+        st = at_line(r, line, glint_scene_set_background(r->scene, c, e), e);
+    } else if (strcmp(tok, "l") == 0)
+      st = read_light(r, e);
+    else if (strcmp(tok, "f") == 0)
+      st = read_material(r, e);
+    else if (strcmp(tok, "s") == 0)
+      st = read_sphere(r, e);
+    else if (strcmp(tok, "c") == 0)
+      st = read_cone(r, e);
+    else if (strcmp(tok, "p") == 0)
+      st = read_polygon(r, 0, e);
+    else if (strcmp(tok, "pp") == 0)
+      st = read_polygon(r, 1, e);
+    else
+      st = glint_fail(e, GLINT_E_PARSE, "%s:%d: unknown entity '%s'",
+                      r->t.path, r->t.token_line, tok);
+  }
+  if (st)
+    return st;
+  /* Uncoloured lights: 1/sqrt(number of lights) each. */
+  double intensity = 1 / sqrt((double)(r->scene->light_count ? r->scene->light_count : 1));
+  for (size_t i = 0; i < r->scene->light_count; i++)
+    if (r->scene->lights[i].color.x < 0)
+      r->scene->lights[i].color = (glint_vec3){intensity, intensity, intensity};
+  return GLINT_OK;
+}
+
+glint_status glint_nff_load(const char *path, glint_scene **out,
+                            glint_error *e) {
+  nff_reader r;
+  memset(&r, 0, sizeof r);
+  glint_status st = text_open(&r.t, path, '#', e);
+  if (st)
+    return st;
+  if ((st = glint_scene_create(&r.scene, e))) {
+    text_close(&r.t);
+    return st;
+  }
+  /* NFF's defaults: black background, white ambient light. */
+  st = read_nff(&r, e);
+  text_close(&r.t);
+  free(r.verts);
+  free(r.norms);
+  if (st) {
+    glint_scene_destroy(r.scene);
+    return st;
+  }
+  *out = r.scene;
+  return GLINT_OK;
+}
