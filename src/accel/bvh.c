@@ -10,6 +10,7 @@
 #include "core/timer.h"
 #include "scene/scene.h"
 
+#include <emmintrin.h>
 #include <float.h>
 #include <math.h>
 #include <stdlib.h>
@@ -31,34 +32,24 @@ typedef struct box {
 static inline float minf(float a, float b) { return a < b ? a : b; }
 static inline float maxf(float a, float b) { return a > b ? a : b; }
 
-static box box_empty(void) {
-  box b = {{FLT_MAX, FLT_MAX, FLT_MAX}, {-FLT_MAX, -FLT_MAX, -FLT_MAX}};
-  return b;
-}
 
-static void box_grow(box *b, const box *o) {
-  for (int k = 0; k < 3; k++) {
-    b->lo[k] = minf(b->lo[k], o->lo[k]);
-    b->hi[k] = maxf(b->hi[k], o->hi[k]);
-  }
-}
-
-static float box_area(const box *b) {
-  float dx = b->hi[0] - b->lo[0], dy = b->hi[1] - b->lo[1],
-        dz = b->hi[2] - b->lo[2];
-  if (dx < 0)
-    return 0;
-  return 2 * (dx * dy + dy * dz + dz * dx);
-}
-
-/* Float bounds that contain [lo, hi] given in double. */
+/* Float bounds that contain [lo, hi] given in double: rounded to nearest,
+ * then one step outward when that went inward (nextafterf is a call;
+ * scaling by 1 -/+ 2^-23 is one float step for normal numbers, and bounds
+ * around zero only need to be conservative). */
+static inline double dmin(double a, double b) { return a < b ? a : b; }
+static inline double dmax(double a, double b) { return a > b ? a : b; }
 static float down(double x) {
   float f = (float)x;
-  return (double)f > x ? nextafterf(f, -FLT_MAX) : f;
+  if ((double)f <= x)
+    return f;
+  return f > 0 ? f * (1 - 0x1p-23f) : f < 0 ? f * (1 + 0x1p-23f) : -FLT_MIN;
 }
 static float up(double x) {
   float f = (float)x;
-  return (double)f < x ? nextafterf(f, FLT_MAX) : f;
+  if ((double)f >= x)
+    return f;
+  return f > 0 ? f * (1 + 0x1p-23f) : f < 0 ? f * (1 - 0x1p-23f) : FLT_MIN;
 }
 
 static box box_of(double lo[3], double hi[3]) {
@@ -84,7 +75,7 @@ static box triangle_box(const glint_triangle_prim *t) {
   for (int i = 0; i < 3; i++) {
     double v[3] = {t->v[i].x, t->v[i].y, t->v[i].z};
     for (int k = 0; k < 3; k++)
-      lo[k] = fmin(lo[k], v[k]), hi[k] = fmax(hi[k], v[k]);
+      lo[k] = dmin(lo[k], v[k]), hi[k] = dmax(hi[k], v[k]);
   }
   return box_of(lo, hi);
 }
@@ -103,91 +94,158 @@ static box cone_box(const glint_cone_prim *c) {
   for (int e = 0; e < 2; e++)
     for (int k = 0; k < 3; k++) {
       double ak = a[k] / len;
-      double ext = r[e] * sqrt(fmax(0.0, 1 - ak * ak));
-      lo[k] = fmin(lo[k], p[e][k] - ext);
-      hi[k] = fmax(hi[k], p[e][k] + ext);
+      double ext = r[e] * sqrt(dmax(0.0, 1 - ak * ak));
+      lo[k] = dmin(lo[k], p[e][k] - ext);
+      hi[k] = dmax(hi[k], p[e][k] + ext);
     }
   return box_of(lo, hi);
 }
 
+/* ---- the builder ------------------------------------------------------ */
+
+/* Boxes in SSE registers: lo and hi as (x, y, z, unused), so growing one is
+ * two instructions. Centroids are kept doubled (lo + hi), which bins the
+ * same. The build runs on the baseline x86-64 ISA, which has SSE2. */
+typedef struct box4 {
+  __m128 lo, hi;
+} box4;
+
+static box4 box4_empty(void) {
+  box4 b = {_mm_set1_ps(FLT_MAX), _mm_set1_ps(-FLT_MAX)};
+  return b;
+}
+
+static void box4_grow(box4 *b, box4 o) {
+  b->lo = _mm_min_ps(b->lo, o.lo);
+  b->hi = _mm_max_ps(b->hi, o.hi);
+}
+
+static void box4_grow_point(box4 *b, __m128 p) {
+  b->lo = _mm_min_ps(b->lo, p);
+  b->hi = _mm_max_ps(b->hi, p);
+}
+
+/* Half the surface area (the factor cancels in the heuristic), in
+ * registers: d = hi - lo, d.x d.y + d.y d.z + d.z d.x. Empty boxes (lo >
+ * hi) give 0. */
+static float box4_area(box4 b) {
+  __m128 d = _mm_max_ps(_mm_sub_ps(b.hi, b.lo), _mm_setzero_ps());
+  __m128 rot = _mm_shuffle_ps(d, d, _MM_SHUFFLE(3, 0, 2, 1)); /* y z x */
+  __m128 p = _mm_mul_ps(d, rot);                               /* xy yz zx */
+  __m128 s = _mm_add_ss(p, _mm_shuffle_ps(p, p, _MM_SHUFFLE(3, 3, 3, 1)));
+  s = _mm_add_ss(s, _mm_shuffle_ps(p, p, _MM_SHUFFLE(3, 3, 3, 2)));
+  return _mm_cvtss_f32(s);
+}
+
 typedef struct builder {
-  box *boxes;        /* by reference, in the order of refs */
-  float *centroids;  /* 3 per reference */
+  box4 *boxes; /* by reference, in the order of refs */
   uint32_t *refs;
   glint_bvh_node *nodes;
   uint32_t node_count;
   int depth;
 } builder;
 
+/* A node to build: its range of references, its bounds and the bounds of
+ * its (doubled) centroids. */
 typedef struct task {
   uint32_t node, begin, end;
   int depth;
+  box4 bounds, cbounds;
 } task;
 
-static void make_leaf(builder *b, uint32_t node, uint32_t begin, uint32_t end) {
-  b->nodes[node].offset = begin;
-  b->nodes[node].count = (uint16_t)(end - begin);
-  b->nodes[node].axis = 0;
+static void store_bounds(glint_bvh_node *n, box4 b) {
+  float lo[4], hi[4];
+  _mm_storeu_ps(lo, b.lo);
+  _mm_storeu_ps(hi, b.hi);
+  memcpy(n->lo, lo, sizeof n->lo);
+  memcpy(n->hi, hi, sizeof n->hi);
+}
+
+/* Bounds and centroid bounds of [begin, end), for splits not made by bins. */
+static void measure(const builder *b, uint32_t begin, uint32_t end,
+                    box4 *bounds, box4 *cbounds) {
+  *bounds = box4_empty();
+  *cbounds = box4_empty();
+  for (uint32_t i = begin; i < end; i++) {
+    box4_grow(bounds, b->boxes[i]);
+    box4_grow_point(cbounds, _mm_add_ps(b->boxes[i].lo, b->boxes[i].hi));
+  }
 }
 
 static void swap_refs(builder *b, uint32_t i, uint32_t j) {
   uint32_t r = b->refs[i];
   b->refs[i] = b->refs[j];
   b->refs[j] = r;
-  box bx = b->boxes[i];
+  box4 t = b->boxes[i];
   b->boxes[i] = b->boxes[j];
-  b->boxes[j] = bx;
-  for (int k = 0; k < 3; k++) {
-    float c = b->centroids[3 * i + k];
-    b->centroids[3 * i + k] = b->centroids[3 * j + k];
-    b->centroids[3 * j + k] = c;
-  }
+  b->boxes[j] = t;
 }
 
-/* Splits [begin, end) of a node; returns the first index of the right half,
- * or `begin` when the node should stay a leaf. */
-static uint32_t split(builder *b, uint32_t begin, uint32_t end,
-                      const box *bounds, int *axis_out) {
-  uint32_t n = end - begin;
-  box cb = box_empty();
-  for (uint32_t i = begin; i < end; i++) {
-    const float *c = &b->centroids[3 * i];
-    for (int k = 0; k < 3; k++) {
-      cb.lo[k] = minf(cb.lo[k], c[k]);
-      cb.hi[k] = maxf(cb.hi[k], c[k]);
-    }
-  }
-  float scale[3];
+/* Splits task t; returns the first index of the right half and fills the
+ * halves' bounds, or returns t->begin to keep a leaf. */
+static uint32_t split(builder *b, const task *t, int *axis_out, box4 *lb,
+                      box4 *lc, box4 *rb, box4 *rc) {
+  uint32_t begin = t->begin, end = t->end, n = end - begin;
+  /* Small nodes get fewer bins: the per-node cost of clearing and sweeping
+   * bins dominates the lower levels, which hold most of the nodes. */
+  const int bins = n < 16 ? 4 : n < 64 ? 8 : BINS;
+  float clo[4], chi[4], scale[4] = {0, 0, 0, 0};
+  _mm_storeu_ps(clo, t->cbounds.lo);
+  _mm_storeu_ps(chi, t->cbounds.hi);
   int any_axis = 0;
   for (int k = 0; k < 3; k++) {
-    float ext = cb.hi[k] - cb.lo[k];
-    scale[k] = ext > 0 ? BINS * (1 - 1e-6f) / ext : 0;
+    float ext = chi[k] - clo[k];
+    scale[k] = ext > 0 ? (float)bins * (1 - 1e-6f) / ext : 0;
     any_axis |= ext > 0;
   }
-  if (!any_axis) { /* every centroid in one point: halve by count */
+  uint32_t mid;
+  if (!any_axis) { /* every centroid in one point */
     if (n <= MAX_LEAF)
       return begin;
     *axis_out = 0;
-    return begin + n / 2;
+    mid = begin + n / 2;
+    goto by_count;
   }
 
-  /* One pass bins all three axes. */
-  box bin_box[3][BINS];
-  uint32_t bin_count[3][BINS];
+  /* One pass bins all three axes. Neighbouring primitives of a mesh often
+   * fall in the same bin, and each update would wait for the previous one's
+   * store: two sets of bins, for even and odd primitives, merged after,
+   * break that chain. */
+  box4 bin_box[3][BINS], bin_box2[3][BINS];
+  uint32_t bin_count[3][BINS], bin_count2[3][BINS];
+  int dual = n > 256;
   for (int k = 0; k < 3; k++)
-    for (int i = 0; i < BINS; i++) {
-      bin_box[k][i] = box_empty();
-      bin_count[k][i] = 0;
+    for (int i = 0; i < bins; i++) {
+      bin_box[k][i] = bin_box2[k][i] = box4_empty();
+      bin_count[k][i] = bin_count2[k][i] = 0;
     }
+  __m128 vlo = t->cbounds.lo, vscale = _mm_loadu_ps(scale);
+  __m128i maxbin = _mm_set1_epi32(bins - 1), zero = _mm_setzero_si128();
   for (uint32_t i = begin; i < end; i++) {
-    const float *c = &b->centroids[3 * i];
+    box4 bx = b->boxes[i];
+    __m128 c = _mm_add_ps(bx.lo, bx.hi);
+    __m128i bi = _mm_cvttps_epi32(_mm_mul_ps(_mm_sub_ps(c, vlo), vscale));
+    /* clamp to [0, BINS-1] (SSE2 has no integer min/max: compare) */
+    bi = _mm_and_si128(bi, _mm_cmpgt_epi32(bi, _mm_set1_epi32(-1)));
+    __m128i over = _mm_cmpgt_epi32(bi, maxbin);
+    bi = _mm_or_si128(_mm_and_si128(over, maxbin), _mm_andnot_si128(over, bi));
+    (void)zero;
+    int idx[4];
+    _mm_storeu_si128((__m128i *)idx, bi);
+    int odd = dual & (int)i;
+    box4(*bb)[BINS] = odd ? bin_box2 : bin_box;
+    uint32_t(*counts)[BINS] = odd ? bin_count2 : bin_count;
     for (int k = 0; k < 3; k++) {
-      int bi = (int)((c[k] - cb.lo[k]) * scale[k]);
-      bi = bi < 0 ? 0 : bi >= BINS ? BINS - 1 : bi;
-      bin_count[k][bi]++;
-      box_grow(&bin_box[k][bi], &b->boxes[i]);
+      counts[k][idx[k]]++;
+      box4_grow(&bb[k][idx[k]], bx);
     }
   }
+  if (dual)
+    for (int k = 0; k < 3; k++)
+      for (int i = 0; i < bins; i++) {
+        box4_grow(&bin_box[k][i], bin_box2[k][i]);
+        bin_count[k][i] += bin_count2[k][i];
+      }
 
   float best = FLT_MAX;
   int best_axis = -1, best_bin = 0;
@@ -197,22 +255,22 @@ static uint32_t split(builder *b, uint32_t begin, uint32_t end,
     /* Right-to-left sweep, then left-to-right evaluating each boundary. */
     float right_area[BINS];
     uint32_t right_count[BINS];
-    box acc = box_empty();
+    box4 acc = box4_empty();
     uint32_t cnt = 0;
-    for (int i = BINS - 1; i > 0; i--) {
-      box_grow(&acc, &bin_box[k][i]);
+    for (int i = bins - 1; i > 0; i--) {
+      box4_grow(&acc, bin_box[k][i]);
       cnt += bin_count[k][i];
-      right_area[i] = box_area(&acc);
+      right_area[i] = box4_area(acc);
       right_count[i] = cnt;
     }
-    acc = box_empty();
+    acc = box4_empty();
     cnt = 0;
-    for (int i = 0; i < BINS - 1; i++) {
-      box_grow(&acc, &bin_box[k][i]);
+    for (int i = 0; i < bins - 1; i++) {
+      box4_grow(&acc, bin_box[k][i]);
       cnt += bin_count[k][i];
       if (cnt == 0 || right_count[i + 1] == 0)
         continue;
-      float cost = box_area(&acc) * (float)cnt +
+      float cost = box4_area(acc) * (float)cnt +
                    right_area[i + 1] * (float)right_count[i + 1];
       if (cost < best) {
         best = cost;
@@ -221,7 +279,7 @@ static uint32_t split(builder *b, uint32_t begin, uint32_t end,
       }
     }
   }
-  float area = box_area(bounds);
+  float area = box4_area(t->bounds);
   float split_cost =
       COST_NODE + COST_PRIM * (area > 0 ? best / area : (float)n);
   float leaf_cost = COST_PRIM * (float)n;
@@ -229,24 +287,43 @@ static uint32_t split(builder *b, uint32_t begin, uint32_t end,
     if (n <= MAX_LEAF)
       return begin;
     *axis_out = 0; /* cannot split by bins: halve by count */
-    return begin + n / 2;
+    mid = begin + n / 2;
+    goto by_count;
   }
 
-  /* Partition by bin. */
-  int k = best_axis;
-  uint32_t i = begin, j = end;
-  while (i < j) {
-    int bi = (int)((b->centroids[3 * i + k] - cb.lo[k]) * scale[k]);
-    bi = bi < 0 ? 0 : bi >= BINS ? BINS - 1 : bi;
-    if (bi <= best_bin)
-      i++;
-    else
-      swap_refs(b, i, --j);
+  /* Partition by bin; the halves' bounds are the bins' unions, their
+   * centroid bounds are gathered on the way. */
+  {
+    int k = best_axis;
+    float lo_k = clo[k], scale_k = scale[k];
+    uint32_t i = begin, j = end;
+    *lc = box4_empty();
+    *rc = box4_empty();
+    while (i < j) {
+      __m128 c = _mm_add_ps(b->boxes[i].lo, b->boxes[i].hi);
+      const float *blo = (const float *)&b->boxes[i].lo;
+      const float *bhi = (const float *)&b->boxes[i].hi;
+      int bi = (int)((blo[k] + bhi[k] - lo_k) * scale_k);
+      if (bi <= best_bin) {
+        box4_grow_point(lc, c);
+        i++;
+      } else {
+        box4_grow_point(rc, c);
+        swap_refs(b, i, --j);
+      }
+    }
+    *lb = box4_empty();
+    *rb = box4_empty();
+    for (int q = 0; q < bins; q++)
+      box4_grow(q <= best_bin ? lb : rb, bin_box[k][q]);
+    *axis_out = k;
+    return i;
   }
-  *axis_out = k;
-  if (i == begin || i == end) /* cannot happen with counts on both sides */
-    i = begin + n / 2;
-  return i;
+
+by_count:
+  measure(b, begin, mid, lb, lc);
+  measure(b, mid, end, rb, rc);
+  return mid;
 }
 
 glint_status glint_bvh_build(const glint_scene *scene, glint_bvh *bvh,
@@ -263,14 +340,14 @@ glint_status glint_bvh_build(const glint_scene *scene, glint_bvh *bvh,
     return glint_fail(error, GLINT_E_ARGUMENT,
                       "too many primitives for the BVH (%zu)", n);
   builder b = {0};
-  b.boxes = malloc(n * sizeof *b.boxes);
-  b.centroids = malloc(n * 3 * sizeof *b.centroids);
+  b.boxes = aligned_alloc(GLINT_ALIGN, ((n * sizeof *b.boxes + GLINT_ALIGN - 1) /
+                                        GLINT_ALIGN) * GLINT_ALIGN);
   b.refs = malloc(n * sizeof *b.refs);
-  b.nodes = glint_aligned_calloc(2 * n, sizeof *b.nodes);
-  task *stack = malloc(sizeof *stack * 2 * GLINT_BVH_MAX_DEPTH * 2);
-  if (!b.boxes || !b.centroids || !b.refs || !b.nodes || !stack) {
-    free(b.boxes);
-    free(b.centroids);
+  b.nodes = aligned_alloc(GLINT_ALIGN, ((2 * n * sizeof *b.nodes + GLINT_ALIGN -
+                                          1) / GLINT_ALIGN) * GLINT_ALIGN);
+  task *stack = malloc(sizeof *stack * 4 * GLINT_BVH_MAX_DEPTH);
+  if (!b.boxes || !b.refs || !b.nodes || !stack) {
+    glint_aligned_free(b.boxes);
     free(b.refs);
     glint_aligned_free(b.nodes);
     free(stack);
@@ -278,46 +355,53 @@ glint_status glint_bvh_build(const glint_scene *scene, glint_bvh *bvh,
                       "out of memory building the BVH of %zu primitives", n);
   }
   size_t r = 0;
+  box bx;
   for (size_t i = 0; i < scene->sphere_count; i++, r++) {
     b.refs[r] = GLINT_REF(GLINT_SHAPE_SPHERE, i);
-    b.boxes[r] = sphere_box(&scene->spheres[i]);
+    bx = sphere_box(&scene->spheres[i]);
+    b.boxes[r] = (box4){_mm_setr_ps(bx.lo[0], bx.lo[1], bx.lo[2], 0),
+                        _mm_setr_ps(bx.hi[0], bx.hi[1], bx.hi[2], 0)};
   }
   for (size_t i = 0; i < scene->triangle_count; i++, r++) {
     b.refs[r] = GLINT_REF(GLINT_SHAPE_TRIANGLE, i);
-    b.boxes[r] = triangle_box(&scene->triangles[i]);
+    bx = triangle_box(&scene->triangles[i]);
+    b.boxes[r] = (box4){_mm_setr_ps(bx.lo[0], bx.lo[1], bx.lo[2], 0),
+                        _mm_setr_ps(bx.hi[0], bx.hi[1], bx.hi[2], 0)};
   }
   for (size_t i = 0; i < scene->cone_count; i++, r++) {
     b.refs[r] = GLINT_REF(GLINT_SHAPE_CONE, i);
-    b.boxes[r] = cone_box(&scene->cones[i]);
+    bx = cone_box(&scene->cones[i]);
+    b.boxes[r] = (box4){_mm_setr_ps(bx.lo[0], bx.lo[1], bx.lo[2], 0),
+                        _mm_setr_ps(bx.hi[0], bx.hi[1], bx.hi[2], 0)};
   }
-  for (size_t i = 0; i < n; i++)
-    for (int k = 0; k < 3; k++)
-      b.centroids[3 * i + k] = 0.5f * (b.boxes[i].lo[k] + b.boxes[i].hi[k]);
 
-  /* Depth-first with an explicit stack; the left child is processed first
+  /* Depth first with an explicit stack; the left child is processed first
    * so nodes are laid out close to their parents. */
   b.node_count = 1;
   int sp = 0;
-  stack[sp++] = (task){0, 0, (uint32_t)n, 1};
+  task root = {0, 0, (uint32_t)n, 1, box4_empty(), box4_empty()};
+  measure(&b, 0, (uint32_t)n, &root.bounds, &root.cbounds);
+  stack[sp++] = root;
   while (sp > 0) {
     task t = stack[--sp];
-    box bounds = box_empty();
-    for (uint32_t i = t.begin; i < t.end; i++)
-      box_grow(&bounds, &b.boxes[i]);
     glint_bvh_node *node = &b.nodes[t.node];
-    memcpy(node->lo, bounds.lo, sizeof node->lo);
-    memcpy(node->hi, bounds.hi, sizeof node->hi);
+    store_bounds(node, t.bounds);
     if (t.depth > b.depth)
       b.depth = t.depth;
     int axis = 0;
-    uint32_t mid = t.end - t.begin <= 1 || t.depth >= GLINT_BVH_MAX_DEPTH - 1
-                       ? t.begin
-                       : split(&b, t.begin, t.end, &bounds, &axis);
+    box4 lb, lc, rb, rc;
+    uint32_t mid = t.begin;
+    if (t.end - t.begin > 1 && t.depth < GLINT_BVH_MAX_DEPTH - 1)
+      mid = split(&b, &t, &axis, &lb, &lc, &rb, &rc);
     if (mid == t.begin) {
       if (t.end - t.begin > UINT16_MAX) { /* depth exhausted: still split */
         mid = t.begin + (t.end - t.begin) / 2;
+        measure(&b, t.begin, mid, &lb, &lc);
+        measure(&b, mid, t.end, &rb, &rc);
       } else {
-        make_leaf(&b, t.node, t.begin, t.end);
+        node->offset = t.begin;
+        node->count = (uint16_t)(t.end - t.begin);
+        node->axis = 0;
         continue;
       }
     }
@@ -326,18 +410,17 @@ glint_status glint_bvh_build(const glint_scene *scene, glint_bvh *bvh,
     node->offset = left;
     node->count = 0;
     node->axis = (uint16_t)axis;
-    stack[sp++] = (task){left + 1, mid, t.end, t.depth + 1};
-    stack[sp++] = (task){left, t.begin, mid, t.depth + 1};
+    stack[sp++] = (task){left + 1, mid, t.end, t.depth + 1, rb, rc};
+    stack[sp++] = (task){left, t.begin, mid, t.depth + 1, lb, lc};
   }
   free(stack);
-  free(b.boxes);
-  free(b.centroids);
+  glint_aligned_free(b.boxes);
 
   glint_bvh_node *shrunk =
       glint_aligned_calloc(b.node_count, sizeof *shrunk);
   if (shrunk) {
     memcpy(shrunk, b.nodes, b.node_count * sizeof *shrunk);
-    glint_aligned_free(b.nodes);
+    free(b.nodes);
     b.nodes = shrunk;
   }
   bvh->nodes = b.nodes;
