@@ -26,35 +26,31 @@ typedef struct beam_ctx {
 typedef void (*trace_fn)(const beam_ctx *c, const vvec3 *o, const vvec3 *d,
                          vmask active, int level, vvec3 *color);
 
-/* Shades the sub-beam `sub` (every lane hit `object`) and, below the depth
- * limit, traces its reflected and refracted beams. */
-static ALWAYS_INLINE void shade_sub_beam(const beam_ctx *c, vvec3 o, vvec3 d,
-                                         const packet_hit *h, int object,
-                                         vmask sub, int level, vvec3 *out,
-                                         glint_math math, int newton,
-                                         trace_fn trace) {
+/* The thesis's sub-beam after shading: below the depth limit it traces at
+ * most one reflected and one refracted beam (SPEC §6), then Beer's law. */
+static ALWAYS_INLINE void finish_sub_beam(const beam_ctx *c, vvec3 d,
+                                          const packet_hit *h,
+                                          const packet_surface *f,
+                                          int object, vmask sub, int level,
+                                          vvec3 color, vvec3 *out,
+                                          glint_math math, trace_fn trace) {
   const packet_scene *ps = c->ps;
   const scene_r *s = ps->s;
   const object_r *ob = &s->objects[object];
   const material_r *mat = &s->materials[ob->material];
   const pmaterial *pm = &ps->materials[ob->material];
-  packet_surface f = packet_surface_at(ps, ob, h, o, d, newton);
-  vvec3 col = packet_color(mat, pm, ob, f.p);
-  vvec3 color = packet_local_shading(ps, mat, pm, col, &f, d, sub, math,
-                                     newton, c->st);
-
   if (level < s->max_depth && (mat->kr > 0 || mat->kt > 0)) {
     vvec3 reflected, refracted;
     vfloat kr;
     vmask refract, tir;
-    packet_secondary(mat, pm, &f, d, sub, &reflected, &kr, &refracted,
+    packet_secondary(mat, pm, f, d, sub, &reflected, &kr, &refracted,
                      &refract, &tir);
     c->st->total_internal_reflections += (uint64_t)vm_count(tir);
     if (vm_any(refract)) {
       vvec3 ct;
       c->st->secondary_rays += (uint64_t)vm_count(refract);
       c->st->refracted_rays += (uint64_t)vm_count(refract);
-      trace(c, &f.p, &refracted, refract, level + 1, &ct);
+      trace(c, &f->p, &refracted, refract, level + 1, &ct);
       vfloat kt = vf_keep(refract, vs_get(&pm->kt));
       color = vv_madd(color, kt, ct);
     }
@@ -63,38 +59,110 @@ static ALWAYS_INLINE void shade_sub_beam(const beam_ctx *c, vvec3 o, vvec3 d,
       vvec3 cr;
       c->st->secondary_rays += (uint64_t)vm_count(reflect);
       c->st->reflected_rays += (uint64_t)vm_count(reflect);
-      trace(c, &f.p, &reflected, reflect, level + 1, &cr);
+      trace(c, &f->p, &reflected, reflect, level + 1, &cr);
       color = vv_madd(color, vf_keep(reflect, kr), cr);
     }
   }
-  color = packet_beer(mat, pm, &f, h->t, sub, color, math);
+  color = packet_beer(mat, pm, f, h->t, sub, color, math);
   *out = vv_select(sub, color, *out);
 }
 
-/* One beam: nearest hits, then one sub-beam per object hit. The grouping by
- * object yields the same sub-beams as the thesis's Hit stack (listings
- * 4.1–4.3) without its capacity-W bookkeeping. */
+/* One beam: nearest hits; one sub-beam per object hit (the thesis's
+ * criterion; grouping lanes by object yields the same sub-beams as its Hit
+ * stack, listings 4.1–4.3, without the capacity-W bookkeeping); local
+ * shading; then each sub-beam's secondary beams.
+ *
+ * Shadow rays are traced as one beam per light for all the lanes that hit
+ * something (SPEC §6: "shadow rays for a beam are traced as a beam too"),
+ * not one per sub-beam: a beam that meets many small objects would
+ * otherwise cast nearly empty shadow packets. Each lane's material
+ * coefficients are gathered from its sub-beam so the light loop runs once. */
 static ALWAYS_INLINE void trace_beam_body(const beam_ctx *c, vvec3 o, vvec3 d,
                                           vmask active, int level,
                                           vvec3 *color, glint_math math,
                                           int newton, trace_fn trace) {
+  const packet_scene *ps = c->ps;
+  const scene_r *s = ps->s;
   c->st->beams++;
   packet_hit h;
-  packet_nearest(c->ps, o, d, active, newton, &h, c->st);
-  *color = vv_get(c->ps->background);
-  vmask todo = vm_andnot(active, vi_eq(h.object, vi_set1(-1)));
-  if (vm_none(todo))
+  packet_nearest(ps, o, d, active, newton, &h, c->st);
+  *color = vv_get(ps->background);
+  vmask hits = vm_andnot(active, vi_eq(h.object, vi_set1(-1)));
+  if (vm_none(hits))
     return;
+
+  /* Split, and per sub-beam: surface, colour and coefficients. */
+  int sub_object[W];
+  vmask sub_mask[W];
+  int nsub = 0, any_highlight = 0;
   SIMD_ALIGN int objects[W];
   vi_store(objects, h.object);
+  packet_surface f;
+  vvec3 base = {vf_zero(), vf_zero(), vf_zero()}, ambient = base;
+  f.p = f.n = base;
+  f.front = vm_false();
+  vfloat kd = vf_zero(), ks = vf_zero(), hexp = vf_set1(1);
+  vmask todo = hits;
   while (vm_any(todo)) {
     int object = objects[vm_first(todo)];
     vmask sub = vm_and(todo, vi_eq(h.object, vi_set1(object)));
     todo = vm_andnot(todo, sub);
     c->st->sub_beams++;
-    shade_sub_beam(c, o, d, &h, object, sub, level, color, math, newton,
-                   trace);
+    const object_r *ob = &s->objects[object];
+    const material_r *mat = &s->materials[ob->material];
+    const pmaterial *pm = &ps->materials[ob->material];
+    packet_surface fk = packet_surface_at(ps, ob, &h, o, d, newton);
+    f.p = vv_select(sub, fk.p, f.p);
+    f.n = vv_select(sub, fk.n, f.n);
+    f.front = vm_select(sub, fk.front, f.front);
+    base = vv_select(sub, packet_color(mat, pm, ob, fk.p), base);
+    ambient = vv_select(sub, vv_get(pm->ambient), ambient);
+    kd = vf_select(sub, vs_get(&pm->kd), kd);
+    if (mat->ks > 0) {
+      ks = vf_select(sub, vs_get(&pm->ks), ks);
+      hexp = vf_select(sub, vs_get(&pm->h), hexp);
+      any_highlight = 1;
+    }
+    sub_object[nsub] = object;
+    sub_mask[nsub++] = sub;
   }
+
+  /* Eq. 2.9/2.10's local part: C (ka Ia + sum S kd N·L IL) +
+   * sum S ks (V·R)^h IL, one shadow beam per light. */
+  vvec3 diffuse = ambient;
+  vvec3 highlight = {vf_zero(), vf_zero(), vf_zero()};
+  for (size_t j = 0; j < s->light_count; j++) {
+    const plight *li = &ps->lights[j];
+    vvec3 l = vv_sub(vv_get(li->position), f.p);
+    vfloat dist2 = vv_dot(l, l);
+    vfloat inv = vf_rsqrt(dist2, newton);
+    vfloat dist = vf_mul(dist2, inv);
+    l = vv_scale(l, inv);
+    vfloat nl = vv_dot(f.n, l);
+    vmask lit = vm_and(hits, vf_gt(nl, vf_zero()));
+    if (vm_none(lit))
+      continue;
+    c->st->shadow_rays += (uint64_t)vm_count(lit);
+    vvec3 sj = packet_transmission(ps, f.p, l, dist, lit, math, newton, c->st);
+    vvec3 il = vv_mul(sj, vv_get(li->color));
+    diffuse = vv_madd(diffuse, vf_keep(lit, vf_mul(kd, nl)), il);
+    if (any_highlight) {
+      /* R = 2(L·N)N - L and V = -D: V·R = 2(L·N)(-D·N) + D·L */
+      vfloat vr = vf_fmadd(vf_add(nl, nl), vf_neg(vv_dot(d, f.n)),
+                           vv_dot(d, l));
+      vmask hl = vm_and(vm_and(lit, vf_gt(ks, vf_zero())),
+                        vf_gt(vr, vf_zero()));
+      if (vm_any(hl)) {
+        vfloat p = vm_pow(vf_max(vr, vf_set1(FLT_MIN)), hexp, math);
+        highlight = vv_madd(highlight, vf_keep(hl, vf_mul(ks, p)), il);
+      }
+    }
+  }
+  vvec3 local = vv_add(vv_mul(base, diffuse), highlight);
+
+  for (int k = 0; k < nsub; k++)
+    finish_sub_beam(c, d, &h, &f, sub_object[k], sub_mask[k], level, local,
+                    color, math, trace);
 }
 
 static void trace_default(const beam_ctx *c, const vvec3 *o, const vvec3 *d,

@@ -22,6 +22,7 @@
  * NFF's negative radii (only the inside visible) are read as their
  * magnitude: glint shows both sides of every surface. */
 #include "core/error.h"
+#include "scene/polygon.h"
 #include "scene/scene.h"
 #include "scene/text.h"
 
@@ -198,7 +199,28 @@ static glint_status read_cone(nff_reader *r, glint_error *e) {
                  e);
 }
 
-/* p and pp: a convex polygon of n vertices as a fan of n - 2 triangles. */
+typedef struct polygon_emit {
+  nff_reader *r;
+  int patch;
+  glint_vec3 centroid, centroid_normal;
+  glint_error *e;
+} polygon_emit;
+
+static glint_vec3 corner(const polygon_emit *pe, size_t i, int normal) {
+  if (i == GLINT_POLYGON_CENTROID)
+    return normal ? pe->centroid_normal : pe->centroid;
+  return normal ? pe->r->norms[i] : pe->r->verts[i];
+}
+
+static int emit_triangle(void *user, size_t a, size_t b, size_t c) {
+  polygon_emit *pe = user;
+  glint_vec3 nrm[3] = {corner(pe, a, 1), corner(pe, b, 1), corner(pe, c, 1)};
+  return (int)glint_scene_push_triangle(pe->r->scene, corner(pe, a, 0),
+                                        corner(pe, b, 0), corner(pe, c, 0),
+                                        pe->patch ? nrm : NULL, pe->e);
+}
+
+/* p and pp: a polygon of n vertices (see polygon.c), as one object. */
 static glint_status read_polygon(nff_reader *r, int patch, glint_error *e) {
   int line = r->t.token_line;
   const char *entity = patch ? "pp" : "p";
@@ -221,33 +243,37 @@ static glint_status read_polygon(nff_reader *r, int patch, glint_error *e) {
     r->vert_cap = (size_t)n;
   }
   for (long i = 0; i < n; i++) {
-    char what[96];
-    snprintf(what, sizeof what, "vertex %ld of %ld of the polygon on line %d",
-             i + 1, n, line);
-    if ((st = text_vec3(&r->t, what, &r->verts[i], e)))
+    if ((st = text_vec3(&r->t, "a polygon vertex", &r->verts[i], e)) ||
+        (patch && (st = text_vec3(&r->t, "a patch normal", &r->norms[i], e)))) {
+      /* Say which vertex of which polygon (the message is built only now,
+       * not for every vertex read). */
+      if (e) {
+        char msg[sizeof e->message];
+        snprintf(msg, sizeof msg, "%.900s (vertex %ld of %ld of the %s on line %d)",
+                 e->message, i + 1, n, patch ? "patch" : "polygon", line);
+        glint_fail(e, st, "%s", msg);
+      }
       return st;
-    if (patch) {
-      snprintf(what, sizeof what, "normal %ld of %ld of the patch on line %d",
-               i + 1, n, line);
-      if ((st = text_vec3(&r->t, what, &r->norms[i], e)))
-        return st;
     }
   }
   if ((st = glint_scene_begin_object(r->scene, GLINT_SHAPE_TRIANGLE,
                                      r->material, e)))
     return at_line(r, line, st, e);
-  for (long i = 1; i + 1 < n; i++) {
-    glint_vec3 nrm[3];
-    if (patch) {
-      nrm[0] = r->norms[0];
-      nrm[1] = r->norms[i];
-      nrm[2] = r->norms[i + 1];
+  polygon_emit pe = {r, patch, {0, 0, 0}, {0, 0, 0}, e};
+  if (patch) { /* the centroid's normal: the vertices' average */
+    for (long i = 0; i < n; i++) {
+      pe.centroid_normal.x += r->norms[i].x;
+      pe.centroid_normal.y += r->norms[i].y;
+      pe.centroid_normal.z += r->norms[i].z;
     }
-    st = glint_scene_push_triangle(r->scene, r->verts[0], r->verts[i],
-                                   r->verts[i + 1], patch ? nrm : NULL, e);
-    if (st)
-      return at_line(r, line, st, e);
   }
+  int res = glint_triangulate(r->verts, (size_t)n, &pe.centroid,
+                              emit_triangle, &pe);
+  if (res == -1)
+    return glint_fail(e, GLINT_E_MEMORY, "%s:%d: out of memory", r->t.path,
+                      line);
+  if (res)
+    return at_line(r, line, (glint_status)res, e);
   return GLINT_OK;
 }
 
