@@ -2,6 +2,7 @@
  * like the thesis's A.1–A.3 (seconds per depth and backend), plus Mrays/s.
  * A benchmark, not a test: nothing here passes or fails on speed. */
 #include "args.h"
+#include "bench.h"
 #include "cli.h"
 
 #include <glint.h>
@@ -37,6 +38,14 @@ static void bench_usage(FILE *f) {
       "      --math NAME    minimax, fast, taylor, exact (default: minimax)\n"
       "      --accel NAME   bvh or none (default: bvh)\n"
       "      --csv FILE     also write every measurement as CSV\n"
+      "      --spd DIR      instead: the SPD scenes in DIR (balls-s4, gears-s4,\n"
+      "                     mount-s6, rings-s4, teapot-s4, tetra-s6, tree-s4)\n"
+      "                     at 512x512, 1 spp, depth 5, against Tachyon when\n"
+      "                     it is installed\n"
+      "      --meshes DIR   instead: primary-ray throughput on DIR/bunny.obj\n"
+      "                     and DIR/dragon_vrip_res2.ply.gz (1024x1024), with\n"
+      "                     Embree 3 on the same rays when glint-embree-bench\n"
+      "                     was built\n"
       "      --plot DIR     also plot seconds against depth per scene into\n"
       "                     DIR/SCENE.png (needs gnuplot)\n"
       "  -h, --help         this help\n",
@@ -53,7 +62,7 @@ static int cmp_double(const void *a, const void *b) {
   return (x > y) - (x < y);
 }
 
-static double median(const double *v, int n) {
+double bench_median(const double *v, int n) {
   double tmp[256];
   memcpy(tmp, v, sizeof *v * (size_t)n);
   qsort(tmp, (size_t)n, sizeof *tmp, cmp_double);
@@ -169,8 +178,9 @@ int cmd_bench(int argc, char **argv) {
   char default_scenes[] = "whitted,giza,billiard", default_depths[] = "1-15";
   char *scene_list = default_scenes, *depth_list = default_depths;
   char *backend_list = NULL;
-  const char *csv_path = NULL, *plot_dir = NULL, *v;
-  int runs = 3;
+  const char *csv_path = NULL, *plot_dir = NULL, *spd_dir = NULL,
+             *mesh_dir = NULL, *v;
+  int runs = 3, width_given = 0, height_given = 0;
   glint_render_settings rs;
   glint_render_settings_default(&rs);
   rs.width = 640;
@@ -195,14 +205,16 @@ int cmd_bench(int argc, char **argv) {
     } else if (arg_is(&c, NULL, "--runs")) {
       if (parse_int("--runs", arg_value(&c, "--runs"), 1, 255, &runs))
         return EXIT_USAGE;
-    } else if (arg_is(&c, "-W", "--width")) {
-      if (parse_int("--width", arg_value(&c, "--width"), 1, GLINT_MAX_DIMENSION,
-                    &rs.width))
+        } else if (arg_is(&c, "-W", "--width")) {
+      if (parse_int("--width", arg_value(&c, "--width"), 1,
+                    GLINT_MAX_DIMENSION, &rs.width))
         return EXIT_USAGE;
+      width_given = 1;
     } else if (arg_is(&c, "-H", "--height")) {
       if (parse_int("--height", arg_value(&c, "--height"), 1,
                     GLINT_MAX_DIMENSION, &rs.height))
         return EXIT_USAGE;
+      height_given = 1;
     } else if (arg_is(&c, "-s", "--spp")) {
       if (parse_int("--spp", arg_value(&c, "--spp"), 1, GLINT_MAX_SPP, &rs.spp))
         return EXIT_USAGE;
@@ -226,6 +238,12 @@ int cmd_bench(int argc, char **argv) {
       }
     } else if (arg_is(&c, NULL, "--csv")) {
       if (!(csv_path = arg_value(&c, "--csv")))
+        return EXIT_USAGE;
+    } else if (arg_is(&c, NULL, "--meshes")) {
+      if (!(mesh_dir = arg_value(&c, "--meshes")))
+        return EXIT_USAGE;
+    } else if (arg_is(&c, NULL, "--spd")) {
+      if (!(spd_dir = arg_value(&c, "--spd")))
         return EXIT_USAGE;
     } else if (arg_is(&c, NULL, "--plot")) {
       if (!(plot_dir = arg_value(&c, "--plot")))
@@ -270,6 +288,30 @@ int cmd_bench(int argc, char **argv) {
       if (b != GLINT_BACKEND_AUTO && b != GLINT_BACKEND_STREAM &&
           glint_backend_supported((glint_backend)b))
         backends[nbackends++] = (glint_backend)b;
+  }
+
+  if (mesh_dir) {
+    glint_render_settings mr = rs;
+    mr.width = width_given ? rs.width : 0;
+    mr.height = height_given ? rs.height : 0;
+    return bench_meshes(mesh_dir, &mr, backends, nbackends, runs);
+  }
+  if (spd_dir) {
+    FILE *csv = NULL;
+    if (csv_path && !(csv = fopen(csv_path, "w"))) {
+      cli_error("%s: cannot write the CSV file", csv_path);
+      return EXIT_USAGE;
+    }
+    if (csv)
+      fprintf(csv, "scene,depth,backend,width,height,spp,threads,runs,"
+                   "median_s,min_s,max_s,rays,primary,secondary,shadow,"
+                   "mrays_per_s,lane_utilisation,sub_beams_per_beam\n");
+    int st = bench_spd(spd_dir, &rs, backends, nbackends, runs, csv);
+    if (csv && fclose(csv) != 0 && !st) {
+      cli_error("%s: writing the CSV file failed", csv_path);
+      st = EXIT_USAGE;
+    }
+    return st;
   }
 
   char *scene_names[MAX_ITEMS];
@@ -351,7 +393,7 @@ int cmd_bench(int argc, char **argv) {
       for (int d = 0; d < ndepths; d++) {
         printf("%5d", depths[d]);
         for (int b = 0; b < nbackends; b++)
-          printf(" %14.3f", median(CELL(s, d, b).seconds, runs));
+          printf(" %14.3f", bench_median(CELL(s, d, b).seconds, runs));
         printf("\n");
       }
       printf("Scene \"%s\": Mrays/s\n%5s", stems[s], "depth");
@@ -362,7 +404,7 @@ int cmd_bench(int argc, char **argv) {
         printf("%5d", depths[d]);
         for (int b = 0; b < nbackends; b++) {
           cell *cl = &CELL(s, d, b);
-          double t = median(cl->seconds, runs);
+          double t = bench_median(cl->seconds, runs);
           printf(" %14.2f",
                  t > 0 ? (double)total_rays(&cl->stats) / t / 1e6 : 0.0);
         }
@@ -380,9 +422,9 @@ int cmd_bench(int argc, char **argv) {
         printf("\n");
         for (int d = 0; d < ndepths; d++) {
           printf("%5d", depths[d]);
-          double base = median(CELL(s, d, ref).seconds, runs);
+          double base = bench_median(CELL(s, d, ref).seconds, runs);
           for (int b = 0; b < nbackends; b++) {
-            double t = median(CELL(s, d, b).seconds, runs);
+            double t = bench_median(CELL(s, d, b).seconds, runs);
             printf(" %13.2fx", t > 0 ? base / t : 0.0);
           }
           printf("\n");
@@ -417,7 +459,7 @@ int cmd_bench(int argc, char **argv) {
       double med[MAX_ITEMS * GLINT_BACKEND_COUNT];
       for (int d = 0; d < ndepths; d++)
         for (int b = 0; b < nbackends; b++)
-          med[d * nbackends + b] = median(CELL(sc, d, b).seconds, runs);
+          med[d * nbackends + b] = bench_median(CELL(sc, d, b).seconds, runs);
       if (plot_scene(plot_dir, stems[sc], depths, ndepths, backends,
                      nbackends, med)) {
         cli_error("--plot: gnuplot could not draw %s/%s.png", plot_dir,
@@ -434,7 +476,7 @@ int cmd_bench(int argc, char **argv) {
           for (int b = 0; b < nbackends; b++) {
             cell *cl = &CELL(s, d, b);
             const glint_stats *st = &cl->stats;
-            double med = median(cl->seconds, runs), lo = cl->seconds[0],
+            double med = bench_median(cl->seconds, runs), lo = cl->seconds[0],
                    hi = cl->seconds[0];
             for (int r = 1; r < runs; r++) {
               lo = fmin(lo, cl->seconds[r]);

@@ -173,6 +173,9 @@ typedef struct glint_scene_info {
   glint_vec3 background, ambient;
   size_t lights, materials, objects;
   size_t spheres, planes, triangles, cones;
+  /* Bounds of the spheres, triangles and cones (not planes); min > max when
+   * there are none. */
+  glint_vec3 bounds_min, bounds_max;
 } glint_scene_info;
 void glint_scene_get_info(const glint_scene *scene, glint_scene_info *info);
 
@@ -328,6 +331,17 @@ glint_status glint_render(const glint_scene *scene,
                           const glint_render_settings *settings,
                           glint_image **image, glint_stats *stats,
                           glint_error *error);
+
+/* Casts the frame's primary rays (spp per pixel, the render's sample
+ * pattern) and finds their nearest hits without shading: the throughput of
+ * the intersection machinery alone, for comparison with Embree's
+ * rtcIntersect. *hits receives how many rays hit something; stats the time
+ * (render_seconds) and primary_rays. Backends, size and threads as for
+ * glint_render; depth and maths do not apply. */
+glint_status glint_trace_primary(const glint_scene *scene,
+                                 const glint_render_settings *settings,
+                                 uint64_t *hits, glint_stats *stats,
+                                 glint_error *error);
 
 /* Cores the renderer would use for threads = 0. */
 int glint_cpu_count(void);

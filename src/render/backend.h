@@ -19,6 +19,10 @@ typedef struct glint_backend_ops {
    * tile width x tile height x 3) and adds its counts to stats. */
   void (*render_tile)(const void *prepared, const glint_tile *tile,
                       void *scratch, float *rgb, glint_stats *stats);
+  /* The tile's primary rays' nearest hits only (glint_trace_primary):
+   * returns how many hit. */
+  uint64_t (*primary_tile)(const void *prepared, const glint_tile *tile,
+                           glint_stats *stats);
 } glint_backend_ops;
 
 extern const glint_backend_ops glint_scalar_ops_float;

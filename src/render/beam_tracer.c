@@ -263,8 +263,47 @@ static glint_status prepare(const glint_scene *scene, const glint_frame *frame,
 
 static void release(void *prepared) { packet_scene_release(prepared); }
 
+/* Primary beams' nearest hits only, for glint_trace_primary. */
+static uint64_t primary_tile(const void *prepared, const glint_tile *tile,
+                             glint_stats *st) {
+  const packet_scene *ps = prepared;
+  const scene_r *s = ps->s;
+  const camera *cam = &s->cam;
+  SIMD_ALIGN float lx[W], ly[W];
+  for (int i = 0; i < W; i++) {
+    lx[i] = (float)(i % BW);
+    ly[i] = (float)(i / BW);
+  }
+  vfloat lane_x = vf_load(lx), lane_y = vf_load(ly);
+  vfloat sx = vf_set1(2 * cam->tan_x / cam->width), ox = vf_set1(-cam->tan_x);
+  vfloat sy = vf_set1(-2 * cam->tan_y / cam->height), oy = vf_set1(cam->tan_y);
+  vvec3 from = vv_set1(cam->from), cd = vv_set1(cam->d), cr = vv_set1(cam->r),
+        cu = vv_set1(cam->u);
+  uint64_t hits = 0;
+  for (int by = tile->y0; by < tile->y1; by += BH)
+    for (int bx = tile->x0; bx < tile->x1; bx += BW) {
+      vfloat px = vf_add(vf_set1((float)bx), lane_x);
+      vfloat py = vf_add(vf_set1((float)by), lane_y);
+      vmask valid = vm_and(vf_lt(px, vf_set1((float)tile->x1)),
+                           vf_lt(py, vf_set1((float)tile->y1)));
+      for (int k = 0; k < s->spp; k++) {
+        vfloat x = vf_fmadd(vf_add(px, vf_set1(0.5f + s->samples[k][0])), sx,
+                            ox);
+        vfloat y = vf_fmadd(vf_add(py, vf_set1(0.5f + s->samples[k][1])), sy,
+                            oy);
+        vvec3 dir = vv_normalize(vv_madd(vv_madd(cd, x, cr), y, cu), 1);
+        packet_hit h;
+        packet_nearest(ps, from, dir, valid, 1, &h, st);
+        hits += (uint64_t)vm_count(
+            vm_andnot(valid, vi_eq(h.object, vi_set1(-1))));
+      }
+      st->primary_rays += (uint64_t)vm_count(valid) * (uint64_t)s->spp;
+    }
+  return hits;
+}
+
 const glint_backend_ops ISA_NAME(glint_beam_ops) = {prepare, release, NULL,
-                                                    render_tile};
+                                                    render_tile, primary_tile};
 
 /* For the tests: the packet nearest hit of W rays (SoA arrays of W floats),
  * with the default maths. Writes t and object per lane (-1: no hit). */

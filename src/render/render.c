@@ -230,6 +230,7 @@ typedef struct render_job {
   int tiles_done;
   glint_progress_fn progress;
   void *progress_user;
+  int primary_only; /* glint_trace_primary */
 } render_job;
 
 typedef struct worker {
@@ -237,6 +238,7 @@ typedef struct worker {
   void *scratch;
   float *rgb;
   glint_stats stats;
+  uint64_t hits; /* primary_only */
 } worker;
 
 /* SPEC §4: only the average is clamped to [0, 1], written as round(255 c).
@@ -288,6 +290,10 @@ static void *worker_main(void *arg) {
                                                   : job->x1;
     tile.y1 = tile.y0 + GLINT_TILE_SIZE < job->y1 ? tile.y0 + GLINT_TILE_SIZE
                                                   : job->y1;
+    if (job->primary_only) {
+      w->hits += job->ops->primary_tile(job->prepared, &tile, &w->stats);
+      continue;
+    }
     job->ops->render_tile(job->prepared, &tile, w->scratch, w->rgb, &w->stats);
     int tw = tile.x1 - tile.x0;
     for (int y = tile.y0; y < tile.y1; y++) {
@@ -337,10 +343,12 @@ static void stats_add(glint_stats *a, const glint_stats *b) {
     a->stage_seconds[i] += b->stage_seconds[i];
 }
 
-glint_status glint_render(const glint_scene *scene,
-                          const glint_render_settings *settings,
-                          glint_image **out, glint_stats *stats_out,
-                          glint_error *error) {
+/* glint_render and glint_trace_primary: the same preparation, tiles and
+ * threads; primary_only skips shading and leaves *out alone. */
+static glint_status run(const glint_scene *scene,
+                        const glint_render_settings *settings,
+                        int primary_only, glint_image **out, uint64_t *hits,
+                        glint_stats *stats_out, glint_error *error) {
   glint_render_settings defaults;
   if (!settings) {
     glint_render_settings_default(&defaults);
@@ -424,6 +432,7 @@ glint_status glint_render(const glint_scene *scene,
   job.tiles_done = 0;
   job.progress = settings->progress;
   job.progress_user = settings->progress_user;
+  job.primary_only = primary_only;
 
   worker *workers = calloc((size_t)threads, sizeof *workers);
   pthread_t *tids = calloc((size_t)threads, sizeof *tids);
@@ -453,8 +462,10 @@ glint_status glint_render(const glint_scene *scene,
   }
   stats.render_seconds = glint_now() - t0;
 
+  uint64_t total_hits = 0;
   for (int i = 0; workers && i < threads; i++) {
     stats_add(&stats, &workers[i].stats);
+    total_hits += workers[i].hits;
     glint_aligned_free(workers[i].rgb);
     glint_aligned_free(workers[i].scratch);
   }
@@ -475,6 +486,29 @@ glint_status glint_render(const glint_scene *scene,
   }
   if (stats_out)
     *stats_out = stats;
-  *out = image;
+  if (primary_only) {
+    glint_image_destroy(image);
+    *hits = total_hits;
+  } else {
+    *out = image;
+  }
   return GLINT_OK;
+}
+
+glint_status glint_render(const glint_scene *scene,
+                          const glint_render_settings *settings,
+                          glint_image **out, glint_stats *stats,
+                          glint_error *error) {
+  return run(scene, settings, 0, out, NULL, stats, error);
+}
+
+glint_status glint_trace_primary(const glint_scene *scene,
+                                 const glint_render_settings *settings,
+                                 uint64_t *hits, glint_stats *stats,
+                                 glint_error *error) {
+  uint64_t h = 0;
+  glint_status st = run(scene, settings, 1, NULL, &h, stats, error);
+  if (st == GLINT_OK && hits)
+    *hits = h;
+  return st;
 }

@@ -198,5 +198,24 @@ static void render_tile(const void *prepared, const glint_tile *tile,
                       (uint64_t)(tile->y1 - tile->y0) * (uint64_t)s->spp;
 }
 
+static uint64_t primary_tile(const void *prepared, const glint_tile *tile,
+                             glint_stats *st) {
+  const scene_r *s = prepared;
+  uint64_t hits = 0;
+  for (int y = tile->y0; y < tile->y1; y++)
+    for (int x = tile->x0; x < tile->x1; x++)
+      for (int k = 0; k < s->spp; k++) {
+        real px = (real)x + (real)0.5 + (real)s->samples[k][0];
+        real py = (real)y + (real)0.5 + (real)s->samples[k][1];
+        hit_r h;
+        hits += (uint64_t)scalar_nearest_hit(
+            s, s->cam.from, camera_dir(&s->cam, px, py), REAL_MAX, &h);
+      }
+  st->primary_rays += (uint64_t)(tile->x1 - tile->x0) *
+                      (uint64_t)(tile->y1 - tile->y0) * (uint64_t)s->spp;
+  return hits;
+}
+
 const glint_backend_ops REAL_NAME(glint_scalar_ops) = {prepare, release, NULL,
-                                                       render_tile};
+                                                       render_tile,
+                                                       primary_tile};

@@ -57,12 +57,15 @@ static glint_status expect_word(nff_reader *r, const char *word,
   return GLINT_OK;
 }
 
-/* A library error about an entity, placed at the entity's line. */
+/* A library error about an entity, placed at the entity's line. A value
+ * the library refuses is, coming from a file, malformed content. */
 static glint_status at_line(nff_reader *r, int line, glint_status st,
                             glint_error *e) {
+  if (st == GLINT_E_ARGUMENT)
+    st = GLINT_E_PARSE;
   if (st && e) {
     char msg[sizeof e->message];
-    snprintf(msg, sizeof msg, "%s", e->message);
+    snprintf(msg, sizeof msg, "%.900s", e->message);
     glint_fail(e, st, "%s:%d: %s", r->t.path, line, msg);
   }
   return st;

@@ -372,6 +372,27 @@ void glint_scene_get_info(const glint_scene *s, glint_scene_info *info) {
   info->planes = s->plane_count;
   info->triangles = s->triangle_count;
   info->cones = s->cone_count;
+  glint_vec3 lo = {INFINITY, INFINITY, INFINITY},
+             hi = {-INFINITY, -INFINITY, -INFINITY};
+#define GROW(p, r)                                                             \
+  do {                                                                         \
+    lo.x = fmin(lo.x, (p).x - (r)), hi.x = fmax(hi.x, (p).x + (r));           \
+    lo.y = fmin(lo.y, (p).y - (r)), hi.y = fmax(hi.y, (p).y + (r));           \
+    lo.z = fmin(lo.z, (p).z - (r)), hi.z = fmax(hi.z, (p).z + (r));           \
+  } while (0)
+  for (size_t i = 0; i < s->sphere_count; i++)
+    GROW(s->spheres[i].center, s->spheres[i].radius);
+  for (size_t i = 0; i < s->triangle_count; i++)
+    for (int k = 0; k < 3; k++)
+      GROW(s->triangles[i].v[k], 0.0);
+  for (size_t i = 0; i < s->cone_count; i++) {
+    double r = fmax(s->cones[i].base_radius, s->cones[i].apex_radius);
+    GROW(s->cones[i].base, r);
+    GROW(s->cones[i].apex, r);
+  }
+#undef GROW
+  info->bounds_min = lo;
+  info->bounds_max = hi;
 }
 
 static double absmax3(glint_vec3 v, double m) {

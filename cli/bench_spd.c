@@ -1,0 +1,202 @@
+/* glint bench --spd DIR: the Standard Procedural Databases against Tachyon.
+ * Each scene renders at the file's own resolution (512x512), 1 sample per
+ * pixel, depth 5, with every backend asked for; when Debian's tachyon is
+ * installed, it renders the same file in the same run,
+ *   tachyon FILE -numthreads T -raydepth 5 -shade_phong
+ * and its own "Ray Tracing Time" is compared with glint's render time
+ * (both exclude parsing and acceleration-structure building). */
+#include "args.h"
+#include "bench.h"
+#include "cli.h"
+
+#include <glint.h>
+
+#include <fcntl.h>
+#include <math.h>
+#include <spawn.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+#include <sys/wait.h>
+#include <unistd.h>
+
+extern char **environ;
+
+static const char *const spd_scenes[] = {"balls-s4",  "gears-s4", "mount-s6",
+                                         "rings-s4",  "teapot-s4", "tetra-s6",
+                                         "tree-s4"};
+#define SPD_COUNT (sizeof spd_scenes / sizeof *spd_scenes)
+
+int bench_have_program(const char *name) {
+  char cmd[256];
+  snprintf(cmd, sizeof cmd, "command -v %s >/dev/null 2>&1", name);
+  return system(cmd) == 0;
+}
+
+/* Runs argv, capturing stdout and stderr into buf; returns the exit status
+ * or -1. */
+int bench_run_capture(char *const argv[], char *buf, size_t size) {
+  int fds[2];
+  if (pipe(fds) != 0)
+    return -1;
+  posix_spawn_file_actions_t fa;
+  posix_spawn_file_actions_init(&fa);
+  posix_spawn_file_actions_adddup2(&fa, fds[1], 1);
+  posix_spawn_file_actions_adddup2(&fa, fds[1], 2);
+  posix_spawn_file_actions_addclose(&fa, fds[0]);
+  pid_t pid;
+  int rc = posix_spawnp(&pid, argv[0], &fa, NULL, argv, environ);
+  posix_spawn_file_actions_destroy(&fa);
+  close(fds[1]);
+  size_t n = 0;
+  if (rc == 0) {
+    ssize_t r;
+    while ((r = read(fds[0], buf + n, size - 1 - n)) > 0)
+      if ((n += (size_t)r) >= size - 1)
+        break;
+  }
+  buf[n] = '\0';
+  close(fds[0]);
+  if (rc != 0)
+    return -1;
+  int status;
+  if (waitpid(pid, &status, 0) < 0)
+    return -1;
+  return WIFEXITED(status) ? WEXITSTATUS(status) : -1;
+}
+
+/* Tachyon's reported ray tracing time for one file, or a negative value. */
+static double tachyon_seconds(const char *file, int threads, const char *out) {
+  char nthreads[16];
+  snprintf(nthreads, sizeof nthreads, "%d", threads);
+  char *argv[] = {"tachyon", (char *)file, "-numthreads", nthreads,
+                  "-raydepth", "5", "-shade_phong", "-o", (char *)out, NULL};
+  static char buf[1 << 16];
+  if (bench_run_capture(argv, buf, sizeof buf) != 0)
+    return -1;
+  const char *p = strstr(buf, "Ray Tracing Time:");
+  double t;
+  if (!p || sscanf(p, "Ray Tracing Time: %lf", &t) != 1)
+    return -1;
+  return t;
+}
+
+int bench_spd(const char *dir, const glint_render_settings *base,
+              const glint_backend *backends, int nbackends, int runs,
+              FILE *csv) {
+  glint_scene *scenes[SPD_COUNT];
+  char paths[SPD_COUNT][4096];
+  for (size_t i = 0; i < SPD_COUNT; i++) {
+    snprintf(paths[i], sizeof paths[i], "%s/%s.nff", dir, spd_scenes[i]);
+    glint_error err;
+    if (glint_scene_load(paths[i], &scenes[i], &err)) {
+      cli_error("--spd: %s", err.message);
+      for (size_t k = 0; k < i; k++)
+        glint_scene_destroy(scenes[k]);
+      return EXIT_USAGE;
+    }
+  }
+  int tachyon = bench_have_program("tachyon");
+  char out[] = "/tmp/glint-bench-tachyon-XXXXXX";
+  int fd = tachyon ? mkstemp(out) : -1;
+  if (fd >= 0)
+    close(fd);
+  else
+    tachyon = 0;
+
+  size_t cells = SPD_COUNT * (size_t)(nbackends + 1);
+  double *times = calloc(cells * (size_t)runs, sizeof *times);
+  glint_stats *stats = calloc(cells, sizeof *stats);
+  if (!times || !stats) {
+    cli_error("out of memory");
+    return 1;
+  }
+#define T(s, b, r) times[(((size_t)(s) * (nbackends + 1)) + (b)) * runs + (r)]
+  glint_render_settings rs = *base;
+  rs.width = rs.height = 0; /* the files' own */
+  rs.spp = 1;
+  rs.max_depth = 5;
+  int threads = rs.threads ? rs.threads : glint_cpu_count();
+  int status = 0, tty = isatty(STDERR_FILENO);
+  for (int r = 0; r < runs && !status; r++)
+    for (size_t s = 0; s < SPD_COUNT && !status; s++) {
+      for (int b = 0; b < nbackends; b++) {
+        if (tty)
+          fprintf(stderr, "\r[run %d/%d] %s %s\033[K", r + 1, runs,
+                  spd_scenes[s], glint_backend_name(backends[b]));
+        rs.backend = backends[b];
+        glint_image *im;
+        glint_error err;
+        if (glint_render(scenes[s], &rs, &im, &stats[s * (nbackends + 1) + b],
+                         &err)) {
+          cli_error("%s: %s", spd_scenes[s], err.message);
+          status = EXIT_USAGE;
+          break;
+        }
+        glint_image_destroy(im);
+        T(s, b, r) = stats[s * (nbackends + 1) + b].render_seconds;
+      }
+      if (tachyon) {
+        if (tty)
+          fprintf(stderr, "\r[run %d/%d] %s tachyon\033[K", r + 1, runs,
+                  spd_scenes[s]);
+        T(s, nbackends, r) = tachyon_seconds(paths[s], threads, out);
+      }
+    }
+  if (tty)
+    fputs("\r\033[K", stderr);
+  if (tachyon)
+    unlink(out);
+
+  if (!status) {
+    printf("glint %s bench --spd: the files' own 512x512, 1 spp, depth 5, "
+           "%d thread%s, median of %d run%s (seconds)\n",
+           glint_version(), threads, threads == 1 ? "" : "s", runs,
+           runs == 1 ? "" : "s");
+    if (!tachyon)
+      printf("(tachyon is not installed: Debian package tachyon-bin-nox)\n");
+    printf("%-10s", "scene");
+    for (int b = 0; b < nbackends; b++)
+      printf(" %14s", glint_backend_name(backends[b]));
+    if (tachyon)
+      printf(" %10s %9s", "tachyon", "speed-up");
+    printf(" %10s\n", "Mrays/s");
+    for (size_t s = 0; s < SPD_COUNT; s++) {
+      printf("%-10s", spd_scenes[s]);
+      double best = INFINITY;
+      int best_b = 0;
+      for (int b = 0; b < nbackends; b++) {
+        double m = bench_median(&T(s, b, 0), runs);
+        printf(" %14.4f", m);
+        if (m < best)
+          best = m, best_b = b;
+      }
+      double tm = tachyon ? bench_median(&T(s, nbackends, 0), runs) : 0;
+      if (tachyon) {
+        if (tm > 0)
+          printf(" %10.4f %8.1fx", tm, tm / best);
+        else
+          printf(" %10s %9s", "failed", "-");
+      }
+      const glint_stats *st = &stats[s * (nbackends + 1) + best_b];
+      double rays = (double)(st->primary_rays + st->secondary_rays +
+                             st->shadow_rays);
+      printf(" %10.2f\n", best > 0 ? rays / best / 1e6 : 0.0);
+      if (csv) {
+        for (int b = 0; b < nbackends; b++)
+          fprintf(csv, "%s,5,%s,512,512,1,%d,%d,%.6f,,,%.0f,,,,%.3f,,\n",
+                  spd_scenes[s], glint_backend_name(backends[b]), threads,
+                  runs, bench_median(&T(s, b, 0), runs), rays,
+                  rays / bench_median(&T(s, b, 0), runs) / 1e6);
+        if (tachyon && tm > 0)
+          fprintf(csv, "%s,5,tachyon,512,512,1,%d,%d,%.6f,,,,,,,,,\n",
+                  spd_scenes[s], threads, runs, tm);
+      }
+    }
+  }
+  free(times);
+  free(stats);
+  for (size_t s = 0; s < SPD_COUNT; s++)
+    glint_scene_destroy(scenes[s]);
+  return status;
+}

@@ -1,0 +1,199 @@
+/* The NFF reader: every entity of NFF.TXT, the SPD suite's primitive
+ * counts, and every kind of malformed input reported as FILE:LINE. */
+#include "test_util.h"
+
+#include "scene/scene.h"
+#include "shared.h"
+
+#include <math.h>
+#include <stdio.h>
+#include <string.h>
+#include <unistd.h>
+
+static char dir[64];
+
+static int setup(void **state) {
+  (void)state;
+  strcpy(dir, "/tmp/glint-test-nff-XXXXXX");
+  return mkdtemp(dir) ? 0 : -1;
+}
+
+static int teardown(void **state) {
+  (void)state;
+  char cmd[128];
+  snprintf(cmd, sizeof cmd, "rm -rf '%s'", dir);
+  return system(cmd) == 0 ? 0 : -1;
+}
+
+static const char *write_file(const char *name, const char *text) {
+  static char path[256];
+  snprintf(path, sizeof path, "%s/%s", dir, name);
+  FILE *f = fopen(path, "w");
+  fputs(text, f);
+  fclose(f);
+  return path;
+}
+
+#define VIEW                                                                   \
+  "v\nfrom 0 0 10\nat 0 0 0\nup 0 1 0\nangle 45\nhither 0.01\n"                \
+  "resolution 64 48\n"
+
+static void every_entity(void **state) {
+  (void)state;
+  const char *p = write_file(
+      "all.nff",
+      "# a comment line\n" VIEW "b 0.1 0.2 0.3 # background\n"
+      "l 1 2 3\nl 4 5 6 0.5 0.25 1\nl 7 8 9\n"
+      "f 1 0.5 0.25 0.8 0.3 20 0.6 1.5\n"
+      "s 0 0 0 1\n"
+      "s 3 0 0 -0.5\n" /* negative: inside visible, read as 0.5 */
+      "c 0 0 0 1 0 2 0 0.5\n"
+      "c\n1 1 1 -0.2\n1 3 1 -0.2\n"
+      "p 3\n0 0 0\n1 0 0\n0 1 0\n"
+      "p 4\n0 0 0\n1 0 0\n1 1 0\n0 1 0\n"
+      "p 6\n0 0 0\n4 0 0\n4 4 0\n3 4 0\n3 1 0\n0 1 0\n" /* concave L */
+      "pp 3\n0 0 0 0 0 1\n1 0 0 0 0 1\n0 1 0 0 1 1\n");
+  glint_scene *s;
+  ASSERT_OK(glint_scene_load(p, &s, &e_));
+  glint_scene_info info;
+  glint_scene_get_info(s, &info);
+  assert_int_equal(info.width, 64);
+  assert_int_equal(info.height, 48);
+  assert_int_equal(info.spheres, 2);
+  assert_int_equal(info.cones, 2);
+  /* p 3: 1, p 4: 2, concave hexagon: 4 (ear clipping), pp 3: 1 */
+  assert_int_equal(info.triangles, 1 + 2 + 4 + 1);
+  assert_int_equal(info.objects, 2 + 2 + 4);
+  assert_int_equal(info.lights, 3);
+  assert_int_equal(info.materials, 1);
+  /* Background, light intensity 1/sqrt(3) for uncoloured lights. */
+  assert_true(fabs(info.background.z - 0.3) < 1e-12);
+  assert_true(fabs(s->lights[0].color.x - 1 / sqrt(3.0)) < 1e-12);
+  assert_true(fabs(s->lights[1].color.y - 0.25) < 1e-12);
+  /* The field of view: NFF's angle spans the outer pixel centres. */
+  double want = 2 * atan(tan(45 * 3.14159265358979323846 / 360) * 64.0 / 63.0) * 180 /
+                3.14159265358979323846;
+  assert_true(fabs(info.camera.fov_x_degrees - want) < 1e-9);
+  /* Material mapping: kd = Kd, ks = kr = Ks, h = Shine, kt = T, ka = 0.1. */
+  const glint_material *m = &s->materials[0];
+  assert_true(m->kd == 0.8 && m->ks == 0.3 && m->kr == 0.3 && m->h == 20 &&
+              m->kt == 0.6 && m->ior == 1.5 && m->ka == 0.1);
+  assert_true(s->spheres[1].radius == 0.5);
+  assert_true(s->cones[1].base_radius == 0.2);
+  /* pp keeps its normals (normalised). */
+  const glint_triangle_prim *t = &s->triangles[s->triangle_count - 1];
+  assert_true(t->normals != GLINT_NO_NORMALS);
+  assert_true(fabs(s->tri_normals[t->normals + 2].y - sqrt(0.5)) < 1e-12);
+  /* The concave polygon's triangles cover its area (4 + 3*... = 7): the
+   * L-shape 4x1 + 1x3 has area 7. */
+  double area = 0;
+  for (size_t i = 3; i < 7; i++) {
+    const glint_triangle_prim *q = &s->triangles[i];
+    double ax = q->v[1].x - q->v[0].x, ay = q->v[1].y - q->v[0].y;
+    double bx = q->v[2].x - q->v[0].x, by = q->v[2].y - q->v[0].y;
+    area += 0.5 * (ax * by - ay * bx);
+  }
+  assert_true(fabs(area - 7) < 1e-9);
+  glint_scene_destroy(s);
+}
+
+#define EXPECT_FAIL(name, text, want_status, want)                            \
+  do {                                                                         \
+    const char *p_ = write_file(name, text);                                   \
+    glint_scene *s_ = NULL;                                                    \
+    glint_error e_;                                                            \
+    glint_status st_ = glint_scene_load(p_, &s_, &e_);                         \
+    assert_int_equal(st_, want_status);                                        \
+    assert_null(s_);                                                           \
+    if (!strstr(e_.message, want))                                             \
+      fail_msg("message '%s' lacks '%s'", e_.message, want);                  \
+    if (!strstr(e_.message, name))                                             \
+      fail_msg("message '%s' lacks the file name", e_.message);               \
+  } while (0)
+
+static void malformed_files(void **state) {
+  (void)state;
+  EXPECT_FAIL("num.nff", VIEW "f 1 1 1 1 0 1 0 1\ns 0 0 zero 1\n",
+              GLINT_E_PARSE, "num.nff:9: expected a number for the sphere's centre, found 'zero'");
+  EXPECT_FAIL("nan.nff", VIEW "f 1 1 1 1 0 1 0 1\ns 0 0 0 nan\n",
+              GLINT_E_PARSE, "nan.nff:9: the sphere's radius is 'nan', not a finite number");
+  EXPECT_FAIL("inf.nff", VIEW "b 1 inf 0\n", GLINT_E_PARSE,
+              "inf.nff:8: the background colour is 'inf', not a finite number");
+  EXPECT_FAIL("unknown.nff", VIEW "torus 0 0 0 1 2\n", GLINT_E_PARSE,
+              "unknown.nff:8: unknown entity 'torus'");
+  EXPECT_FAIL("trunc.nff", VIEW "f 1 1 1 1 0 1 0 1\np 4\n0 0 0\n1 0 0\n1 1 0\n",
+              GLINT_E_PARSE, "the file ends where a polygon vertex was expected (vertex 4 of 4");
+  EXPECT_FAIL("count.nff", VIEW "f 1 1 1 1 0 1 0 1\np 2\n0 0 0\n1 0 0\n",
+              GLINT_E_PARSE, "count.nff:9: the vertex count is 2, outside 3..");
+  EXPECT_FAIL("nomat.nff", VIEW "s 0 0 0 1\n", GLINT_E_PARSE,
+              "nomat.nff:8: 's' before any 'f' material line");
+  EXPECT_FAIL("view.nff", "v\nfrom 0 0 10\nat 0 0 0\nangle 45\n", GLINT_E_PARSE,
+              "view.nff:4: expected 'up', found 'angle'");
+  EXPECT_FAIL("res.nff", "v\nfrom 0 0 10\nat 0 0 0\nup 0 1 0\nangle 45\nhither 1\nresolution 0 10\n",
+              GLINT_E_PARSE, "res.nff:7: the horizontal resolution is 0");
+  EXPECT_FAIL("field.nff", VIEW "f 1 1 1 1 0 1 0\n", GLINT_E_PARSE,
+              "the file ends where the material's the index of refraction was expected");
+  EXPECT_FAIL("radius.nff", VIEW "f 1 1 1 1 0 1 0 1\ns 0 0 0 0\n", GLINT_E_PARSE,
+              "radius.nff:9: sphere: radius 0 must be > 0");
+  EXPECT_FAIL("cone.nff", VIEW "f 1 1 1 1 0 1 0 1\nc\n0 0 0 1\n0 1 0 -1\n",
+              GLINT_E_PARSE, "cone.nff:9: the cone's radii 1 and -1 have different signs");
+  EXPECT_FAIL("camera.nff", "v\nfrom 0 0 0\nat 0 0 0\nup 0 1 0\nangle 45\nhither 1\nresolution 8 8\n",
+              GLINT_E_PARSE, "camera.nff:1: camera: 'from' and 'at' are the same point");
+  EXPECT_FAIL("glass.nff", VIEW "f 1 1 1 1 0 1 0.5 0\n", GLINT_E_PARSE,
+              "glass.nff:8: material ior = 0 must be a finite number > 0");
+  /* A missing file, and a binary one. */
+  glint_scene *s = NULL;
+  glint_error e;
+  char missing[256];
+  snprintf(missing, sizeof missing, "%s/none.nff", dir);
+  assert_int_equal(glint_scene_load(missing, &s, &e), GLINT_E_IO);
+  assert_non_null(strstr(e.message, "none.nff: No such file"));
+  char bin[256];
+  snprintf(bin, sizeof bin, "%s/bin.nff", dir);
+  FILE *f = fopen(bin, "wb");
+  fwrite("s\0\1\2", 1, 4, f);
+  fclose(f);
+  assert_int_equal(glint_scene_load(bin, &s, &e), GLINT_E_PARSE);
+  assert_non_null(strstr(e.message, "binary data"));
+}
+
+/* Every SPD scene loads with the primitive counts its file holds (p: one
+ * object each; sphereflake etc. at the given sizes). */
+static void spd_counts(void **state) {
+  (void)state;
+  static const struct {
+    const char *name;
+    size_t spheres, cones, polygons, lights;
+  } want[] = {{"balls-s4", 7381, 0, 1, 3},     {"gears-s4", 0, 0, 9345, 5},
+              {"mount-s6", 4, 0, 8192, 1},     {"rings-s4", 900, 900, 1, 3},
+              {"teapot-s4", 0, 0, 16 + 992, 2}, {"tetra-s6", 0, 0, 4096, 1},
+              {"tree-s4", 31, 31, 1, 7}};
+  for (size_t i = 0; i < sizeof want / sizeof *want; i++) {
+    char sub[64];
+    snprintf(sub, sizeof sub, "scenes/spd/%s.nff", want[i].name);
+    glint_scene *s;
+    ASSERT_OK(glint_scene_load(shared_path(sub), &s, &e_));
+    glint_scene_info info;
+    glint_scene_get_info(s, &info);
+    assert_int_equal(info.spheres, want[i].spheres);
+    assert_int_equal(info.cones, want[i].cones);
+    assert_int_equal(info.objects, want[i].spheres + want[i].cones +
+                                       want[i].polygons);
+    assert_int_equal(info.lights, want[i].lights);
+    assert_int_equal(info.width, 512);
+    assert_int_equal(info.height, 512);
+    printf("%-10s %6zu spheres %5zu cones %6zu triangles %5zu objects\n",
+           want[i].name, info.spheres, info.cones, info.triangles,
+           info.objects);
+    glint_scene_destroy(s);
+  }
+}
+
+int main(void) {
+  const struct CMUnitTest tests[] = {
+      cmocka_unit_test(every_entity),
+      cmocka_unit_test(malformed_files),
+      cmocka_unit_test(spd_counts),
+  };
+  return cmocka_run_group_tests(tests, setup, teardown);
+}
