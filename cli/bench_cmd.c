@@ -393,7 +393,7 @@ int cmd_bench(int argc, char **argv) {
       for (int d = 0; d < ndepths; d++) {
         printf("%5d", depths[d]);
         for (int b = 0; b < nbackends; b++)
-          printf(" %14.3f", bench_median(CELL(s, d, b).seconds, runs));
+          printf(" %14.4f", bench_median(CELL(s, d, b).seconds, runs));
         printf("\n");
       }
       printf("Scene \"%s\": Mrays/s\n%5s", stems[s], "depth");

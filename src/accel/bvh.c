@@ -27,10 +27,6 @@ typedef struct box {
   float lo[3], hi[3];
 } box;
 
-/* Single-instruction min and max (fminf/fmaxf are calls: they are defined
- * for NaN, which bounds never hold). */
-static inline float minf(float a, float b) { return a < b ? a : b; }
-static inline float maxf(float a, float b) { return a > b ? a : b; }
 
 
 /* Float bounds that contain [lo, hi] given in double: rounded to nearest,

@@ -30,6 +30,9 @@ extern const glint_backend_ops glint_scalar_ops_double;
 extern const glint_backend_ops glint_beam_ops_sse;
 extern const glint_backend_ops glint_beam_ops_avx2;
 extern const glint_backend_ops glint_beam_ops_avx512;
+extern const glint_backend_ops glint_stream_ops_sse;
+extern const glint_backend_ops glint_stream_ops_avx2;
+extern const glint_backend_ops glint_stream_ops_avx512;
 
 /* Test hooks: the packet nearest hit of one beam of W rays (origins and
  * directions as x[W] y[W] z[W]), per ISA, on a prepared beam backend. */

@@ -85,6 +85,7 @@ glint_status packet_scene_prepare(const glint_scene *scene,
     p->kr_tir = vs_make(m->kr + m->kt);
     p->eta_in = vs_make(1 / m->ior);
     p->eta_out = vs_make(m->ior);
+    p->ior_value = vs_make(m->ior);
     put3(p->absorb, m->absorb);
     p->inv_size = vs_make(m->inv_size);
   }

@@ -43,6 +43,7 @@ typedef struct pmaterial {
   vscalar kd, ks, h, kr, kt;
   vscalar kr_tir;           /* kr + kt: reflection's weight under TIR */
   vscalar eta_in, eta_out;  /* 1/ior entering, ior leaving */
+  vscalar ior_value;
   vscalar absorb[3], inv_size;
 } pmaterial;
 

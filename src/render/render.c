@@ -47,9 +47,12 @@ static const backend_entry backends[GLINT_BACKEND_COUNT] = {
     [GLINT_BACKEND_AVX512] = {"avx512", 16, &glint_beam_ops_avx512,
                               cpu_avx512},
     [GLINT_BACKEND_STREAM] = {"stream", 0, NULL, cpu_any},
-    [GLINT_BACKEND_STREAM_SSE] = {"stream-sse", 4, NULL, cpu_any},
-    [GLINT_BACKEND_STREAM_AVX2] = {"stream-avx2", 8, NULL, cpu_any},
-    [GLINT_BACKEND_STREAM_AVX512] = {"stream-avx512", 16, NULL, cpu_any},
+    [GLINT_BACKEND_STREAM_SSE] = {"stream-sse", 4, &glint_stream_ops_sse,
+                                  cpu_sse},
+    [GLINT_BACKEND_STREAM_AVX2] = {"stream-avx2", 8, &glint_stream_ops_avx2,
+                                   cpu_avx2},
+    [GLINT_BACKEND_STREAM_AVX512] = {"stream-avx512", 16,
+                                     &glint_stream_ops_avx512, cpu_avx512},
 };
 
 const glint_backend_ops *glint_backend_ops_of(glint_backend b) {
@@ -242,9 +245,12 @@ typedef struct worker {
 } worker;
 
 /* SPEC §4: only the average is clamped to [0, 1], written as round(255 c).
- * Branch-free, so the loop over a tile vectorises; fmaxf(NaN, 0) is 0. */
+ * Branch-free comparisons (fminf/fmaxf would be library calls), so the loop
+ * over a tile vectorises; a NaN, which validated input never produces,
+ * fails c > 0 and becomes 0. */
 static inline uint8_t to_byte(float c) {
-  float v = fminf(fmaxf(c, 0.0f), 1.0f);
+  float v = c > 0.0f ? c : 0.0f;
+  v = v < 1.0f ? v : 1.0f;
   return (uint8_t)(int)(255.0f * v + 0.5f);
 }
 
@@ -302,8 +308,9 @@ static void *worker_main(void *arg) {
           pixels + ((size_t)(y - job->y0) * width + (tile.x0 - job->x0)) * 3;
       if (job->inv_gamma != 1)
         for (int i = 0; i < tw * 3; i++)
-          src[i] = powf(fminf(fmaxf(src[i], 0.0f), 1.0f),
-                        (float)job->inv_gamma);
+          src[i] = src[i] > 0 ? powf(src[i] < 1 ? src[i] : 1.0f,
+                                     (float)job->inv_gamma)
+                              : 0.0f;
       for (int i = 0; i < tw * 3; i++)
         dst[i] = to_byte(src[i]);
     }

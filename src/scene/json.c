@@ -1,4 +1,915 @@
-/* placeholder until the JSON reader lands */
+/* glint's own scene format: one JSON object (RFC 8259) read with cJSON,
+ * described in docs/scene-format.md. The reader is strict so that typing
+ * mistakes surface at once instead of as a silently different picture:
+ * unknown and repeated fields are errors, every value's type is checked,
+ * numbers must be finite, and what the library refuses (a negative radius,
+ * a degenerate camera) is reported at the JSON path that produced it.
+ *
+ * Every message starts with the file's path; a syntax error adds the line
+ * and column (columns count UTF-8 characters, from 1), anything else the
+ * JSON path of the offending value, as "objects[2].radius". */
 #include "core/error.h"
 #include "scene/scene.h"
-glint_status glint_json_load(const char *path, glint_scene **out, glint_error *error) { (void)out; return glint_fail(error, GLINT_E_UNSUPPORTED, "%s: JSON scenes are not readable yet", path); }
+
+#include <cJSON.h>
+#include <errno.h>
+#include <math.h>
+#include <stdarg.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+
+/* cJSON needs several times the text's size for its tree; beyond this, a
+ * scene belongs in mesh files. */
+#define MAX_FILE_BYTES ((size_t)1 << 30)
+#define MAX_FILE_TEXT "1 GiB"
+
+/* Quoted user text for a message, cut to this many bytes. */
+#define QUOTE_LIMIT 64
+
+typedef struct msg_text {
+  char s[QUOTE_LIMIT * 6 + 16];
+} msg_text;
+
+/* A value's description: a quoted string and a few words. */
+typedef struct value_text {
+  char s[sizeof(msg_text) + 32];
+} value_text;
+
+typedef struct material_entry {
+  const char *name; /* borrowed from the cJSON tree */
+  size_t index;     /* position in "materials" */
+} material_entry;
+
+typedef struct json_reader {
+  const char *file; /* as the caller gave it: every message starts with it */
+  glint_scene *scene;
+  glint_error *error;
+  char path[512]; /* the JSON path of the value being read */
+  size_t path_len;
+  material_entry *by_name; /* sorted by name */
+  uint32_t *material_ids;  /* by position in "materials" */
+  size_t material_count;
+} json_reader;
+
+/* ---- messages ----------------------------------------------------------- */
+
+/* `s` in double quotes with quotes, backslashes and control characters
+ * escaped as JSON would write them, cut on a UTF-8 character boundary. */
+static msg_text quoted(const char *s) {
+  msg_text t;
+  size_t len = strlen(s), cut = len, n = 0;
+  if (len > QUOTE_LIMIT) {
+    cut = QUOTE_LIMIT;
+    while (cut > 0 && ((unsigned char)s[cut] & 0xC0) == 0x80)
+      cut--;
+  }
+  t.s[n++] = '"';
+  for (size_t i = 0; i < cut; i++) {
+    unsigned char c = (unsigned char)s[i];
+    if (c == '"' || c == '\\') {
+      t.s[n++] = '\\';
+      t.s[n++] = (char)c;
+    } else if (c < 0x20 || c == 0x7F) {
+      n += (size_t)snprintf(t.s + n, sizeof t.s - n, "\\u%04x", c);
+    } else {
+      t.s[n++] = (char)c;
+    }
+  }
+  t.s[n++] = '"';
+  if (cut < len) {
+    memcpy(t.s + n, "...", 3);
+    n += 3;
+  }
+  t.s[n] = '\0';
+  return t;
+}
+
+/* What a value is, for "expected X, found Y". */
+static value_text describe(const cJSON *v) {
+  value_text t;
+  if (cJSON_IsNull(v))
+    snprintf(t.s, sizeof t.s, "null");
+  else if (cJSON_IsBool(v))
+    snprintf(t.s, sizeof t.s, "a boolean (%s)",
+             cJSON_IsTrue(v) ? "true" : "false");
+  else if (cJSON_IsNumber(v))
+    snprintf(t.s, sizeof t.s, "a number (%g)", v->valuedouble);
+  else if (cJSON_IsString(v) && v->valuestring)
+    snprintf(t.s, sizeof t.s, "a string (%s)", quoted(v->valuestring).s);
+  else if (cJSON_IsArray(v)) {
+    size_t count = 0;
+    for (const cJSON *c = v->child; c; c = c->next)
+      count++;
+    snprintf(t.s, sizeof t.s, "an array of %zu element%s", count,
+             count == 1 ? "" : "s");
+  } else if (cJSON_IsObject(v))
+    snprintf(t.s, sizeof t.s, "an object");
+  else
+    snprintf(t.s, sizeof t.s, "an invalid value");
+  return t;
+}
+
+/* "FILE: PATH: message", or "FILE: message" at the top level. */
+static glint_status fail(json_reader *r, glint_status st, const char *format,
+                         ...) GLINT_PRINTF(3, 4);
+static glint_status fail(json_reader *r, glint_status st, const char *format,
+                         ...) {
+  char msg[sizeof r->error->message];
+  va_list args;
+  va_start(args, format);
+  vsnprintf(msg, sizeof msg, format, args);
+  va_end(args);
+  if (r->path_len)
+    return glint_fail(r->error, st, "%s: %s: %s", r->file, r->path, msg);
+  return glint_fail(r->error, st, "%s: %s", r->file, msg);
+}
+
+/* A library call's failure, placed at the current path. What the library
+ * refuses came from the file, so an argument error is a parse error here.
+ * The library's own prefix is dropped when it repeats the path ("camera:"
+ * at "camera"). */
+static glint_status lib(json_reader *r, glint_status st) {
+  if (st == GLINT_OK)
+    return st;
+  if (st == GLINT_E_ARGUMENT)
+    st = GLINT_E_PARSE;
+  if (!r->error)
+    return st;
+  char msg[sizeof r->error->message];
+  memcpy(msg, r->error->message, sizeof msg);
+  msg[sizeof msg - 1] = '\0';
+  const char *m = msg;
+  if (r->path_len && strncmp(m, r->path, r->path_len) == 0 &&
+      m[r->path_len] == ':' && m[r->path_len + 1] == ' ')
+    m += r->path_len + 2;
+  return fail(r, st, "%s", m);
+}
+
+/* ---- the JSON path ------------------------------------------------------ */
+
+static void path_append(json_reader *r, const char *format, ...)
+    GLINT_PRINTF(2, 3);
+static void path_append(json_reader *r, const char *format, ...) {
+  size_t room = sizeof r->path - r->path_len;
+  va_list args;
+  va_start(args, format);
+  int n = vsnprintf(r->path + r->path_len, room, format, args);
+  va_end(args);
+  /* A path too long for the buffer stays cut; messages show its start. */
+  r->path_len = n < 0               ? r->path_len
+                : (size_t)n >= room ? sizeof r->path - 1
+                                    : r->path_len + (size_t)n;
+}
+
+static int is_identifier(const char *s) {
+  if (!((*s >= 'a' && *s <= 'z') || (*s >= 'A' && *s <= 'Z') || *s == '_'))
+    return 0;
+  for (; *s; s++)
+    if (!((*s >= 'a' && *s <= 'z') || (*s >= 'A' && *s <= 'Z') ||
+          (*s >= '0' && *s <= '9') || *s == '_' || *s == '-'))
+      return 0;
+  return 1;
+}
+
+/* Enters member `key`: ".key", or ["key"] when it is not a plain name.
+ * Returns what path_pop needs to come back. */
+static size_t path_key(json_reader *r, const char *key) {
+  size_t mark = r->path_len;
+  if (is_identifier(key))
+    path_append(r, "%s%s", r->path_len ? "." : "", key);
+  else
+    path_append(r, "[%s]", quoted(key).s);
+  return mark;
+}
+
+static size_t path_index(json_reader *r, size_t index) {
+  size_t mark = r->path_len;
+  path_append(r, "[%zu]", index);
+  return mark;
+}
+
+static void path_pop(json_reader *r, size_t mark) {
+  r->path_len = mark;
+  r->path[mark] = '\0';
+}
+
+/* ---- values ------------------------------------------------------------- */
+
+static glint_status expect_object(json_reader *r, const cJSON *v) {
+  if (cJSON_IsObject(v))
+    return GLINT_OK;
+  return fail(r, GLINT_E_PARSE, "expected an object, found %s", describe(v).s);
+}
+
+static glint_status expect_array(json_reader *r, const cJSON *v) {
+  if (cJSON_IsArray(v))
+    return GLINT_OK;
+  return fail(r, GLINT_E_PARSE, "expected an array, found %s", describe(v).s);
+}
+
+/* Every member of `obj` must be one of `fields` (NULL-terminated, at most
+ * 32), and appear once: cJSON keeps repeated keys, and a repeated key would
+ * silently lose one of its values. */
+static glint_status check_fields(json_reader *r, const cJSON *obj,
+                                 const char *const *fields) {
+  uint32_t seen = 0;
+  for (const cJSON *c = obj->child; c; c = c->next) {
+    const char *key = c->string ? c->string : "";
+    size_t i = 0;
+    while (fields[i] && strcmp(fields[i], key) != 0)
+      i++;
+    if (!fields[i]) {
+      char known[256] = "";
+      size_t n = 0;
+      for (size_t k = 0; fields[k] && n < sizeof known; k++)
+        n += (size_t)snprintf(known + n, sizeof known - n, "%s%s",
+                              k ? ", " : "", fields[k]);
+      return fail(r, GLINT_E_PARSE, "unknown field %s (known: %s)",
+                  quoted(key).s, known);
+    }
+    if (seen & (UINT32_C(1) << i))
+      return fail(r, GLINT_E_PARSE, "field %s appears twice", quoted(key).s);
+    seen |= UINT32_C(1) << i;
+  }
+  return GLINT_OK;
+}
+
+static glint_status get_number(json_reader *r, const cJSON *v, double *out) {
+  if (!cJSON_IsNumber(v))
+    return fail(r, GLINT_E_PARSE, "expected a number, found %s", describe(v).s);
+  /* JSON has no NaN or Infinity, but cJSON reads 1e999 as an infinity. */
+  if (!isfinite(v->valuedouble))
+    return fail(r, GLINT_E_PARSE,
+                "the number is too large: it is not finite in double "
+                "precision");
+  *out = v->valuedouble;
+  return GLINT_OK;
+}
+
+static glint_status get_int(json_reader *r, const cJSON *v, int min, int max,
+                            int *out) {
+  double d = 0;
+  glint_status st = get_number(r, v, &d);
+  if (st)
+    return st;
+  if (d != floor(d))
+    return fail(r, GLINT_E_PARSE, "expected a whole number, found %.17g", d);
+  if (d < min || d > max)
+    return fail(r, GLINT_E_PARSE, "%.17g is outside %d..%d", d, min, max);
+  *out = (int)d;
+  return GLINT_OK;
+}
+
+static glint_status get_vec3(json_reader *r, const cJSON *v, glint_vec3 *out) {
+  const cJSON *c = cJSON_IsArray(v) ? v->child : NULL;
+  const cJSON *e[3];
+  size_t n = 0;
+  for (; c && n < 3; c = c->next)
+    e[n++] = c;
+  if (!cJSON_IsArray(v) || n != 3 || c)
+    return fail(r, GLINT_E_PARSE, "expected an array of 3 numbers, found %s",
+                describe(v).s);
+  double x[3] = {0, 0, 0};
+  for (size_t i = 0; i < 3; i++) {
+    size_t mark = path_index(r, i);
+    glint_status st = get_number(r, e[i], &x[i]);
+    if (st)
+      return st;
+    path_pop(r, mark);
+  }
+  *out = (glint_vec3){x[0], x[1], x[2]};
+  return GLINT_OK;
+}
+
+static glint_status missing(json_reader *r, const char *key) {
+  return fail(r, GLINT_E_PARSE, "missing \"%s\"", key);
+}
+
+/* Member `key` of `obj` as a number; absent: an error if `required`, else
+ * *out is left as it is (the default). */
+static glint_status number_field(json_reader *r, const cJSON *obj,
+                                 const char *key, int required, double *out) {
+  const cJSON *v = cJSON_GetObjectItemCaseSensitive(obj, key);
+  if (!v)
+    return required ? missing(r, key) : GLINT_OK;
+  size_t mark = path_key(r, key);
+  glint_status st = get_number(r, v, out);
+  if (st == GLINT_OK)
+    path_pop(r, mark);
+  return st;
+}
+
+static glint_status vec3_field(json_reader *r, const cJSON *obj,
+                               const char *key, int required, glint_vec3 *out) {
+  const cJSON *v = cJSON_GetObjectItemCaseSensitive(obj, key);
+  if (!v)
+    return required ? missing(r, key) : GLINT_OK;
+  size_t mark = path_key(r, key);
+  glint_status st = get_vec3(r, v, out);
+  if (st == GLINT_OK)
+    path_pop(r, mark);
+  return st;
+}
+
+/* A required string member; its path stays entered (pop it with *mark) so
+ * that the caller can place an error about the value there. */
+static glint_status string_field(json_reader *r, const cJSON *obj,
+                                 const char *key, const char **out,
+                                 size_t *mark) {
+  const cJSON *v = cJSON_GetObjectItemCaseSensitive(obj, key);
+  if (!v)
+    return missing(r, key);
+  *mark = path_key(r, key);
+  if (!cJSON_IsString(v) || !v->valuestring)
+    return fail(r, GLINT_E_PARSE, "expected a string, found %s", describe(v).s);
+  *out = v->valuestring;
+  return GLINT_OK;
+}
+
+/* ---- the sections ------------------------------------------------------- */
+
+static glint_status read_camera(json_reader *r, const cJSON *v) {
+  static const char *const fields[] = {"from", "at", "up", "fov", NULL};
+  /* The defaults of glint_scene_create for what may be left out. */
+  glint_camera c = {{0, 0, 0}, {0, 0, 0}, {0, 1, 0}, 60};
+  glint_status st;
+  if ((st = expect_object(r, v)) || (st = check_fields(r, v, fields)) ||
+      (st = vec3_field(r, v, "from", 1, &c.from)) ||
+      (st = vec3_field(r, v, "at", 1, &c.at)) ||
+      (st = vec3_field(r, v, "up", 0, &c.up)) ||
+      (st = number_field(r, v, "fov", 0, &c.fov_x_degrees)))
+    return st;
+  return lib(r, glint_scene_set_camera(r->scene, &c, r->error));
+}
+
+static glint_status read_image(json_reader *r, const cJSON *v) {
+  static const char *const fields[] = {"width", "height", NULL};
+  static const char *const keys[2] = {"width", "height"};
+  int size[2] = {0, 0};
+  glint_status st;
+  if ((st = expect_object(r, v)) || (st = check_fields(r, v, fields)))
+    return st;
+  for (int i = 0; i < 2; i++) {
+    const cJSON *m = cJSON_GetObjectItemCaseSensitive(v, keys[i]);
+    if (!m)
+      return missing(r, keys[i]);
+    size_t mark = path_key(r, keys[i]);
+    if ((st = get_int(r, m, 1, GLINT_MAX_DIMENSION, &size[i])))
+      return st;
+    path_pop(r, mark);
+  }
+  return lib(r,
+             glint_scene_set_resolution(r->scene, size[0], size[1], r->error));
+}
+
+static glint_status read_lights(json_reader *r, const cJSON *v) {
+  static const char *const fields[] = {"position", "color", NULL};
+  glint_status st = expect_array(r, v);
+  size_t i = 0;
+  for (const cJSON *l = v->child; !st && l; l = l->next, i++) {
+    size_t mark = path_index(r, i);
+    glint_vec3 p = {0, 0, 0}, c = {1, 1, 1};
+    if ((st = expect_object(r, l)) || (st = check_fields(r, l, fields)) ||
+        (st = vec3_field(r, l, "position", 1, &p)) ||
+        (st = vec3_field(r, l, "color", 0, &c)) ||
+        (st = lib(r, glint_scene_add_light(r->scene, p, c, r->error))))
+      return st;
+    path_pop(r, mark);
+  }
+  return st;
+}
+
+static glint_status read_texture(json_reader *r, const cJSON *v,
+                                 glint_material *m) {
+  static const char *const fields[] = {"type", "odd", "even", "size", NULL};
+  const char *type = "";
+  size_t mark;
+  glint_status st;
+  if ((st = expect_object(r, v)) || (st = check_fields(r, v, fields)) ||
+      (st = string_field(r, v, "type", &type, &mark)))
+    return st;
+  if (strcmp(type, "checker-planar") == 0)
+    m->texture = GLINT_TEXTURE_CHECKER_PLANAR;
+  else if (strcmp(type, "checker-solid") == 0)
+    m->texture = GLINT_TEXTURE_CHECKER_SOLID;
+  else
+    return fail(r, GLINT_E_PARSE,
+                "unknown texture type %s (checker-planar, checker-solid)",
+                quoted(type).s);
+  path_pop(r, mark);
+  if ((st = vec3_field(r, v, "odd", 0, &m->checker_odd)) ||
+      (st = vec3_field(r, v, "even", 0, &m->checker_even)))
+    return st;
+  return number_field(r, v, "size", 0, &m->checker_size);
+}
+
+static glint_status read_material(json_reader *r, const cJSON *v,
+                                  uint32_t *id) {
+  static const char *const fields[] = {"color",  "ka",      "kd", "ks",
+                                       "h",      "kr",      "kt", "ior",
+                                       "absorb", "texture", NULL};
+  glint_material m;
+  glint_material_default(&m);
+  glint_status st;
+  if ((st = expect_object(r, v)) || (st = check_fields(r, v, fields)) ||
+      (st = vec3_field(r, v, "color", 0, &m.color)) ||
+      (st = number_field(r, v, "ka", 0, &m.ka)) ||
+      (st = number_field(r, v, "kd", 0, &m.kd)) ||
+      (st = number_field(r, v, "ks", 0, &m.ks)) ||
+      (st = number_field(r, v, "h", 0, &m.h)) ||
+      (st = number_field(r, v, "kr", 0, &m.kr)) ||
+      (st = number_field(r, v, "kt", 0, &m.kt)) ||
+      (st = number_field(r, v, "ior", 0, &m.ior)) ||
+      (st = vec3_field(r, v, "absorb", 0, &m.absorb)))
+    return st;
+  const cJSON *t = cJSON_GetObjectItemCaseSensitive(v, "texture");
+  if (t) {
+    size_t mark = path_key(r, "texture");
+    if ((st = read_texture(r, t, &m)))
+      return st;
+    path_pop(r, mark);
+  }
+  return lib(r, glint_scene_add_material(r->scene, &m, id, r->error));
+}
+
+static int entry_order(const void *a, const void *b) {
+  const material_entry *x = a, *y = b;
+  int c = strcmp(x->name, y->name);
+  if (c)
+    return c;
+  return x->index < y->index ? -1 : x->index > y->index;
+}
+
+static int entry_name(const void *key, const void *entry) {
+  return strcmp(key, ((const material_entry *)entry)->name);
+}
+
+/* Materials are added in the file's order, so their ids are their
+ * positions; names are looked up in a sorted table. */
+static glint_status read_materials(json_reader *r, const cJSON *v) {
+  glint_status st = expect_object(r, v);
+  if (st)
+    return st;
+  size_t count = 0;
+  for (const cJSON *c = v->child; c; c = c->next)
+    count++;
+  if (count == 0)
+    return GLINT_OK;
+  r->by_name = malloc(count * sizeof *r->by_name);
+  r->material_ids = malloc(count * sizeof *r->material_ids);
+  if (!r->by_name || !r->material_ids)
+    return fail(r, GLINT_E_MEMORY, "out of memory");
+  size_t i = 0;
+  for (const cJSON *c = v->child; c; c = c->next, i++)
+    r->by_name[i] = (material_entry){c->string ? c->string : "", i};
+  qsort(r->by_name, count, sizeof *r->by_name, entry_order);
+  for (i = 1; i < count; i++)
+    if (strcmp(r->by_name[i - 1].name, r->by_name[i].name) == 0) {
+      path_key(r, r->by_name[i].name);
+      return fail(r, GLINT_E_PARSE, "a second material named %s",
+                  quoted(r->by_name[i].name).s);
+    }
+  i = 0;
+  for (const cJSON *c = v->child; c; c = c->next, i++) {
+    size_t mark = path_key(r, c->string ? c->string : "");
+    if ((st = read_material(r, c, &r->material_ids[i])))
+      return st;
+    path_pop(r, mark);
+  }
+  r->material_count = count;
+  return GLINT_OK;
+}
+
+/* The object's "material": the id of a material defined by name. */
+static glint_status object_material(json_reader *r, const cJSON *obj,
+                                    uint32_t *id) {
+  const char *name = "";
+  size_t mark;
+  glint_status st = string_field(r, obj, "material", &name, &mark);
+  if (st)
+    return st;
+  const material_entry *e = r->material_count
+                                ? bsearch(name, r->by_name, r->material_count,
+                                          sizeof *r->by_name, entry_name)
+                                : NULL;
+  if (!e)
+    return fail(r, GLINT_E_PARSE, "no material named %s%s", quoted(name).s,
+                r->material_count ? "" : " (the file defines no materials)");
+  *id = r->material_ids[e->index];
+  path_pop(r, mark);
+  return GLINT_OK;
+}
+
+static glint_status read_triangle(json_reader *r, const cJSON *obj,
+                                  uint32_t material) {
+  const cJSON *v = cJSON_GetObjectItemCaseSensitive(obj, "vertices");
+  if (!v)
+    return missing(r, "vertices");
+  size_t mark = path_key(r, "vertices");
+  const cJSON *c = cJSON_IsArray(v) ? v->child : NULL;
+  glint_vec3 p[3] = {{0, 0, 0}, {0, 0, 0}, {0, 0, 0}};
+  size_t n = 0;
+  for (; c && n < 3; c = c->next, n++) {
+    size_t m = path_index(r, n);
+    glint_status st = get_vec3(r, c, &p[n]);
+    if (st)
+      return st;
+    path_pop(r, m);
+  }
+  if (!cJSON_IsArray(v) || n != 3 || c)
+    return fail(r, GLINT_E_PARSE,
+                "expected an array of 3 vertices ([x, y, z] each), found %s",
+                describe(v).s);
+  path_pop(r, mark);
+  return lib(r, glint_scene_add_triangle(r->scene, p[0], p[1], p[2], material,
+                                         r->error));
+}
+
+/* "file" is relative to the folder of the scene file, unless absolute. */
+static glint_status read_mesh(json_reader *r, const cJSON *obj,
+                              uint32_t material) {
+  const char *file = "";
+  size_t mark;
+  double scale = 1;
+  glint_vec3 translate = {0, 0, 0};
+  glint_status st = string_field(r, obj, "file", &file, &mark);
+  if (st)
+    return st;
+  if (!*file)
+    return fail(r, GLINT_E_PARSE, "the file name is empty");
+  path_pop(r, mark);
+  if ((st = number_field(r, obj, "scale", 0, &scale)))
+    return st;
+  if (!(scale > 0)) {
+    path_key(r, "scale");
+    return fail(r, GLINT_E_PARSE, "scale %g must be > 0", scale);
+  }
+  if ((st = vec3_field(r, obj, "translate", 0, &translate)))
+    return st;
+  const char *slash = strrchr(r->file, '/');
+  size_t dir = file[0] == '/' || !slash ? 0 : (size_t)(slash - r->file) + 1;
+  size_t len = strlen(file);
+  char *resolved = malloc(dir + len + 1);
+  if (!resolved)
+    return fail(r, GLINT_E_MEMORY, "out of memory");
+  memcpy(resolved, r->file, dir);
+  memcpy(resolved + dir, file, len + 1);
+  st = glint_scene_add_mesh_file(r->scene, resolved, scale, translate, material,
+                                 r->error);
+  free(resolved);
+  return lib(r, st);
+}
+
+typedef enum object_kind { SPHERE, PLANE, TRIANGLE, CONE, MESH } object_kind;
+
+static glint_status read_object(json_reader *r, const cJSON *obj) {
+  static const char *const types[] = {"sphere", "plane", "triangle", "cone",
+                                      "mesh"};
+  static const char *const fields[][7] = {
+      {"type", "material", "center", "radius", NULL},
+      {"type", "material", "normal", "point", NULL},
+      {"type", "material", "vertices", NULL},
+      {"type", "material", "base", "base_radius", "apex", "apex_radius", NULL},
+      {"type", "material", "file", "scale", "translate", NULL}};
+  const char *type = "";
+  size_t mark;
+  glint_status st;
+  if ((st = expect_object(r, obj)) ||
+      (st = string_field(r, obj, "type", &type, &mark)))
+    return st;
+  size_t k = 0;
+  while (k < sizeof types / sizeof types[0] && strcmp(types[k], type) != 0)
+    k++;
+  if (k == sizeof types / sizeof types[0])
+    return fail(r, GLINT_E_PARSE,
+                "unknown object type %s (sphere, plane, triangle, cone, mesh)",
+                quoted(type).s);
+  path_pop(r, mark);
+  uint32_t material = 0;
+  if ((st = check_fields(r, obj, fields[k])) ||
+      (st = object_material(r, obj, &material)))
+    return st;
+  glint_vec3 a = {0, 0, 0}, b = {0, 0, 0};
+  double ra = 0, rb = 0;
+  switch ((object_kind)k) {
+  case SPHERE:
+    if ((st = vec3_field(r, obj, "center", 1, &a)) ||
+        (st = number_field(r, obj, "radius", 1, &ra)))
+      return st;
+    return lib(r, glint_scene_add_sphere(r->scene, a, ra, material, r->error));
+  case PLANE:
+    if ((st = vec3_field(r, obj, "normal", 1, &a)) ||
+        (st = vec3_field(r, obj, "point", 1, &b)))
+      return st;
+    return lib(r, glint_scene_add_plane(r->scene, a, b, material, r->error));
+  case TRIANGLE: return read_triangle(r, obj, material);
+  case CONE:
+    if ((st = vec3_field(r, obj, "base", 1, &a)) ||
+        (st = number_field(r, obj, "base_radius", 1, &rb)) ||
+        (st = vec3_field(r, obj, "apex", 1, &b)) ||
+        (st = number_field(r, obj, "apex_radius", 1, &ra)))
+      return st;
+    return lib(
+        r, glint_scene_add_cone(r->scene, a, rb, b, ra, material, r->error));
+  case MESH: return read_mesh(r, obj, material);
+  }
+  return GLINT_OK;
+}
+
+static glint_status read_objects(json_reader *r, const cJSON *v) {
+  glint_status st = expect_array(r, v);
+  size_t i = 0;
+  for (const cJSON *o = v->child; !st && o; o = o->next, i++) {
+    size_t mark = path_index(r, i);
+    if ((st = read_object(r, o)))
+      return st;
+    path_pop(r, mark);
+  }
+  return st;
+}
+
+static glint_status
+read_color(json_reader *r, const cJSON *root, const char *key,
+           glint_status (*set)(glint_scene *, glint_vec3, glint_error *)) {
+  const cJSON *v = cJSON_GetObjectItemCaseSensitive(root, key);
+  if (!v)
+    return GLINT_OK;
+  size_t mark = path_key(r, key);
+  glint_vec3 c = {0, 0, 0};
+  glint_status st;
+  if ((st = get_vec3(r, v, &c)) || (st = lib(r, set(r->scene, c, r->error))))
+    return st;
+  path_pop(r, mark);
+  return GLINT_OK;
+}
+
+/* The sections in a fixed order, whatever the file's: materials before the
+ * objects that name them. */
+static glint_status read_scene(json_reader *r, const cJSON *root) {
+  static const char *const fields[] = {"camera",  "image",  "background",
+                                       "ambient", "lights", "materials",
+                                       "objects", NULL};
+  static const struct {
+    const char *key;
+    glint_status (*read)(json_reader *, const cJSON *);
+  } sections[] = {{"camera", read_camera},
+                  {"image", read_image},
+                  {"lights", read_lights},
+                  {"materials", read_materials},
+                  {"objects", read_objects}};
+  if (!cJSON_IsObject(root))
+    return fail(r, GLINT_E_PARSE,
+                "expected an object at the top level, found %s",
+                describe(root).s);
+  glint_status st;
+  if ((st = check_fields(r, root, fields)) ||
+      (st = read_color(r, root, "background", glint_scene_set_background)) ||
+      (st = read_color(r, root, "ambient", glint_scene_set_ambient)))
+    return st;
+  for (size_t i = 0; i < sizeof sections / sizeof sections[0]; i++) {
+    const cJSON *v = cJSON_GetObjectItemCaseSensitive(root, sections[i].key);
+    if (!v)
+      continue;
+    size_t mark = path_key(r, sections[i].key);
+    if ((st = sections[i].read(r, v)))
+      return st;
+    path_pop(r, mark);
+  }
+  return GLINT_OK;
+}
+
+/* ---- the text ----------------------------------------------------------- */
+
+static glint_status io_fail(glint_error *e, const char *path, const char *what,
+                            int err) {
+  char buf[256];
+  /* strerror_r (XSI), not strerror: loaders may run on several threads. */
+  if (strerror_r(err, buf, sizeof buf) != 0)
+    snprintf(buf, sizeof buf, "error %d", err);
+  return glint_fail(e, GLINT_E_IO, "%s: %s%s", path, what, buf);
+}
+
+/* The whole file, NUL-terminated. */
+static glint_status read_text(const char *path, char **out, size_t *out_size,
+                              glint_error *e) {
+  FILE *f = fopen(path, "rb");
+  if (!f)
+    return io_fail(e, path, "", errno);
+  size_t cap = (size_t)1 << 16, size = 0;
+  char *data = malloc(cap + 1);
+  for (;;) {
+    if (!data) {
+      fclose(f);
+      return glint_fail(e, GLINT_E_MEMORY, "%s: out of memory", path);
+    }
+    size_t want = cap - size;
+    errno = 0;
+    size_t n = fread(data + size, 1, want, f);
+    size += n;
+    if (n < want) {
+      if (ferror(f)) { /* a folder fails here, with EISDIR */
+        int err = errno ? errno : EIO;
+        fclose(f);
+        free(data);
+        return io_fail(e, path, "cannot read: ", err);
+      }
+      break;
+    }
+    if (cap >= MAX_FILE_BYTES) {
+      fclose(f);
+      free(data);
+      return glint_fail(e, GLINT_E_IO,
+                        "%s: larger than " MAX_FILE_TEXT
+                        "; put big geometry in mesh files",
+                        path);
+    }
+    cap *= 2;
+    char *bigger = realloc(data, cap + 1);
+    if (!bigger)
+      free(data);
+    data = bigger;
+  }
+  fclose(f);
+  data[size] = '\0';
+  *out = data;
+  *out_size = size;
+  return GLINT_OK;
+}
+
+/* Line and column (UTF-8 characters, both from 1) of `at`. */
+static void line_column(const char *data, const char *at, size_t *line,
+                        size_t *column) {
+  *line = 1;
+  *column = 1;
+  for (const char *p = data; p < at; p++) {
+    if (*p == '\n') {
+      (*line)++;
+      *column = 1;
+    } else if (((unsigned char)*p & 0xC0) != 0x80) {
+      (*column)++;
+    }
+  }
+}
+
+static int is_space(char c) {
+  return c == ' ' || c == '\t' || c == '\n' || c == '\r';
+}
+
+/* The length of a well-formed UTF-8 character (RFC 3629 §4) at p, or 0. */
+static int utf8_length(const char *p) {
+  const unsigned char *u = (const unsigned char *)p;
+  int n = u[0] >= 0xF0 ? 4 : u[0] >= 0xE0 ? 3 : 2;
+  for (int i = 1; i < n; i++)
+    if ((u[i] & 0xC0) != 0x80)
+      return 0;
+  if ((u[0] == 0xE0 && u[1] < 0xA0) || (u[0] == 0xED && u[1] > 0x9F) ||
+      (u[0] == 0xF0 && u[1] < 0x90) || (u[0] == 0xF4 && u[1] > 0x8F))
+    return 0; /* overlong, a surrogate, or beyond U+10FFFF */
+  return n;
+}
+
+/* What cJSON stopped at, with a hint for the usual mistakes. `*at` may move
+ * back to where the problem starts (an unclosed string's quote). */
+static void syntax_hint(const char *data, const char **at, char *out,
+                        size_t size) {
+  const char *p = *at;
+  const char *q = data;
+  while (*q && is_space(*q))
+    q++;
+  if (!*q) {
+    snprintf(out, size, "the file is empty");
+    return;
+  }
+  /* cJSON points just after the opening quote of a string that never
+   * closes. */
+  if (p > data && p[-1] == '"') {
+    const char *s = p;
+    while (*s && *s != '"')
+      s += s[0] == '\\' && s[1] ? 2 : 1;
+    if (!*s) {
+      *at = p - 1;
+      snprintf(out, size, "a string that is never closed");
+      return;
+    }
+  }
+  if (*p == '\\') {
+    snprintf(out, size, "an invalid escape sequence in a string");
+    return;
+  }
+  /* Where a member's name must follow '{' or ',', cJSON points one past
+   * what it found instead (its string reader fails past the character
+   * that should have been the opening quote). After ',' the container may
+   * be an array, so an opening bracket there is taken as found where it
+   * is. */
+  if (p > data && !is_space(p[-1]) && p[-1] != '"') {
+    const char *b = p - 1;
+    while (b > data && is_space(b[-1]))
+      b--;
+    if (b > data &&
+        (b[-1] == '{' || (b[-1] == ',' && p[-1] != '[' && p[-1] != '{')))
+      *at = p = p - 1;
+  }
+  if (!*p) {
+    snprintf(out, size, "the file ends early");
+    return;
+  }
+  const char *prev = p;
+  while (prev > data && is_space(prev[-1]))
+    prev--;
+  unsigned char c = (unsigned char)*p;
+  if ((*p == '}' || *p == ']') && prev > data && prev[-1] == ',') {
+    snprintf(out, size,
+             "found '%c' after a comma (JSON allows no trailing comma)", *p);
+  } else if (*p == '/' && (p[1] == '/' || p[1] == '*')) {
+    snprintf(out, size, "found a comment (JSON has none)");
+  } else if (*p == '\'') {
+    snprintf(out, size, "found ' (JSON strings take double quotes)");
+  } else if ((c >= 'a' && c <= 'z') || (c >= 'A' && c <= 'Z') ||
+             (c >= '0' && c <= '9') || c == '-' || c == '+' || c == '.' ||
+             c == '_') {
+    char word[32];
+    size_t n = 0;
+    while (n + 1 < sizeof word &&
+           ((p[n] >= 'a' && p[n] <= 'z') || (p[n] >= 'A' && p[n] <= 'Z') ||
+            (p[n] >= '0' && p[n] <= '9') || p[n] == '-' || p[n] == '+' ||
+            p[n] == '.' || p[n] == '_')) {
+      word[n] = p[n];
+      n++;
+    }
+    word[n] = '\0';
+    const char *w = word + (word[0] == '-' || word[0] == '+');
+    int special = strcmp(w, "NaN") == 0 || strcmp(w, "nan") == 0 ||
+                  strcmp(w, "Infinity") == 0 || strcmp(w, "inf") == 0;
+    snprintf(out, size, "found '%s'%s", word,
+             special ? " (JSON has no NaN or Infinity)" : "");
+  } else if (c > 0x20 && c < 0x7F) {
+    snprintf(out, size, "found '%c'", *p);
+  } else if (c >= 0xC2 && c <= 0xF4 && utf8_length(p) > 0) {
+    snprintf(out, size, "found '%.*s'", utf8_length(p), p);
+  } else {
+    snprintf(out, size, "found the byte 0x%02x", c);
+  }
+}
+
+static glint_status parse_text(const char *path, char *data, size_t size,
+                               cJSON **out, glint_error *e) {
+  const unsigned char *u = (const unsigned char *)data;
+  if (size >= 2 &&
+      ((u[0] == 0xFF && u[1] == 0xFE) || (u[0] == 0xFE && u[1] == 0xFF)))
+    return glint_fail(e, GLINT_E_PARSE,
+                      "%s: UTF-16 text; glint reads JSON in UTF-8", path);
+  const char *nul = memchr(data, '\0', size);
+  size_t line, column;
+  if (nul) {
+    line_column(data, nul, &line, &column);
+    return glint_fail(e, GLINT_E_PARSE,
+                      "%s:%zu:%zu: a NUL byte: binary data where JSON text "
+                      "was expected",
+                      path, line, column);
+  }
+  /* return_parse_end rather than cJSON_GetErrorPtr, which reads a global
+   * that another thread's parse may have changed. */
+  const char *end = NULL;
+  cJSON *root = cJSON_ParseWithOpts(data, &end, 1);
+  if (root) {
+    *out = root;
+    return GLINT_OK;
+  }
+  if (!end || end < data || end > data + size)
+    end = data + size;
+  char hint[160];
+  syntax_hint(data, &end, hint, sizeof hint);
+  line_column(data, end, &line, &column);
+  return glint_fail(e, GLINT_E_PARSE, "%s:%zu:%zu: JSON syntax error: %s", path,
+                    line, column, hint);
+}
+
+glint_status glint_json_load(const char *path, glint_scene **out,
+                             glint_error *error) {
+  char *data = NULL;
+  size_t size = 0;
+  cJSON *root = NULL;
+  glint_status st = read_text(path, &data, &size, error);
+  if (st)
+    return st;
+  st = parse_text(path, data, size, &root, error);
+  free(data); /* cJSON keeps its own copies of the strings */
+  if (st)
+    return st;
+  json_reader r;
+  memset(&r, 0, sizeof r);
+  r.file = path;
+  r.error = error;
+  if ((st = glint_scene_create(&r.scene, error)) == GLINT_OK)
+    st = read_scene(&r, root);
+  cJSON_Delete(root);
+  free(r.by_name);
+  free(r.material_ids);
+  if (st) {
+    glint_scene_destroy(r.scene);
+    return st;
+  }
+  *out = r.scene;
+  return GLINT_OK;
+}

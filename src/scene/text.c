@@ -62,7 +62,8 @@ glint_status text_open(text_file *t, const char *path, char comment,
   int zst = gzclose_r(f);
   if (zst != Z_OK && zst != Z_BUF_ERROR) {
     free(data);
-    return glint_fail(error, GLINT_E_IO, "%s: damaged compressed file", path);
+    return glint_fail(error, GLINT_E_PARSE, "%s: damaged compressed file",
+                      path);
   }
   if (zst == Z_BUF_ERROR) {
     free(data);

@@ -3,6 +3,7 @@
 #define GLINT_SIMD_AVX2_H
 
 #include <immintrin.h>
+#include <stdint.h>
 
 #define GLINT_SIMD_WIDTH 8
 
@@ -98,21 +99,49 @@ static inline void vf_splat4(const float *p, vfloat *a, vfloat *b, vfloat *c,
   *d = _mm256_broadcast_ss(p + 3);
 }
 
+/* Stores lanes i of a, b, c, d as 4 consecutive floats each (a 4 x W
+ * transpose): 16*W bytes at p. */
+static inline void vf_store_quads(float *p, vfloat a, vfloat b, vfloat c,
+                                  vfloat d) {
+  __m256 t0 = _mm256_unpacklo_ps(a, b), t1 = _mm256_unpackhi_ps(a, b);
+  __m256 t2 = _mm256_unpacklo_ps(c, d), t3 = _mm256_unpackhi_ps(c, d);
+  __m256 q0 = _mm256_shuffle_ps(t0, t2, 0x44), q1 = _mm256_shuffle_ps(t0, t2, 0xee);
+  __m256 q2 = _mm256_shuffle_ps(t1, t3, 0x44), q3 = _mm256_shuffle_ps(t1, t3, 0xee);
+  /* q0..q3 hold lanes (0,4) (1,5) (2,6) (3,7) as 128-bit halves */
+  _mm256_store_ps(p, _mm256_permute2f128_ps(q0, q1, 0x20));
+  _mm256_store_ps(p + 8, _mm256_permute2f128_ps(q2, q3, 0x20));
+  _mm256_store_ps(p + 16, _mm256_permute2f128_ps(q0, q1, 0x31));
+  _mm256_store_ps(p + 24, _mm256_permute2f128_ps(q2, q3, 0x31));
+}
+
 static inline vfloat vf_gather(const float *base, vint idx) {
   return _mm256_i32gather_ps(base, idx, 4);
 }
 
-/* Stores the lanes of m contiguously at p; returns how many. AVX2 has no
- * compress: a permutation from a table indexed by the mask's low and high
- * nibbles would do; the loop below is clear and off the hot path. */
+/* The permutation that moves the lanes set in an 8-bit mask to the front,
+ * as 8 indices of 3 bits packed in a 32-bit word: built once, at first use
+ * by the compiler (a constant table of 256 words). */
+static inline __m256i glint_compress_perm(int bits) {
+  /* Generated: for each mask, the indices of its set bits in order. */
+  static const uint32_t table[256] = {
+#define P(x) x,
+#include "simd/compress8.inc"
+#undef P
+  };
+  uint32_t packed = table[bits];
+  __m256i shifts = _mm256_setr_epi32(0, 3, 6, 9, 12, 15, 18, 21);
+  return _mm256_and_si256(_mm256_srlv_epi32(_mm256_set1_epi32((int)packed),
+                                            shifts),
+                          _mm256_set1_epi32(7));
+}
+
+/* Stores the lanes of m contiguously at p (a whole vector is written: the
+ * caller leaves room for W floats past the count); returns how many. AVX2
+ * has no compress instruction: a table permutation does it. */
 static inline int vf_compress_store(float *p, vmask m, vfloat a) {
-  float v[8] __attribute__((aligned(32)));
-  _mm256_store_ps(v, a);
-  int bits = vm_bits(m), n = 0;
-  for (int i = 0; i < 8; i++)
-    if (bits >> i & 1)
-      p[n++] = v[i];
-  return n;
+  int bits = vm_bits(m);
+  _mm256_storeu_ps(p, _mm256_permutevar8x32_ps(a, glint_compress_perm(bits)));
+  return _mm_popcnt_u32((unsigned)bits);
 }
 
 #endif

@@ -92,14 +92,52 @@ static inline void vf_splat4(const float *p, vfloat *a, vfloat *b, vfloat *c,
   *d = _mm512_set1_ps(p[3]);
 }
 
+/* Stores lanes i of a, b, c, d as 4 consecutive floats each (a 4 x W
+ * transpose): 16*W bytes at p. */
+static inline void vf_store_quads(float *p, vfloat a, vfloat b, vfloat c,
+                                  vfloat d) {
+  __m512 t0 = _mm512_unpacklo_ps(a, b), t1 = _mm512_unpackhi_ps(a, b);
+  __m512 t2 = _mm512_unpacklo_ps(c, d), t3 = _mm512_unpackhi_ps(c, d);
+  /* per 128-bit block k: q0 = lane 4k, q1 = 4k+1, q2 = 4k+2, q3 = 4k+3 */
+  __m512 q0 = _mm512_shuffle_ps(t0, t2, 0x44), q1 = _mm512_shuffle_ps(t0, t2, 0xee);
+  __m512 q2 = _mm512_shuffle_ps(t1, t3, 0x44), q3 = _mm512_shuffle_ps(t1, t3, 0xee);
+  for (int k = 0; k < 4; k++) {
+    /* lanes 4k..4k+3: block k of q0, q1, q2, q3 */
+    __m512i sel = _mm512_setr_epi32(4 * k, 4 * k + 1, 4 * k + 2, 4 * k + 3,
+                                    16 + 4 * k, 17 + 4 * k, 18 + 4 * k,
+                                    19 + 4 * k, 4 * k, 4 * k + 1, 4 * k + 2,
+                                    4 * k + 3, 16 + 4 * k, 17 + 4 * k,
+                                    18 + 4 * k, 19 + 4 * k);
+    __m512 lo = _mm512_permutex2var_ps(q0, sel, q1);
+    __m512 hi = _mm512_permutex2var_ps(q2, sel, q3);
+    _mm512_store_ps(p + 16 * k,
+                    _mm512_shuffle_f32x4(lo, hi, _MM_SHUFFLE(1, 0, 1, 0)));
+  }
+}
+
 static inline vfloat vf_gather(const float *base, vint idx) {
   return _mm512_i32gather_ps(idx, base, 4);
 }
 
-/* Stores the lanes of m contiguously at p (vcompressps); returns how many. */
+/* base[idx[i]] = a[i] for the lanes of m (vscatterdps). */
+static inline void vf_scatter(float *base, vint idx, vfloat a, vmask m) {
+  _mm512_mask_i32scatter_ps(base, m, idx, a, 4);
+}
+
+/* Whether the lanes of m hold pairwise different values (AVX-512CD). */
+static inline int vi_distinct(vint a, vmask m) {
+  __m512i c = _mm512_maskz_conflict_epi32(m, a);
+  return !_mm512_mask_test_epi32_mask(m, c, _mm512_set1_epi32((int)m));
+}
+#define GLINT_HAS_SCATTER 1
+
+/* Stores the lanes of m contiguously at p; returns how many. The compress
+ * happens in a register and the whole vector is stored (the caller leaves
+ * room for W floats past the count): vcompressps with a memory operand is
+ * microcoded and several times slower on Intel cores. */
 static inline int vf_compress_store(float *p, vmask m, vfloat a) {
-  _mm512_mask_compressstoreu_ps(p, m, a);
-  return __builtin_popcount((unsigned)m);
+  _mm512_storeu_ps(p, _mm512_maskz_compress_ps(m, a));
+  return _mm_popcnt_u32((unsigned)m);
 }
 
 #endif

@@ -109,6 +109,17 @@ static inline void vf_splat4(const float *p, vfloat *a, vfloat *b, vfloat *c,
   *d = _mm_shuffle_ps(v, v, 0xff);
 }
 
+/* Stores lanes i of a, b, c, d as 4 consecutive floats each (a 4 x W
+ * transpose): 16*W bytes at p. */
+static inline void vf_store_quads(float *p, vfloat a, vfloat b, vfloat c,
+                                  vfloat d) {
+  _MM_TRANSPOSE4_PS(a, b, c, d);
+  _mm_store_ps(p, a);
+  _mm_store_ps(p + 4, b);
+  _mm_store_ps(p + 8, c);
+  _mm_store_ps(p + 12, d);
+}
+
 /* No gather in SSE: four scalar loads. */
 static inline vfloat vf_gather(const float *base, vint idx) {
   int i[4] __attribute__((aligned(16)));
@@ -116,15 +127,26 @@ static inline vfloat vf_gather(const float *base, vint idx) {
   return _mm_setr_ps(base[i[0]], base[i[1]], base[i[2]], base[i[3]]);
 }
 
-/* Stores the lanes of m contiguously at p; returns how many. */
+/* Stores the lanes of m contiguously at p (a whole vector is written: the
+ * caller leaves room for W floats past the count); returns how many. A byte
+ * shuffle (pshufb, SSSE3) from a table of the 16 masks moves them. */
 static inline int vf_compress_store(float *p, vmask m, vfloat a) {
-  float v[4] __attribute__((aligned(16)));
-  _mm_store_ps(v, a);
-  int bits = vm_bits(m), n = 0;
-  for (int i = 0; i < 4; i++)
-    if (bits >> i & 1)
-      p[n++] = v[i];
-  return n;
+#define L(i) (4 * (i)), (4 * (i) + 1), (4 * (i) + 2), (4 * (i) + 3)
+  static const unsigned char table[16][16] __attribute__((aligned(16))) = {
+      {L(0), L(0), L(0), L(0)}, {L(0), L(0), L(0), L(0)},
+      {L(1), L(0), L(0), L(0)}, {L(0), L(1), L(0), L(0)},
+      {L(2), L(0), L(0), L(0)}, {L(0), L(2), L(0), L(0)},
+      {L(1), L(2), L(0), L(0)}, {L(0), L(1), L(2), L(0)},
+      {L(3), L(0), L(0), L(0)}, {L(0), L(3), L(0), L(0)},
+      {L(1), L(3), L(0), L(0)}, {L(0), L(1), L(3), L(0)},
+      {L(2), L(3), L(0), L(0)}, {L(0), L(2), L(3), L(0)},
+      {L(1), L(2), L(3), L(0)}, {L(0), L(1), L(2), L(3)}};
+#undef L
+  int bits = vm_bits(m);
+  __m128i shuffled = _mm_shuffle_epi8(
+      _mm_castps_si128(a), _mm_load_si128((const __m128i *)table[bits]));
+  _mm_storeu_si128((__m128i *)p, shuffled);
+  return vm_count(m);
 }
 
 #endif

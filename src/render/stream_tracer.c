@@ -1,0 +1,785 @@
+/* The stream tracer: rays traced breadth-first in generations (Wald et al.
+ * 2007, "SIMD ray stream tracing", the direction the thesis's §6 points).
+ * When beams break apart, the beam tracer's registers run nearly empty
+ * (Billiard, depth 15: a sixth of the lanes); here the surviving rays of a
+ * whole tile are gathered into a dense stream after every generation and
+ * cut into full W-wide packets again, so lanes stay busy however the rays
+ * scatter.
+ *
+ * Each ray carries its pixel and an RGB weight (the product of the kr, kt
+ * and Beer factors on its way from the eye), so a generation's rays are
+ * independent: nothing waits for a recursive call to return. SPEC §4's
+ * formula becomes, for a ray of weight w hitting a surface,
+ *   pixel += w Beer C ka Ia                          (ambient, at once)
+ *   pixel += w Beer S_j (C kd N·L + ks (V·R)^h) I_L   (per light, once its
+ *                                                      shadow ray returns S_j)
+ *   child rays with weights w Beer kr (reflected) and w Beer kt (refracted),
+ * with Beer = exp(-absorb t) for a hit reached from inside an object.
+ *
+ * Memory is bounded and allocated before the tile starts: each generation
+ * level has a buffer of STREAM_CAPACITY rays. A generation is consumed in
+ * batches; when the next level's buffer cannot take a batch's children, the
+ * tracer descends and drains it first (depth-first at the granularity of
+ * whole buffers, with an explicit level cursor, no recursion), so the
+ * footprint is capacity x levels whatever the ray tree does. Shadow rays go
+ * to a buffer of their own, traced in full packets when it fills.
+ *
+ * Compiled once per ISA, like the beam tracer. */
+#include "render/backend.h"
+#include "render/packet.h"
+
+#include "core/error.h"
+#include "core/timer.h"
+
+#include <stdlib.h>
+#include <string.h>
+#include <x86intrin.h>
+
+#define STREAM_CAPACITY 4096 /* rays per generation buffer */
+
+/* A generation's rays, structure of arrays. */
+typedef struct ray_stream {
+  float *ox, *oy, *oz, *dx, *dy, *dz, *wr, *wg, *wb;
+  int32_t *pixel;
+  int count, cursor;
+} ray_stream;
+
+typedef struct stream_scratch {
+  /* Two streams per generation level: the transmitted (refracted) rays and
+   * the reflected ones. Kept apart, each is coherent: a packet of rays
+   * that entered a glass sphere all meet it again from inside, while a
+   * packet mixing them with rays bounced off it would shade two objects
+   * per packet, lane by lane. (Level 0, the primary rays, is made in
+   * registers and stays empty.) */
+  ray_stream *levels;
+  float *accum; /* tile pixels x (r, g, b, unused), summed over samples */
+  float *log;   /* (r, g, b, pixel) waiting to be added (see fold_log) */
+  int log_count;
+} stream_scratch;
+
+enum { TRANSMITTED = 0, REFLECTED = 1 };
+#define STREAM(sc, level, kind) (&(sc)->levels[2 * (level) + (kind)])
+
+typedef struct stream_scene {
+  packet_scene *ps;
+  int levels;
+  double tsc_to_seconds;
+} stream_scene;
+
+/* ---- memory ------------------------------------------------------------ */
+
+#define RAY_FLOATS 9
+#define LOG_CAPACITY 512 /* a multiple of every W; 8 KiB stays in L1 */
+
+/* Each array has room for W floats past its capacity: compress-stores
+ * write whole vectors. */
+#define SLOTS (STREAM_CAPACITY + GLINT_SIMD_WIDTH)
+
+static size_t level_bytes(void) {
+  return (size_t)SLOTS * (RAY_FLOATS * sizeof(float) + sizeof(int32_t)) +
+         (RAY_FLOATS + 1) * 64;
+}
+
+static size_t accum_bytes(void) {
+  return (size_t)GLINT_TILE_SIZE * GLINT_TILE_SIZE * 4 * sizeof(float) +
+         (size_t)LOG_CAPACITY * 4 * sizeof(float) + 2 * 64;
+}
+
+static size_t scratch_bytes(const void *prepared) {
+  const stream_scene *ss = prepared;
+  return sizeof(stream_scratch) + 64 + (size_t)ss->levels * 2 * (sizeof(ray_stream) + level_bytes()) +
+         accum_bytes() + 64 * 32;
+}
+
+/* Carves the scratch block (allocated by the driver, 64-byte aligned) into
+ * the buffers, each aligned for the widest vector. */
+static char *align64(char *p) {
+  return (char *)(((uintptr_t)p + 63) & ~(uintptr_t)63);
+}
+
+static stream_scratch *carve(void *scratch, int levels) {
+  char *p = scratch;
+  stream_scratch *sc = (stream_scratch *)p;
+  p = align64(p + sizeof *sc);
+  sc->levels = (ray_stream *)p;
+  p = align64(p + (size_t)levels * 2 * sizeof *sc->levels);
+  for (int l = 0; l < 2 * levels; l++) {
+    ray_stream *r = &sc->levels[l];
+    float **f[RAY_FLOATS] = {&r->ox, &r->oy, &r->oz, &r->dx, &r->dy,
+                             &r->dz, &r->wr, &r->wg, &r->wb};
+    for (int k = 0; k < RAY_FLOATS; k++) {
+      *f[k] = (float *)p;
+      p = align64(p + SLOTS * sizeof(float));
+    }
+    r->pixel = (int32_t *)p;
+    p = align64(p + SLOTS * sizeof(int32_t));
+    r->count = r->cursor = 0;
+  }
+  sc->accum = (float *)p;
+  p = align64(p + (size_t)GLINT_TILE_SIZE * GLINT_TILE_SIZE * 4 * sizeof(float));
+  sc->log = (float *)p;
+  sc->log_count = 0;
+  return sc;
+}
+
+/* ---- stage timing ------------------------------------------------------ */
+
+enum { STAGE_GENERATE, STAGE_TRAVERSE, STAGE_SHADE, STAGE_COMPACT };
+
+/* Stage times are sampled: every TIMED_EVERY-th packet is timed in all its
+ * stages and the sums are scaled by packets / timed packets. Reading the
+ * time-stamp counter around every stage of every packet would itself cost a
+ * quarter of a coherent scene's render. */
+#define TIMED_EVERY 32
+
+typedef struct tracer {
+  const stream_scene *ss;
+  const packet_scene *ps;
+  const scene_r *s;
+  stream_scratch *sc;
+  glint_stats *st;
+  int tile_w;
+  int timing; /* this packet is timed */
+  uint64_t packets, timed;
+  uint64_t stage_ticks[4];
+} tracer;
+
+static ALWAYS_INLINE uint64_t tick(const tracer *t) {
+  return t->timing ? __rdtsc() : 0;
+}
+
+/* ---- appending rays (the compaction) ------------------------------------ */
+
+static ALWAYS_INLINE void append_ray(tracer *t, ray_stream *r, vmask m,
+                                     vvec3 o, vvec3 d, vvec3 w, vint pixel) {
+  uint64_t t0 = tick(t);
+  int n = r->count;
+  vf_compress_store(r->ox + n, m, o.x);
+  vf_compress_store(r->oy + n, m, o.y);
+  vf_compress_store(r->oz + n, m, o.z);
+  vf_compress_store(r->dx + n, m, d.x);
+  vf_compress_store(r->dy + n, m, d.y);
+  vf_compress_store(r->dz + n, m, d.z);
+  vf_compress_store(r->wr + n, m, w.x);
+  vf_compress_store(r->wg + n, m, w.y);
+  vf_compress_store(r->wb + n, m, w.z);
+  r->count += vf_compress_store((float *)r->pixel + n, m, vi_as_vf(pixel));
+  t->stage_ticks[STAGE_COMPACT] += tick(t) - t0;
+}
+
+/* What secondary rays bring to pixels is logged, a packet at a time with
+ * four vector stores, and folded into the pixels when the log fills and at
+ * the end of the tile: a packet's rays can share a pixel (rays from one
+ * primary sample meet again in a later generation), so the adds must be
+ * done one by one, and done in one tight sequential pass they cost a
+ * fraction of doing them packet by packet. (Measured: a gather-add-scatter
+ * with AVX-512 conflict detection, or a loop over the packet's lanes, each
+ * cost as much as all the rest of the secondary rays' work on Whitted.) */
+static void fold_log(stream_scratch *sc) {
+  /* Entries are (r, g, b, pixel) and pixels (r, g, b, unused): one 4-wide
+   * load, add and store each. */
+  float *accum = sc->accum;
+  const float *log = sc->log;
+  for (int i = 0; i < sc->log_count; i++) {
+    const float *e = log + 4 * i;
+    int32_t px;
+    memcpy(&px, e + 3, sizeof px);
+    __m128 sum = _mm_add_ps(_mm_load_ps(accum + 4 * px), _mm_load_ps(e));
+    _mm_store_ps(accum + 4 * px, sum);
+  }
+  sc->log_count = 0;
+}
+
+static ALWAYS_INLINE void accumulate(stream_scratch *sc, vmask m, vint pixel,
+                                     vvec3 c) {
+  if (sc->log_count > LOG_CAPACITY - W)
+    fold_log(sc);
+  int n = sc->log_count;
+  /* inactive lanes bring nothing, to pixel 0 */
+  vf_store_quads(sc->log + 4 * n, vf_keep(m, c.x), vf_keep(m, c.y),
+                 vf_keep(m, c.z), vi_as_vf(vi_select(m, pixel, vi_set1(0))));
+  sc->log_count = n + W;
+}
+
+/* ---- shading with per-lane materials ------------------------------------ */
+
+#define MAT_FLOATS FLOATS_OF(material_r)
+#define MAT_AT(field) FLOAT_OFFSET(material_r, field)
+#define OBJ_FLOATS FLOATS_OF(object_r)
+#define OBJ_AT(field) FLOAT_OFFSET(object_r, field)
+
+static ALWAYS_INLINE vfloat gather_f(const void *base, vint index, int stride,
+                                     int offset) {
+  return vf_gather((const float *)base,
+                   vi_add(vi_mul_const(index, stride), vi_set1(offset)));
+}
+
+static ALWAYS_INLINE vint gather_i(const void *base, vint index, int stride,
+                                   int offset) {
+  return vf_bits(gather_f(base, index, stride, offset));
+}
+
+/* The material coefficients of each lane: broadcast when the whole packet
+ * hit one material (the common case), gathered otherwise. */
+typedef struct lane_material {
+  vvec3 color, odd, even, ambient, absorb;
+  vfloat inv_size, kd, ks, h, kr, kt, ior;
+  vint texture;
+  int uniform; /* every lane the same material: *m is it */
+  const material_r *m;
+} lane_material;
+
+static ALWAYS_INLINE lane_material gather_material(const packet_scene *ps,
+                                                   vint mi, vmask hits) {
+  const scene_r *s = ps->s;
+  lane_material lm;
+  int first = vm_first(hits);
+  SIMD_ALIGN int32_t ids[W];
+  vi_store(ids, mi);
+  int id = ids[first];
+  lm.uniform = vm_none(vm_andnot(hits, vi_eq(mi, vi_set1(id))));
+  if (lm.uniform) {
+    const pmaterial *pm = &ps->materials[id];
+    lm.m = &s->materials[id];
+    lm.color = vv_get(pm->color);
+    lm.odd = vv_get(pm->odd);
+    lm.even = vv_get(pm->even);
+    lm.ambient = vv_get(pm->ambient);
+    lm.absorb = vv_get(pm->absorb);
+    lm.inv_size = vs_get(&pm->inv_size);
+    lm.kd = vs_get(&pm->kd);
+    lm.ks = vs_get(&pm->ks);
+    lm.h = vs_get(&pm->h);
+    lm.kr = vs_get(&pm->kr);
+    lm.kt = vs_get(&pm->kt);
+    lm.ior = vs_get(&pm->ior_value);
+    lm.texture = vi_set1(lm.m->texture);
+    return lm;
+  }
+  lm.m = NULL;
+  const material_r *mb = s->materials;
+  lm.color = vv_gather((const float *)mb, mi, MAT_FLOATS, MAT_AT(color));
+  lm.odd = vv_gather((const float *)mb, mi, MAT_FLOATS, MAT_AT(odd));
+  lm.even = vv_gather((const float *)mb, mi, MAT_FLOATS, MAT_AT(even));
+  lm.absorb = vv_gather((const float *)mb, mi, MAT_FLOATS, MAT_AT(absorb));
+  lm.inv_size = gather_f(mb, mi, MAT_FLOATS, MAT_AT(inv_size));
+  vfloat ka = gather_f(mb, mi, MAT_FLOATS, MAT_AT(ka));
+  lm.ambient = vv_scale(vv_set1(s->ambient), ka);
+  lm.kd = gather_f(mb, mi, MAT_FLOATS, MAT_AT(kd));
+  lm.ks = gather_f(mb, mi, MAT_FLOATS, MAT_AT(ks));
+  lm.h = gather_f(mb, mi, MAT_FLOATS, MAT_AT(h));
+  lm.kr = gather_f(mb, mi, MAT_FLOATS, MAT_AT(kr));
+  lm.kt = gather_f(mb, mi, MAT_FLOATS, MAT_AT(kt));
+  lm.ior = gather_f(mb, mi, MAT_FLOATS, MAT_AT(ior));
+  lm.texture = gather_i(mb, mi, MAT_FLOATS, MAT_AT(texture));
+  return lm;
+}
+
+/* Each lane's surface: point, normal facing the ray, front side, material
+ * index, whatever shape it hit. */
+static ALWAYS_INLINE packet_surface stream_surface(const packet_scene *ps,
+                                                   const packet_hit *h,
+                                                   vmask hits, vvec3 o,
+                                                   vvec3 d, vint *material,
+                                                   vvec3 *origin, vint *axes,
+                                                   int newton) {
+  const scene_r *s = ps->s;
+  packet_surface f;
+  f.p = vv_madd(o, h->t, d);
+  vint obj = vi_select(hits, h->object, vi_set1(0));
+  const object_r *ob = s->objects;
+  vint shape = gather_i(ob, obj, OBJ_FLOATS, OBJ_AT(shape));
+  vint first = gather_i(ob, obj, OBJ_FLOATS, OBJ_AT(first));
+  *material = gather_i(ob, obj, OBJ_FLOATS, OBJ_AT(material));
+  *origin = vv_gather((const float *)ob, obj, OBJ_FLOATS, OBJ_AT(origin));
+  vint au = gather_i(ob, obj, OBJ_FLOATS, OBJ_AT(axis_u));
+  vint av = gather_i(ob, obj, OBJ_FLOATS, OBJ_AT(axis_v));
+  *axes = vi_or(au, vi_shl(av, 4));
+  vvec3 zero = {vf_zero(), vf_zero(), vf_zero()};
+  vvec3 ng = zero, n = zero;
+  f.front = vm_false();
+  vmask smooth_done = vm_false();
+
+  vmask sph = vm_and(hits, vi_eq(shape, vi_set1(GLINT_SHAPE_SPHERE)));
+  if (vm_any(sph)) {
+    vvec3 c = vv_gather((const float *)s->spheres, first, FLOATS_OF(sphere_r),
+                        FLOAT_OFFSET(sphere_r, center));
+    vvec3 g = vv_normalize(vv_sub(f.p, c), newton);
+    ng = vv_select(sph, g, ng);
+    f.front = vm_select(sph, vm_andnot(vm_true(), h->inside), f.front);
+  }
+  vmask pla = vm_and(hits, vi_eq(shape, vi_set1(GLINT_SHAPE_PLANE)));
+  if (vm_any(pla)) {
+    vvec3 g = vv_gather((const float *)s->planes, first, FLOATS_OF(plane_r),
+                        FLOAT_OFFSET(plane_r, n));
+    ng = vv_select(pla, g, ng);
+    f.front = vm_select(pla, vf_lt(vv_dot(g, d), vf_zero()), f.front);
+  }
+  vmask tri = vm_and(hits, vi_eq(shape, vi_set1(GLINT_SHAPE_TRIANGLE)));
+  if (vm_any(tri)) {
+    vint prim = vi_select(tri, h->prim, vi_set1(0));
+    vvec3 g = vv_gather((const float *)s->triangles, prim,
+                        FLOATS_OF(triangle_r), FLOAT_OFFSET(triangle_r, ng));
+    ng = vv_select(tri, g, ng);
+    f.front = vm_select(tri, vf_lt(vv_dot(g, d), vf_zero()), f.front);
+    vint nidx = gather_i(s->triangles, prim, FLOATS_OF(triangle_r),
+                         FLOAT_OFFSET(triangle_r, normals));
+    vmask smooth = vm_andnot(tri, vi_eq(nidx, vi_set1(-1)));
+    if (vm_any(smooth)) {
+      /* Interpolated vertex normals (NFF polygonal patches). */
+      vint n0 = vi_mul_const(vi_select(smooth, nidx, vi_set1(0)), 3);
+      const float *nb = (const float *)s->normals;
+      vvec3 a = vv_gather(nb, n0, 1, 0);
+      vvec3 b = vv_gather(nb, n0, 1, 3);
+      vvec3 c = vv_gather(nb, n0, 1, 6);
+      vfloat w = vf_sub(vf_sub(vf_set1(1), h->u), h->v);
+      vvec3 ns = vv_normalize(vv_madd(vv_madd(vv_scale(a, w), h->u, b), h->v, c),
+                              newton);
+      vmask facing = vf_lt(vv_dot(ns, d), vf_zero());
+      n = vv_select(smooth, vv_select(facing, ns, vv_neg(ns)), n);
+      smooth_done = smooth;
+    }
+  }
+  vmask con = vm_and(hits, vi_eq(shape, vi_set1(GLINT_SHAPE_CONE)));
+  if (vm_any(con)) {
+    const float *cb = (const float *)s->cones;
+    int stride = FLOATS_OF(cone_r);
+    vvec3 base = vv_gather(cb, first, stride, FLOAT_OFFSET(cone_r, base));
+    vvec3 axis = vv_gather(cb, first, stride, FLOAT_OFFSET(cone_r, axis));
+    vfloat rb = gather_f(cb, first, stride, FLOAT_OFFSET(cone_r, rb));
+    vfloat k = gather_f(cb, first, stride, FLOAT_OFFSET(cone_r, k));
+    vvec3 q = vv_sub(f.p, base);
+    vfloat hq = vv_dot(q, axis);
+    vvec3 g = vv_normalize(
+        vv_madd(q, vf_neg(vf_fmadd(k, vf_fmadd(k, hq, rb), hq)), axis),
+        newton);
+    ng = vv_select(con, g, ng);
+    f.front = vm_select(con, vf_lt(vv_dot(g, d), vf_zero()), f.front);
+  }
+  f.n = vv_select(smooth_done, n, vv_select(f.front, ng, vv_neg(ng)));
+  return f;
+}
+
+/* The surface colour per lane (SPEC §4 textures). */
+static ALWAYS_INLINE vvec3 stream_color(const lane_material *lm, vvec3 p,
+                                        vvec3 origin, vint axes, vmask hits) {
+  vmask planar =
+      vm_and(hits, vi_eq(lm->texture, vi_set1(GLINT_TEXTURE_CHECKER_PLANAR)));
+  vmask solid =
+      vm_and(hits, vi_eq(lm->texture, vi_set1(GLINT_TEXTURE_CHECKER_SOLID)));
+  if (vm_none(vm_or(planar, solid)))
+    return lm->color;
+  vfloat cells = vf_zero();
+  if (vm_any(planar)) {
+    vint au = vi_and(axes, vi_set1(15)), av = vi_shr(axes, 4);
+    vfloat u = vf_select(vi_eq(au, vi_set1(0)), p.x,
+                         vf_select(vi_eq(au, vi_set1(1)), p.y, p.z));
+    vfloat v = vf_select(vi_eq(av, vi_set1(0)), p.x,
+                         vf_select(vi_eq(av, vi_set1(1)), p.y, p.z));
+    cells = vf_select(planar,
+                      vf_add(vf_floor(vf_mul(u, lm->inv_size)),
+                             vf_floor(vf_mul(v, lm->inv_size))),
+                      cells);
+  }
+  if (vm_any(solid)) {
+    vvec3 q = vv_scale(vv_sub(p, origin), lm->inv_size);
+    cells = vf_select(
+        solid, vf_add(vf_add(vf_floor(q.x), vf_floor(q.y)), vf_floor(q.z)),
+        cells);
+  }
+  vmask odd = vf_eq(vf_parity(cells), vf_set1(1));
+  vvec3 checker = vv_select(odd, lm->odd, lm->even);
+  return vv_select(vm_or(planar, solid), checker, lm->color);
+}
+
+/* One packet of a generation: intersect, shade (its shadow rays traced at
+ * once: the packet is full, so they are a full packet too) and append its
+ * child rays. Returns what the packet brings to its pixels (0 in inactive
+ * lanes). */
+static ALWAYS_INLINE vvec3 shade_packet(tracer *t, int level, vmask active,
+                                        vvec3 o, vvec3 d, vvec3 w, vint pixel,
+                                        glint_math math, int newton) {
+  const packet_scene *ps = t->ps;
+  const scene_r *s = t->s;
+  uint64_t t0 = tick(t);
+  packet_hit h;
+  packet_nearest(ps, o, d, active, newton, &h, t->st);
+  uint64_t t1 = tick(t);
+  t->stage_ticks[STAGE_TRAVERSE] += t1 - t0;
+
+  vmask hits = vm_andnot(active, vi_eq(h.object, vi_set1(-1)));
+  vmask misses = vm_andnot(active, hits);
+  vvec3 bg = vv_mul(w, vv_get(ps->background));
+  if (vm_none(hits)) {
+    t->stage_ticks[STAGE_SHADE] += tick(t) - t1;
+    vvec3 z = {vf_zero(), vf_zero(), vf_zero()};
+    return vv_select(misses, bg, z);
+  }
+
+  /* Every lane hit one object (coherent packets, as a beam's sub-beam): the
+   * beam tracer's kernels, scaled by the rays' weights, since everything a
+   * hit brings is linear in them. */
+  SIMD_ALIGN int32_t objs[W];
+  vi_store(objs, h.object);
+  int obj0 = objs[vm_first(hits)];
+  vvec3 zero = {vf_zero(), vf_zero(), vf_zero()};
+  if (vm_none(vm_andnot(hits, vi_eq(h.object, vi_set1(obj0))))) {
+    const object_r *ob = &s->objects[obj0];
+    const material_r *mat = &s->materials[ob->material];
+    const pmaterial *pm = &ps->materials[ob->material];
+    packet_surface f = packet_surface_at(ps, ob, &h, o, d, newton);
+    vvec3 c = packet_color(mat, pm, ob, f.p);
+    vvec3 unit = {vf_set1(1), vf_set1(1), vf_set1(1)};
+    w = vv_mul(w, packet_beer(mat, pm, &f, h.t, hits, unit, math));
+    uint64_t t2 = tick(t);
+    vvec3 local = packet_local_shading(ps, mat, pm, c, &f, d, hits, math,
+                                       newton, t->st);
+    t1 += tick(t) - t2; /* (its shadow rays count as shading here) */
+    vvec3 brings = vv_select(hits, vv_mul(w, local), vv_select(misses, bg, zero));
+    if (level + 1 < s->max_depth && (mat->kr > 0 || mat->kt > 0)) {
+      vvec3 reflected, refracted;
+      vfloat kr;
+      vmask refract, tir;
+      packet_secondary(mat, pm, &f, d, hits, &reflected, &kr, &refracted,
+                       &refract, &tir);
+      t->st->total_internal_reflections += (uint64_t)vm_count(tir);
+      if (vm_any(refract)) {
+        t->st->secondary_rays += (uint64_t)vm_count(refract);
+        t->st->refracted_rays += (uint64_t)vm_count(refract);
+        append_ray(t, STREAM(t->sc, level + 1, TRANSMITTED), refract, f.p,
+                   refracted, vv_scale(w, vs_get(&pm->kt)), pixel);
+      }
+      vmask reflect = vm_and(hits, vf_gt(kr, vf_zero()));
+      if (vm_any(reflect)) {
+        t->st->secondary_rays += (uint64_t)vm_count(reflect);
+        t->st->reflected_rays += (uint64_t)vm_count(reflect);
+        append_ray(t, STREAM(t->sc, level + 1, REFLECTED), reflect, f.p,
+                   reflected, vv_scale(w, kr), pixel);
+      }
+    }
+    t->stage_ticks[STAGE_SHADE] += tick(t) - t1;
+    return brings;
+  }
+
+  /* A mixed packet: every lane's surface and material gathered. */
+  vint mi, axes;
+  vvec3 origin;
+  packet_surface f =
+      stream_surface(ps, &h, hits, o, d, &mi, &origin, &axes, newton);
+  lane_material lm = gather_material(ps, vi_select(hits, mi, vi_set1(0)), hits);
+  vvec3 c = stream_color(&lm, f.p, origin, axes, hits);
+
+  /* Beer's law (eq. 2.11) on the stretch just travelled inside. */
+  vmask inside = vm_andnot(hits, f.front);
+  if (vm_any(inside) && (!lm.uniform || lm.m->absorbs)) {
+    vfloat nt = vf_neg(h.t);
+    vvec3 a = {vm_exp(vf_mul(lm.absorb.x, nt), math),
+               vm_exp(vf_mul(lm.absorb.y, nt), math),
+               vm_exp(vf_mul(lm.absorb.z, nt), math)};
+    w = vv_select(inside, vv_mul(w, a), w);
+  }
+
+  vvec3 wc = vv_mul(w, c);
+  vvec3 local = vv_mul(wc, lm.ambient);
+  int highlights = lm.uniform ? lm.m->ks > 0
+                              : vm_any(vm_and(hits, vf_gt(lm.ks, vf_zero())));
+  for (size_t j = 0; j < s->light_count; j++) {
+    const plight *li = &ps->lights[j];
+    vvec3 l = vv_sub(vv_get(li->position), f.p);
+    vfloat dist2 = vv_dot(l, l);
+    vfloat inv = vf_rsqrt(dist2, newton);
+    vfloat dist = vf_mul(dist2, inv);
+    l = vv_scale(l, inv);
+    vfloat nl = vv_dot(f.n, l);
+    vmask lit = vm_and(hits, vf_gt(nl, vf_zero()));
+    if (vm_none(lit))
+      continue;
+    /* What the light brings if nothing blocks it. */
+    vvec3 bring = vv_scale(wc, vf_mul(lm.kd, nl));
+    if (highlights) {
+      vfloat vr = vf_fmadd(vf_add(nl, nl), vf_neg(vv_dot(d, f.n)),
+                           vv_dot(d, l));
+      vmask hl = vm_and(vm_and(lit, vf_gt(lm.ks, vf_zero())),
+                        vf_gt(vr, vf_zero()));
+      if (vm_any(hl)) {
+        vfloat p = vm_pow(vf_max(vr, vf_set1(FLT_MIN)), lm.h, math);
+        bring = vv_madd(bring, vf_keep(hl, vf_mul(lm.ks, p)), w);
+      }
+    }
+    t->st->shadow_rays += (uint64_t)vm_count(lit);
+    uint64_t t2 = tick(t);
+    vvec3 sj = packet_transmission(ps, f.p, l, dist, lit, math, newton, t->st);
+    uint64_t t3 = tick(t);
+    t->stage_ticks[STAGE_TRAVERSE] += t3 - t2;
+    t1 += t3 - t2; /* not shading time */
+    vvec3 lc = vv_mul(sj, vv_get(li->color));
+    local = vv_madd(local, vf_keep(lit, vf_set1(1)), vv_mul(bring, lc));
+  }
+  vvec3 brings = vv_select(hits, local, vv_select(misses, bg, zero));
+
+  /* Secondary rays, one level deeper (SPEC §4; eq. 2.12, 2.13). */
+  if (level + 1 < s->max_depth) {
+    vfloat cosi = vf_neg(vv_dot(d, f.n));
+    vvec3 reflected = vv_madd(d, vf_add(cosi, cosi), f.n);
+    vfloat kr = lm.kr;
+    vmask transparent = vm_and(hits, vf_gt(lm.kt, vf_zero()));
+    if (vm_any(transparent)) {
+      vfloat eta = vf_select(f.front, vf_rcp(lm.ior, newton), lm.ior);
+      vfloat k = vf_fnmadd(vf_mul(eta, eta), vf_fnmadd(cosi, cosi, vf_set1(1)),
+                           vf_set1(1));
+      vmask tir = vm_and(transparent, vf_lt(k, vf_zero()));
+      vmask refract = vm_andnot(transparent, tir);
+      t->st->total_internal_reflections += (uint64_t)vm_count(tir);
+      kr = vf_select(tir, vf_add(kr, lm.kt), kr);
+      if (vm_any(refract)) {
+        vfloat coef = vf_sub(vf_mul(eta, cosi), vf_sqrt(vf_max(k, vf_zero())));
+        vvec3 refracted = vv_madd(vv_scale(d, eta), coef, f.n);
+        t->st->secondary_rays += (uint64_t)vm_count(refract);
+        t->st->refracted_rays += (uint64_t)vm_count(refract);
+        append_ray(t, STREAM(t->sc, level + 1, TRANSMITTED), refract, f.p,
+                   refracted, vv_scale(w, lm.kt), pixel);
+      }
+    }
+    vmask reflect = vm_and(hits, vf_gt(kr, vf_zero()));
+    if (vm_any(reflect)) {
+      t->st->secondary_rays += (uint64_t)vm_count(reflect);
+      t->st->reflected_rays += (uint64_t)vm_count(reflect);
+      append_ray(t, STREAM(t->sc, level + 1, REFLECTED), reflect, f.p,
+                 reflected, vv_scale(w, kr), pixel);
+    }
+  }
+  t->stage_ticks[STAGE_SHADE] += tick(t) - t1;
+  return brings;
+}
+
+/* ---- a tile ------------------------------------------------------------ */
+
+/* Consumes the generations from level `floor` down, depth first at the
+ * granularity of buffers: a generation is processed in batches whose
+ * children fit the next level's buffer; when that buffer cannot take
+ * another packet's children, it is drained first. An explicit level cursor,
+ * no recursion. */
+/* Whether level's two streams can take one more packet's children each. */
+static ALWAYS_INLINE int room(const tracer *t, int level) {
+  return STREAM(t->sc, level, TRANSMITTED)->count <= STREAM_CAPACITY - W &&
+         STREAM(t->sc, level, REFLECTED)->count <= STREAM_CAPACITY - W;
+}
+
+static ALWAYS_INLINE int pending(const tracer *t, int level) {
+  return STREAM(t->sc, level, TRANSMITTED)->count > 0 ||
+         STREAM(t->sc, level, REFLECTED)->count > 0;
+}
+
+static ALWAYS_INLINE void drain(tracer *t, int floor, glint_math math,
+                                int newton) {
+  const scene_r *s = t->s;
+  glint_stats *st = t->st;
+  int levels = s->max_depth, level = floor;
+  for (;;) {
+    /* The level's transmitted rays first, then its reflected ones. */
+    ray_stream *r = STREAM(t->sc, level, TRANSMITTED);
+    if (r->cursor >= r->count)
+      r = STREAM(t->sc, level, REFLECTED);
+    if (r->cursor < r->count) {
+      int deeper = level + 1 < levels;
+      if (deeper && !room(t, level + 1)) {
+        level++;
+        continue;
+      }
+      int end = r->count;
+      if (deeper) {
+        /* A packet has at most W children of each kind. */
+        int free_t = STREAM_CAPACITY - STREAM(t->sc, level + 1, TRANSMITTED)->count;
+        int free_r = STREAM_CAPACITY - STREAM(t->sc, level + 1, REFLECTED)->count;
+        int budget = (free_t < free_r ? free_t : free_r) / W * W;
+        if (end - r->cursor > budget)
+          end = r->cursor + budget;
+      }
+      int g = level < GLINT_STATS_MAX_GENERATIONS
+                  ? level
+                  : GLINT_STATS_MAX_GENERATIONS - 1;
+      for (int i = r->cursor; i < end; i += W) {
+        int n = end - i < W ? end - i : W;
+        t->timing = t->packets++ % TIMED_EVERY == 0;
+        t->timed += (uint64_t)t->timing;
+        vmask m = vm_from_bits(n == 32 ? -1 : (int)((1u << n) - 1));
+        vvec3 o = {vf_load(r->ox + i), vf_load(r->oy + i), vf_load(r->oz + i)};
+        vvec3 d = {vf_load(r->dx + i), vf_load(r->dy + i), vf_load(r->dz + i)};
+        vvec3 w = {vf_load(r->wr + i), vf_load(r->wg + i), vf_load(r->wb + i)};
+        st->gen_rays[g] += (uint64_t)n;
+        st->gen_packets[g]++;
+        st->gen_active_lanes[g] += (uint64_t)n;
+        vint pixel = vi_load(r->pixel + i);
+        accumulate(t->sc, m, pixel,
+                   shade_packet(t, level, m, o, d, w, pixel, math, newton));
+      }
+      if (level + 1 > st->generations)
+        st->generations = level + 1;
+      r->cursor = end;
+      continue;
+    }
+    /* This generation is done: its children next, then back up to what
+     * the parent generation has left. */
+    for (int k = 0; k < 2; k++)
+      STREAM(t->sc, level, k)->count = STREAM(t->sc, level, k)->cursor = 0;
+    if (level + 1 < levels && pending(t, level + 1)) {
+      level++;
+      continue;
+    }
+    if (level == floor)
+      return;
+    level--;
+  }
+}
+
+/* Primary rays need no buffer: each packet is a BW x BH block of the screen
+ * at one sample position, made in registers from the camera (as the beams)
+ * and traced at once; only their children enter the stream. */
+#if GLINT_SIMD_WIDTH == 4
+#define BW 2
+#else
+#define BW 4
+#endif
+#define BH (W / BW)
+
+static ALWAYS_INLINE void render_tile_body(const stream_scene *ss,
+                                           const glint_tile *tile,
+                                           void *scratch, float *rgb,
+                                           glint_stats *st, glint_math math,
+                                           int newton) {
+  const packet_scene *ps = ss->ps;
+  const scene_r *s = ps->s;
+  int levels = s->max_depth;
+  tracer t = {ss, ps, s, carve(scratch, levels), st, tile->x1 - tile->x0,
+              0, 0, 0, {0, 0, 0, 0}};
+  int tw = tile->x1 - tile->x0;
+  int npix = tw * (tile->y1 - tile->y0);
+  uint64_t tile_start = __rdtsc();
+  memset(t.sc->accum, 0, (size_t)npix * 4 * sizeof(float));
+  t.sc->log_count = 0;
+  for (int l = 0; l < 2 * levels; l++)
+    t.sc->levels[l].count = t.sc->levels[l].cursor = 0;
+
+  const camera *cam = &s->cam;
+  SIMD_ALIGN float lx[W], ly[W];
+  for (int i = 0; i < W; i++) {
+    lx[i] = (float)(i % BW);
+    ly[i] = (float)(i / BW);
+  }
+  vfloat lane_x = vf_load(lx), lane_y = vf_load(ly);
+  vfloat sx = vf_set1(2 * cam->tan_x / cam->width), ox = vf_set1(-cam->tan_x);
+  vfloat sy = vf_set1(-2 * cam->tan_y / cam->height), oy = vf_set1(cam->tan_y);
+  vvec3 from = vv_set1(cam->from), cd = vv_set1(cam->d), cr = vv_set1(cam->r),
+        cu = vv_set1(cam->u);
+  vvec3 one = {vf_set1(1), vf_set1(1), vf_set1(1)};
+  /* Block by block, its samples innermost: their contributions are summed
+   * in registers and written once per block. */
+  for (int by = tile->y0; by < tile->y1; by += BH)
+    for (int bx = tile->x0; bx < tile->x1; bx += BW) {
+      vfloat px = vf_add(vf_set1((float)bx), lane_x);
+      vfloat py = vf_add(vf_set1((float)by), lane_y);
+      vmask valid = vm_and(vf_lt(px, vf_set1((float)tile->x1)),
+                           vf_lt(py, vf_set1((float)tile->y1)));
+      vint pix = vi_add(
+          vi_mul_const(vf_to_vi(vf_sub(py, vf_set1((float)tile->y0))), tw),
+          vf_to_vi(vf_sub(px, vf_set1((float)tile->x0))));
+      int n = vm_count(valid);
+      vvec3 sum = {vf_zero(), vf_zero(), vf_zero()};
+      for (int k = 0; k < s->spp; k++) {
+        if (levels > 1 && !room(&t, 1))
+          drain(&t, 1, math, newton);
+        t.timing = t.packets++ % TIMED_EVERY == 0;
+        t.timed += (uint64_t)t.timing;
+        uint64_t t0 = tick(&t);
+        vfloat x =
+            vf_fmadd(vf_add(px, vf_set1(0.5f + s->samples[k][0])), sx, ox);
+        vfloat y =
+            vf_fmadd(vf_add(py, vf_set1(0.5f + s->samples[k][1])), sy, oy);
+        vvec3 dir = vv_normalize(vv_madd(vv_madd(cd, x, cr), y, cu), newton);
+        t.stage_ticks[STAGE_GENERATE] += tick(&t) - t0;
+        st->primary_rays += (uint64_t)n;
+        st->gen_rays[0] += (uint64_t)n;
+        st->gen_packets[0]++;
+        st->gen_active_lanes[0] += (uint64_t)n;
+        sum = vv_add(sum, shade_packet(&t, 0, valid, from, dir, one, pix, math,
+                                       newton));
+      }
+      accumulate(t.sc, valid, pix, sum);
+    }
+  if (st->generations < 1)
+    st->generations = 1;
+  if (levels > 1)
+    drain(&t, 1, math, newton);
+
+  fold_log(t.sc);
+  float inv_spp = 1.0f / (float)s->spp;
+  for (int i = 0; i < npix; i++)
+    for (int k = 0; k < 3; k++)
+      rgb[3 * i + k] = t.sc->accum[4 * i + k] * inv_spp;
+  /* The tile's time, shared among the stages in the proportions the timed
+   * packets show (their own timer reads make them slower than the rest). */
+  double tile_seconds = (double)(__rdtsc() - tile_start) * ss->tsc_to_seconds;
+  uint64_t sampled = t.stage_ticks[0] + t.stage_ticks[1] + t.stage_ticks[2] +
+                     t.stage_ticks[3];
+  for (int k = 0; k < 4 && sampled; k++)
+    st->stage_seconds[k] +=
+        tile_seconds * (double)t.stage_ticks[k] / (double)sampled;
+}
+
+static void render_tile(const void *prepared, const glint_tile *tile,
+                        void *scratch, float *rgb, glint_stats *st) {
+  const stream_scene *ss = prepared;
+  if (ss->ps->math == GLINT_MATH_MINIMAX && ss->ps->newton)
+    render_tile_body(ss, tile, scratch, rgb, st, GLINT_MATH_MINIMAX, 1);
+  else
+    render_tile_body(ss, tile, scratch, rgb, st, ss->ps->math,
+                     ss->ps->newton);
+}
+
+/* Cycles of the time-stamp counter per second, measured against the
+ * monotonic clock (the stage timers read the counter: a clock call per
+ * packet would cost more than some stages). */
+static double tsc_seconds_per_tick(void) {
+  double w0 = glint_now();
+  uint64_t c0 = __rdtsc();
+  double w1;
+  do
+    w1 = glint_now();
+  while (w1 - w0 < 0.002);
+  uint64_t c1 = __rdtsc();
+  return (w1 - w0) / (double)(c1 - c0);
+}
+
+static glint_status prepare(const glint_scene *scene, const glint_frame *frame,
+                            void **prepared, glint_stats *stats,
+                            glint_error *error) {
+  stream_scene *ss = calloc(1, sizeof *ss);
+  if (!ss)
+    return glint_fail(error, GLINT_E_MEMORY, "out of memory");
+  glint_status st = packet_scene_prepare(scene, frame, &ss->ps, stats, error);
+  if (st) {
+    free(ss);
+    return st;
+  }
+  ss->levels = frame->max_depth;
+  ss->tsc_to_seconds = tsc_seconds_per_tick();
+  stats->stream_bytes_per_thread = scratch_bytes(ss);
+  *prepared = ss;
+  return GLINT_OK;
+}
+
+static void release(void *prepared) {
+  stream_scene *ss = prepared;
+  packet_scene_release(ss->ps);
+  free(ss);
+}
+
+static uint64_t primary_tile(const void *prepared, const glint_tile *tile,
+                             glint_stats *st) {
+  const stream_scene *ss = prepared;
+  /* The primary generation alone is the beam tracer's primary beams. */
+  return ISA_NAME(glint_beam_ops).primary_tile(ss->ps, tile, st);
+}
+
+const glint_backend_ops ISA_NAME(glint_stream_ops) = {
+    prepare, release, scratch_bytes, render_tile, primary_tile};
