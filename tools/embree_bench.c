@@ -16,6 +16,8 @@
 #include "scene/scene.h"
 
 #include <embree3/rtcore.h>
+#include <pmmintrin.h>
+#include <xmmintrin.h>
 
 #include <float.h>
 #include <stdio.h>
@@ -65,6 +67,10 @@ int main(int argc, char **argv) {
     return 2;
   }
 
+  /* Embree asks for flush-to-zero and denormals-are-zero (as glint's
+   * render threads set them): without them it crawls. */
+  _MM_SET_FLUSH_ZERO_MODE(_MM_FLUSH_ZERO_ON);
+  _MM_SET_DENORMALS_ZERO_MODE(_MM_DENORMALS_ZERO_ON);
   RTCDevice device = rtcNewDevice(NULL);
   RTCScene rs = rtcNewScene(device);
   RTCGeometry geom = rtcNewGeometry(device, RTC_GEOMETRY_TYPE_TRIANGLE);
@@ -90,6 +96,8 @@ int main(int argc, char **argv) {
 
   camera c;
   camera_init(&c, &cam, w, h);
+  float tnear = (float)glint_scene_epsilon(scene); /* glint's, for the
+                                                     same hits */
   double *times = malloc(sizeof *times * (size_t)runs);
   unsigned long long hits = 0;
   for (int r = 0; r < runs; r++) {
@@ -112,13 +120,14 @@ int main(int argc, char **argv) {
           rh.ray.dir_x[i] = d.x;
           rh.ray.dir_y[i] = d.y;
           rh.ray.dir_z[i] = d.z;
-          rh.ray.tnear[i] = (float)glint_scene_epsilon(scene);
+          rh.ray.tnear[i] = tnear;
           rh.ray.tfar[i] = FLT_MAX;
           rh.ray.time[i] = 0;
           rh.ray.mask[i] = ~0u;
           rh.ray.id[i] = (unsigned)i;
           rh.ray.flags[i] = 0;
           rh.hit.geomID[i] = RTC_INVALID_GEOMETRY_ID;
+          rh.hit.instID[0][i] = RTC_INVALID_GEOMETRY_ID;
         }
         rtcIntersect16(valid, rs, &ctx, &rh);
         for (int i = 0; i < 16; i++)
