@@ -249,15 +249,20 @@ static ALWAYS_INLINE void packet_cone_roots(const pcone *c, vvec3 o, vvec3 d,
   if (vm_none(m))
     return;
   vfloat sq = vf_sqrt(vf_max(disc, vf_zero()));
-  /* The stable pair: q = -(b + sign(b) sq) / 2, roots q/a and c/q. */
+  /* The stable pair: q = -(b + sign(b) sq) / 2, roots q/a and c/q, the
+   * divisions by rcp (eq. 3.1). Along a line of the surface (a ~ 0) the
+   * one root is -c/b. */
   vfloat q = vf_mul(vf_set1(-0.5f),
                     vf_select(vf_lt(qb, vf_zero()), vf_sub(qb, sq),
                               vf_add(qb, sq)));
   vmask linear = vf_lt(vf_abs(qa), vf_set1(1e-12f));
-  vfloat ra = vf_div(q, qa), rc = vf_div(qc, q);
-  vfloat lin = vf_div(vf_neg(qc), qb);
-  vfloat a0 = vf_select(linear, lin, vf_min(ra, rc));
-  vfloat a1 = vf_select(linear, lin, vf_max(ra, rc));
+  vfloat ra = vf_mul(q, vf_rcp(qa, 1)), rc = vf_mul(qc, vf_rcp(q, 1));
+  vfloat a0 = vf_min(ra, rc), a1 = vf_max(ra, rc);
+  if (vm_any(vm_and(m, linear))) {
+    vfloat lin = vf_div(vf_neg(qc), qb);
+    a0 = vf_select(linear, lin, a0);
+    a1 = vf_select(linear, lin, a1);
+  }
   vfloat h0 = vf_fmadd(a0, da, wa), h1 = vf_fmadd(a1, da, wa);
   vmask v0 = vm_and(vm_and(m, vm_and(vf_gt(a0, eps), vf_lt(a0, tmax))),
                     vm_and(vf_ge(h0, vf_zero()), vf_le(h0, height)));
@@ -482,6 +487,13 @@ static ALWAYS_INLINE void packet_cross_prim(const packet_scene *ps,
     vfloat t0, t1;
     vmask m0, m1;
     packet_cone_roots(c, o, d, sh->alive, eps, dist, &t0, &m0, &t1, &m1);
+    if (vm_none(m0))
+      break;
+    if (ps->s->materials[ps->s->objects[c->object].material].kt == 0) {
+      /* opaque: no need to know which side is entered */
+      shadow_cross(ps, c->object, m0, t0, vm_true(), sh);
+      break;
+    }
     for (int k = 0; k < 2 && vm_any(k ? m1 : m0); k++) {
       vfloat t = k ? t1 : t0;
       vvec3 q = vv_sub(vv_madd(o, t, d), vv_get(c->base));

@@ -205,21 +205,14 @@ static glint_status read_cone(nff_reader *r, glint_error *e) {
 typedef struct polygon_emit {
   nff_reader *r;
   int patch;
-  glint_vec3 centroid, centroid_normal;
   glint_error *e;
 } polygon_emit;
 
-static glint_vec3 corner(const polygon_emit *pe, size_t i, int normal) {
-  if (i == GLINT_POLYGON_CENTROID)
-    return normal ? pe->centroid_normal : pe->centroid;
-  return normal ? pe->r->norms[i] : pe->r->verts[i];
-}
-
 static int emit_triangle(void *user, size_t a, size_t b, size_t c) {
   polygon_emit *pe = user;
-  glint_vec3 nrm[3] = {corner(pe, a, 1), corner(pe, b, 1), corner(pe, c, 1)};
-  return (int)glint_scene_push_triangle(pe->r->scene, corner(pe, a, 0),
-                                        corner(pe, b, 0), corner(pe, c, 0),
+  const glint_vec3 *v = pe->r->verts, *n = pe->r->norms;
+  glint_vec3 nrm[3] = {n[a], n[b], n[c]};
+  return (int)glint_scene_push_triangle(pe->r->scene, v[a], v[b], v[c],
                                         pe->patch ? nrm : NULL, pe->e);
 }
 
@@ -262,16 +255,8 @@ static glint_status read_polygon(nff_reader *r, int patch, glint_error *e) {
   if ((st = glint_scene_begin_object(r->scene, GLINT_SHAPE_TRIANGLE,
                                      r->material, e)))
     return at_line(r, line, st, e);
-  polygon_emit pe = {r, patch, {0, 0, 0}, {0, 0, 0}, e};
-  if (patch) { /* the centroid's normal: the vertices' average */
-    for (long i = 0; i < n; i++) {
-      pe.centroid_normal.x += r->norms[i].x;
-      pe.centroid_normal.y += r->norms[i].y;
-      pe.centroid_normal.z += r->norms[i].z;
-    }
-  }
-  int res = glint_triangulate(r->verts, (size_t)n, &pe.centroid,
-                              emit_triangle, &pe);
+  polygon_emit pe = {r, patch, e};
+  int res = glint_triangulate(r->verts, (size_t)n, emit_triangle, &pe);
   if (res == -1)
     return glint_fail(e, GLINT_E_MEMORY, "%s:%d: out of memory", r->t.path,
                       line);

@@ -1,11 +1,16 @@
 /* Triangulating planar polygons (NFF p and pp, OBJ faces). NFF promises
  * convex polygons, but the SPD's own gears have 144-vertex faces with teeth:
- * a fan from the first vertex would cover the gaps between the teeth, and
- * its long slivers overlap in every BVH node. So:
+ * a fan from the first vertex would cover the gaps between the teeth. And
+ * the shape of the triangles matters to the BVH: long slivers all crossing
+ * the middle of a face overlap in every node a ray there visits. So:
  *   - triangles as they are, convex quadrilaterals as a fan;
- *   - a polygon star-shaped around its centroid: a fan from the centroid
- *     (short wedges, and exact);
- *   - anything else: ear clipping (Meisters 1975), in the polygon's plane.
+ *   - a convex polygon: recursive bisection (cut by the diagonal from its
+ *     first vertex to the middle one, then each half the same way), which
+ *     leaves small triangles along the rim and only logarithmically many
+ *     large ones inside;
+ *   - anything else: ear clipping (Meisters 1975) in the polygon's plane
+ *     until what remains is convex (for a gear: its teeth come off as small
+ *     ears), then bisection.
  * Triangles keep the polygon's orientation (counter-clockwise = front). */
 #include "scene/polygon.h"
 
@@ -26,10 +31,10 @@ static double dot(glint_vec3 a, glint_vec3 b) {
 
 /* Newell's method: the polygon's area-weighted normal, robust for any
  * planar (even concave) polygon. */
-static glint_vec3 newell(const glint_vec3 *v, size_t n) {
+static glint_vec3 newell(const glint_vec3 *v, const size_t *idx, size_t n) {
   glint_vec3 nrm = {0, 0, 0};
   for (size_t i = 0; i < n; i++) {
-    glint_vec3 a = v[i], b = v[(i + 1) % n];
+    glint_vec3 a = v[idx[i]], b = v[idx[(i + 1) % n]];
     nrm.x += (a.y - b.y) * (a.z + b.z);
     nrm.y += (a.z - b.z) * (a.x + b.x);
     nrm.z += (a.x - b.x) * (a.y + b.y);
@@ -42,6 +47,14 @@ static int turns_left(glint_vec3 a, glint_vec3 b, glint_vec3 c,
   return dot(cross(sub(b, a), sub(c, b)), nrm) > 0;
 }
 
+static int is_convex(const glint_vec3 *v, const size_t *idx, size_t n,
+                     glint_vec3 nrm) {
+  for (size_t i = 0; i < n; i++)
+    if (!turns_left(v[idx[i]], v[idx[(i + 1) % n]], v[idx[(i + 2) % n]], nrm))
+      return 0;
+  return 1;
+}
+
 /* p strictly inside triangle abc (all seen along nrm). */
 static int inside(glint_vec3 p, glint_vec3 a, glint_vec3 b, glint_vec3 c,
                   glint_vec3 nrm) {
@@ -50,74 +63,69 @@ static int inside(glint_vec3 p, glint_vec3 a, glint_vec3 b, glint_vec3 c,
          dot(cross(sub(a, c), sub(p, c)), nrm) > 0;
 }
 
-int glint_triangulate(const glint_vec3 *v, size_t n, glint_vec3 *centroid,
-                      glint_polygon_emit emit, void *user) {
+/* A convex polygon idx[0..n): cut by the diagonal idx[0]-idx[n/2] and each
+ * half the same way (depth log n). */
+static int bisect(const size_t *idx, size_t n, size_t *tmp,
+                  glint_polygon_emit emit, void *user) {
+  if (n == 3)
+    return emit(user, idx[0], idx[1], idx[2]);
+  size_t k = n / 2;
+  int r = bisect(idx, k + 1, tmp, emit, user); /* idx[0..k] */
+  if (r)
+    return r;
+  /* idx[k..n) and idx[0] */
+  memcpy(tmp, idx + k, (n - k) * sizeof *tmp);
+  tmp[n - k] = idx[0];
+  return bisect(tmp, n - k + 1, tmp + n - k + 1, emit, user);
+}
+
+int glint_triangulate(const glint_vec3 *v, size_t n, glint_polygon_emit emit,
+                      void *user) {
   if (n < 3)
     return -1;
   if (n == 3)
     return emit(user, 0, 1, 2);
-  glint_vec3 nrm = newell(v, n);
-  int convex = 1;
-  for (size_t i = 0; i < n && convex; i++)
-    convex = turns_left(v[i], v[(i + 1) % n], v[(i + 2) % n], nrm);
-  if (n == 4 && convex)
-    return emit(user, 0, 1, 2) || emit(user, 0, 2, 3);
-
-  /* Star-shaped around the centroid? Then wedges from it. */
-  glint_vec3 c = {0, 0, 0};
-  for (size_t i = 0; i < n; i++)
-    c.x += v[i].x, c.y += v[i].y, c.z += v[i].z;
-  c.x /= (double)n, c.y /= (double)n, c.z /= (double)n;
-  *centroid = c;
-  int star = 1;
-  for (size_t i = 0; i < n && star; i++)
-    star = dot(cross(sub(v[i], c), sub(v[(i + 1) % n], c)), nrm) > 0;
-  if (star) {
-    for (size_t i = 0; i < n; i++) {
-      int r = emit(user, GLINT_POLYGON_CENTROID, i, (i + 1) % n);
-      if (r)
-        return r;
-    }
-    return 0;
-  }
-
-  /* Ear clipping: a vertex whose corner turns the polygon's way and whose
-   * triangle holds no other vertex is cut off, until three remain. */
-  size_t *idx = malloc(n * sizeof *idx);
+  /* idx: the polygon's remaining vertices; tmp: bisection's scratch (each
+   * level needs at most n/2 + 2 more, 2n in all). */
+  size_t *idx = malloc(3 * n * sizeof *idx + 2 * sizeof *idx);
   if (!idx)
     return -1;
+  size_t *tmp = idx + n;
   for (size_t i = 0; i < n; i++)
     idx[i] = i;
+  glint_vec3 nrm = newell(v, idx, n);
+  int r = 0;
   size_t m = n, guard = 0, i = 0;
-  while (m > 3) {
-    size_t a = idx[(i + m - 1) % m], b = idx[i % m], cc = idx[(i + 1) % m];
-    int ear = turns_left(v[a], v[b], v[cc], nrm);
+  while (!r) {
+    if (m == 3 || is_convex(v, idx, m, nrm)) {
+      r = m == 4 ? emit(user, idx[0], idx[1], idx[2]) ||
+                       emit(user, idx[0], idx[2], idx[3])
+                 : bisect(idx, m, tmp, emit, user);
+      break;
+    }
+    /* Ear clipping: a vertex whose corner turns the polygon's way and whose
+     * triangle holds no other vertex is cut off. */
+    size_t a = idx[(i + m - 1) % m], b = idx[i % m], c = idx[(i + 1) % m];
+    int ear = turns_left(v[a], v[b], v[c], nrm);
     for (size_t k = 0; ear && k < m; k++) {
       size_t p = idx[k];
-      if (p != a && p != b && p != cc && inside(v[p], v[a], v[b], v[cc], nrm))
+      if (p != a && p != b && p != c && inside(v[p], v[a], v[b], v[c], nrm))
         ear = 0;
     }
     if (ear) {
-      int r = emit(user, a, b, cc);
-      if (r) {
-        free(idx);
-        return r;
-      }
+      r = emit(user, a, b, c);
       memmove(idx + i % m, idx + i % m + 1, (m - i % m - 1) * sizeof *idx);
       m--;
       guard = 0;
     } else {
       i++;
       if (++guard > m) { /* degenerate (collinear or self-crossing): fan */
-        int r = 0;
         for (size_t k = 1; k + 1 < m && !r; k++)
           r = emit(user, idx[0], idx[k], idx[k + 1]);
-        free(idx);
-        return r;
+        break;
       }
     }
   }
-  int r = emit(user, idx[0], idx[1], idx[2]);
   free(idx);
   return r;
 }

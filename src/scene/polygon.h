@@ -6,17 +6,14 @@
 
 #include <stddef.h>
 
-/* Stands for the polygon's centroid in an emitted triangle. */
-#define GLINT_POLYGON_CENTROID ((size_t)-1)
-
-/* Called once per triangle with three vertex indices (or
- * GLINT_POLYGON_CENTROID); a non-zero return stops and is returned. */
+/* Called once per triangle with three vertex indices; a non-zero return
+ * stops and is returned. */
 typedef int (*glint_polygon_emit)(void *user, size_t a, size_t b, size_t c);
 
 /* Triangulates the n >= 3 vertices v (in order around the polygon), keeping
- * their orientation; *centroid is set when a triangle uses it. Returns 0, an
- * emit's non-zero result, or -1 (n < 3, out of memory). */
-int glint_triangulate(const glint_vec3 *v, size_t n, glint_vec3 *centroid,
-                      glint_polygon_emit emit, void *user);
+ * their orientation. Returns 0, an emit's non-zero result, or -1 (n < 3,
+ * out of memory). */
+int glint_triangulate(const glint_vec3 *v, size_t n, glint_polygon_emit emit,
+                      void *user);
 
 #endif
