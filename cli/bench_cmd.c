@@ -1,6 +1,8 @@
-/* glint bench: renders scenes x depths x backends and prints tables shaped
- * like the thesis's A.1–A.3 (seconds per depth and backend), plus Mrays/s.
- * A benchmark, not a test: nothing here passes or fails on speed. */
+/* glint bench: renders scenes x depths x backends (x thread counts) and
+ * prints tables shaped like the thesis's A.1–A.3 (seconds per depth and
+ * backend), with Mrays/s, speed-ups, SIMD lane utilisation, the stream
+ * backends' stages and, for several thread counts, the scaling. A benchmark,
+ * not a test: nothing here passes or fails on speed. */
 #include "args.h"
 #include "bench.h"
 #include "cli.h"
@@ -22,7 +24,8 @@ static void bench_usage(FILE *f) {
       "\n"
       "Renders every scene at every depth with every backend, --runs times,\n"
       "and prints the median seconds per depth and backend (the shape of the\n"
-      "thesis's tables A.1-A.3), rays per second and SIMD lane utilisation.\n"
+      "thesis's tables A.1-A.3), rays per second, speed-ups over\n"
+      "scalar-float, SIMD lane utilisation and the stream backends' stages.\n"
       "Runs are interleaved so that all columns come from the same run.\n"
       "\n"
       "Options:\n"
@@ -34,28 +37,24 @@ static void bench_usage(FILE *f) {
       "  -W, --width N      (default: 640)\n"
       "  -H, --height N     (default: 480)\n"
       "  -s, --spp N        samples per pixel (default: 5)\n"
-      "  -t, --threads N    worker threads (default: 1)\n"
+      "  -t, --threads LIST worker threads, e.g. 1 or 1,2 for a scaling\n"
+      "                     table; 0 = all cores (default: 1)\n"
       "      --math NAME    minimax, fast, taylor, exact (default: minimax)\n"
       "      --accel NAME   bvh or none (default: bvh)\n"
       "      --csv FILE     also write every measurement as CSV\n"
+      "      --plot DIR     also plot seconds against depth per scene into\n"
+      "                     DIR/SCENE.png (needs gnuplot)\n"
       "      --spd DIR      instead: the SPD scenes in DIR (balls-s4, gears-s4,\n"
       "                     mount-s6, rings-s4, teapot-s4, tetra-s6, tree-s4)\n"
       "                     at 512x512, 1 spp, depth 5, against Tachyon when\n"
       "                     it is installed\n"
       "      --meshes DIR   instead: primary-ray throughput on DIR/bunny.obj\n"
-      "                     and DIR/dragon_vrip_res2.ply.gz (1024x1024), with\n"
-      "                     Embree 3 on the same rays when glint-embree-bench\n"
-      "                     was built\n"
-      "      --plot DIR     also plot seconds against depth per scene into\n"
-      "                     DIR/SCENE.png (needs gnuplot)\n"
+      "                     and DIR/dragon_vrip_res2.ply.gz (1024x1024, one\n"
+      "                     thread), with Embree 3 on the same rays when\n"
+      "                     glint-embree-bench was built\n"
       "  -h, --help         this help\n",
       f);
 }
-
-typedef struct cell {
-  double *seconds;   /* one per run */
-  glint_stats stats; /* of the last run: counts are identical run to run */
-} cell;
 
 static int cmp_double(const void *a, const void *b) {
   double x = *(const double *)a, y = *(const double *)b;
@@ -69,41 +68,49 @@ double bench_median(const double *v, int n) {
   return n % 2 ? tmp[n / 2] : 0.5 * (tmp[n / 2 - 1] + tmp[n / 2]);
 }
 
-static uint64_t total_rays(const glint_stats *s) {
+uint64_t bench_rays(const glint_stats *s) {
   return s->primary_rays + s->secondary_rays + s->shadow_rays;
 }
 
-/* "1-15" or "1,5,10,15" (or a mix). */
-static int parse_depths(char *text, int *depths) {
+double bench_lane_use(const glint_stats *s, glint_backend b) {
+  int w = glint_backend_width(b);
+  return w > 1 && s->packet_tests
+             ? (double)s->active_lanes / ((double)s->packet_tests * w)
+             : 1.0;
+}
+
+/* "1-15" or "1,5,10,15" (or a mix), each in [lo, hi]. */
+static int parse_range_list(const char *option, char *text, long lo, long hi,
+                            int *out) {
   char *items[MAX_ITEMS];
   int n = split_list(text, items, MAX_ITEMS), count = 0;
   if (n <= 0) {
-    cli_error("--depths: give a list such as 1-15 or 1,5,10,15");
+    cli_error("%s: give a list such as 1-15 or 1,5,10,15", option);
     return -1;
   }
   for (int i = 0; i < n; i++) {
-    int lo, hi;
-    char *dash = strchr(items[i], '-');
+    int a, b;
+    char *dash = strchr(items[i] + 1, '-'); /* not a leading minus sign */
     if (dash) {
       *dash = '\0';
-      if (parse_int("--depths", items[i], 1, GLINT_MAX_DEPTH, &lo) ||
-          parse_int("--depths", dash + 1, 1, GLINT_MAX_DEPTH, &hi))
+      if (parse_int(option, items[i], lo, hi, &a) ||
+          parse_int(option, dash + 1, lo, hi, &b))
         return -1;
     } else {
-      if (parse_int("--depths", items[i], 1, GLINT_MAX_DEPTH, &lo))
+      if (parse_int(option, items[i], lo, hi, &a))
         return -1;
-      hi = lo;
+      b = a;
     }
-    for (int d = lo; d <= hi; d++) {
+    for (int d = a; d <= b; d++) {
       if (count == MAX_ITEMS) {
-        cli_error("--depths: at most %d depths", MAX_ITEMS);
+        cli_error("%s: at most %d values", option, MAX_ITEMS);
         return -1;
       }
-      depths[count++] = d;
+      out[count++] = d;
     }
   }
   if (count == 0) {
-    cli_error("--depths: the list is empty");
+    cli_error("%s: the list is empty", option);
     return -1;
   }
   return count;
@@ -112,7 +119,7 @@ static int parse_depths(char *text, int *depths) {
 /* --plot needs gnuplot and a folder to write into; checked before the
  * (long) measurements rather than after. */
 static int check_plot_dir(const char *dir) {
-  if (system("command -v gnuplot >/dev/null 2>&1") != 0) {
+  if (!bench_have_program("gnuplot")) {
     cli_error("--plot needs gnuplot (Debian package gnuplot-nox)");
     return -1;
   }
@@ -128,25 +135,25 @@ static int check_plot_dir(const char *dir) {
   return 0;
 }
 
-/* Seconds against depth, one line per backend, like the thesis's figures
+/* Seconds against depth, one line per column, like the thesis's figures
  * 5.4-5.6: DIR/SCENE.dat (the data), DIR/SCENE.gp (the script) and
  * DIR/SCENE.png (the plot). */
 static int plot_scene(const char *dir, const char *scene, const int *depths,
-                      int ndepths, const glint_backend *backends,
-                      int nbackends, const double *medians) {
+                      int ndepths, const bench_column *cols, int ncols,
+                      const double *medians, const glint_render_settings *rs) {
   char path[8192];
   snprintf(path, sizeof path, "%s/%s.dat", dir, scene);
   FILE *f = fopen(path, "w");
   if (!f)
     return -1;
   fprintf(f, "# depth");
-  for (int b = 0; b < nbackends; b++)
-    fprintf(f, " %s", glint_backend_name(backends[b]));
+  for (int c = 0; c < ncols; c++)
+    fprintf(f, " %s", cols[c].name);
   fprintf(f, "\n");
   for (int d = 0; d < ndepths; d++) {
     fprintf(f, "%d", depths[d]);
-    for (int b = 0; b < nbackends; b++)
-      fprintf(f, " %.6f", medians[d * nbackends + b]);
+    for (int c = 0; c < ncols; c++)
+      fprintf(f, " %.6f", medians[d * ncols + c]);
     fprintf(f, "\n");
   }
   if (fclose(f) != 0)
@@ -158,14 +165,14 @@ static int plot_scene(const char *dir, const char *scene, const int *depths,
           "set terminal pngcairo size 800,500 font 'sans,11'\n"
           "set output '%s/%s.png'\n"
           "set title 'Scene \"%s\": render time against recursion depth "
-          "(640x480, 5 spp, one thread)'\n"
+          "(%dx%d, %d spp)'\n"
           "set xlabel 'recursion depth'\nset ylabel 'seconds'\n"
           "set key top left\nset grid\nset xtics 1\n"
           "plot ",
-          dir, scene, scene);
-  for (int b = 0; b < nbackends; b++)
+          dir, scene, scene, rs->width, rs->height, rs->spp);
+  for (int c = 0; c < ncols; c++)
     fprintf(f, "%s'%s/%s.dat' using 1:%d with linespoints lw 2 title '%s'",
-            b ? ", " : "", dir, scene, b + 2, glint_backend_name(backends[b]));
+            c ? ", " : "", dir, scene, c + 2, cols[c].name);
   fprintf(f, "\n");
   if (fclose(f) != 0)
     return -1;
@@ -174,10 +181,20 @@ static int plot_scene(const char *dir, const char *scene, const int *depths,
   return system(cmd) == 0 ? 0 : -1;
 }
 
+static void print_header(const char *title, const char *scene,
+                         const bench_column *cols, int ncols, int packets) {
+  printf("Scene \"%s\": %s\n%5s", scene, title, "depth");
+  for (int c = 0; c < ncols; c++)
+    if (!packets || glint_backend_width(cols[c].backend) > 1)
+      printf(" %14s", cols[c].name);
+  printf("\n");
+}
+
 int cmd_bench(int argc, char **argv) {
   char default_scenes[] = "whitted,giza,billiard", default_depths[] = "1-15";
+  char default_threads[] = "1";
   char *scene_list = default_scenes, *depth_list = default_depths;
-  char *backend_list = NULL;
+  char *backend_list = NULL, *thread_list = default_threads;
   const char *csv_path = NULL, *plot_dir = NULL, *spd_dir = NULL,
              *mesh_dir = NULL, *v;
   int runs = 3, width_given = 0, height_given = 0;
@@ -185,7 +202,6 @@ int cmd_bench(int argc, char **argv) {
   glint_render_settings_default(&rs);
   rs.width = 640;
   rs.height = 480;
-  rs.threads = 1;
   glint_error err;
   arg_cursor c = {argc, argv, 0, NULL};
   while (c.i < argc) {
@@ -205,7 +221,7 @@ int cmd_bench(int argc, char **argv) {
     } else if (arg_is(&c, NULL, "--runs")) {
       if (parse_int("--runs", arg_value(&c, "--runs"), 1, 255, &runs))
         return EXIT_USAGE;
-        } else if (arg_is(&c, "-W", "--width")) {
+    } else if (arg_is(&c, "-W", "--width")) {
       if (parse_int("--width", arg_value(&c, "--width"), 1,
                     GLINT_MAX_DIMENSION, &rs.width))
         return EXIT_USAGE;
@@ -216,11 +232,11 @@ int cmd_bench(int argc, char **argv) {
         return EXIT_USAGE;
       height_given = 1;
     } else if (arg_is(&c, "-s", "--spp")) {
-      if (parse_int("--spp", arg_value(&c, "--spp"), 1, GLINT_MAX_SPP, &rs.spp))
+      if (parse_int("--spp", arg_value(&c, "--spp"), 1, GLINT_MAX_SPP,
+                    &rs.spp))
         return EXIT_USAGE;
     } else if (arg_is(&c, "-t", "--threads")) {
-      if (parse_int("--threads", arg_value(&c, "--threads"), 0,
-                    GLINT_MAX_THREADS, &rs.threads))
+      if (!(thread_list = (char *)arg_value(&c, "--threads")))
         return EXIT_USAGE;
     } else if (arg_is(&c, NULL, "--math")) {
       if (!(v = arg_value(&c, "--math")))
@@ -239,14 +255,14 @@ int cmd_bench(int argc, char **argv) {
     } else if (arg_is(&c, NULL, "--csv")) {
       if (!(csv_path = arg_value(&c, "--csv")))
         return EXIT_USAGE;
-    } else if (arg_is(&c, NULL, "--meshes")) {
-      if (!(mesh_dir = arg_value(&c, "--meshes")))
+    } else if (arg_is(&c, NULL, "--plot")) {
+      if (!(plot_dir = arg_value(&c, "--plot")))
         return EXIT_USAGE;
     } else if (arg_is(&c, NULL, "--spd")) {
       if (!(spd_dir = arg_value(&c, "--spd")))
         return EXIT_USAGE;
-    } else if (arg_is(&c, NULL, "--plot")) {
-      if (!(plot_dir = arg_value(&c, "--plot")))
+    } else if (arg_is(&c, NULL, "--meshes")) {
+      if (!(mesh_dir = arg_value(&c, "--meshes")))
         return EXIT_USAGE;
     } else {
       cli_error("unknown option '%s' (see glint bench --help)", a);
@@ -254,9 +270,14 @@ int cmd_bench(int argc, char **argv) {
     }
   }
 
-  int depths[MAX_ITEMS];
-  int ndepths = parse_depths(depth_list, depths);
+  int depths[MAX_ITEMS], threads[MAX_ITEMS];
+  int ndepths = parse_range_list("--depths", depth_list, 1, GLINT_MAX_DEPTH,
+                                 depths);
   if (ndepths < 0)
+    return EXIT_USAGE;
+  int nthreads = parse_range_list("--threads", thread_list, 0,
+                                  GLINT_MAX_THREADS, threads);
+  if (nthreads < 0)
     return EXIT_USAGE;
   if (plot_dir && check_plot_dir(plot_dir))
     return EXIT_USAGE;
@@ -279,7 +300,7 @@ int cmd_bench(int argc, char **argv) {
       if (nbackends < GLINT_BACKEND_COUNT)
         backends[nbackends++] = glint_backend_resolve(b);
     }
-    if (nbackends == 0) {
+    if (nbackends <= 0) {
       cli_error("--backends: the list is empty");
       return EXIT_USAGE;
     }
@@ -290,224 +311,277 @@ int cmd_bench(int argc, char **argv) {
         backends[nbackends++] = (glint_backend)b;
   }
 
+  /* Columns: every backend at every thread count. */
+  bench_column cols[GLINT_BACKEND_COUNT * MAX_ITEMS];
+  int ncols = 0;
+  for (int t = 0; t < nthreads; t++)
+    for (int b = 0; b < nbackends && ncols < GLINT_BACKEND_COUNT * MAX_ITEMS;
+         b++) {
+      bench_column *col = &cols[ncols++];
+      col->backend = backends[b];
+      col->threads = threads[t];
+      if (nthreads > 1)
+        snprintf(col->name, sizeof col->name, "%s/%dt",
+                 glint_backend_name(backends[b]), threads[t]);
+      else
+        snprintf(col->name, sizeof col->name, "%s",
+                 glint_backend_name(backends[b]));
+    }
+
   if (mesh_dir) {
     glint_render_settings mr = rs;
     mr.width = width_given ? rs.width : 0;
     mr.height = height_given ? rs.height : 0;
     return bench_meshes(mesh_dir, &mr, backends, nbackends, runs);
   }
-  if (spd_dir) {
-    FILE *csv = NULL;
-    if (csv_path && !(csv = fopen(csv_path, "w"))) {
-      cli_error("%s: cannot write the CSV file", csv_path);
-      return EXIT_USAGE;
-    }
-    if (csv)
-      fprintf(csv, "scene,depth,backend,width,height,spp,threads,runs,"
-                   "median_s,min_s,max_s,rays,primary,secondary,shadow,"
-                   "mrays_per_s,lane_utilisation,sub_beams_per_beam\n");
-    int st = bench_spd(spd_dir, &rs, backends, nbackends, runs, csv);
-    if (csv && fclose(csv) != 0 && !st) {
-      cli_error("%s: writing the CSV file failed", csv_path);
-      st = EXIT_USAGE;
-    }
-    return st;
-  }
-
-  char *scene_names[MAX_ITEMS];
-  int nscenes = split_list(scene_list, scene_names, MAX_ITEMS);
-  if (nscenes <= 0) {
-    cli_error("--scenes: give at least one scene");
-    return EXIT_USAGE;
-  }
-  glint_scene *scenes[MAX_ITEMS];
-  char stems[MAX_ITEMS][64];
-  for (int i = 0; i < nscenes; i++) {
-    scenes[i] = cli_load_scene(scene_names[i], stems[i], sizeof stems[i]);
-    if (!scenes[i]) {
-      for (int k = 0; k < i; k++)
-        glint_scene_destroy(scenes[k]);
-      return EXIT_USAGE;
-    }
-  }
 
   FILE *csv = NULL;
   if (csv_path && !(csv = fopen(csv_path, "w"))) {
     cli_error("%s: cannot write the CSV file", csv_path);
-    for (int i = 0; i < nscenes; i++)
-      glint_scene_destroy(scenes[i]);
     return EXIT_USAGE;
   }
-
-  size_t ncells = (size_t)nscenes * ndepths * nbackends;
-  cell *cells = calloc(ncells, sizeof *cells);
-  double *times = calloc(ncells * (size_t)runs, sizeof *times);
-  if (!cells || !times) {
-    cli_error("out of memory");
-    return 1;
-  }
-  for (size_t i = 0; i < ncells; i++)
-    cells[i].seconds = times + i * (size_t)runs;
-#define CELL(s, d, b) cells[((size_t)(s)*ndepths + (d)) * nbackends + (b)]
-
-  int tty = isatty(STDERR_FILENO);
-  size_t done = 0, total = ncells * (size_t)runs;
-  int status = 0;
-  for (int r = 0; r < runs && !status; r++)
-    for (int s = 0; s < nscenes && !status; s++)
-      for (int d = 0; d < ndepths && !status; d++)
-        for (int b = 0; b < nbackends && !status; b++) {
-          rs.max_depth = depths[d];
-          rs.backend = backends[b];
-          glint_image *image;
-          glint_stats st;
-          if (tty) {
-            fprintf(stderr, "\r[%zu/%zu] %s depth %d %s\033[K", done + 1, total,
-                    stems[s], depths[d], glint_backend_name(backends[b]));
-            fflush(stderr);
-          }
-          if (glint_render(scenes[s], &rs, &image, &st, &err)) {
-            cli_error("%s: %s", stems[s], err.message);
-            status = EXIT_USAGE;
-            break;
-          }
-          glint_image_destroy(image);
-          CELL(s, d, b).seconds[r] = st.render_seconds;
-          CELL(s, d, b).stats = st;
-          done++;
-        }
-  if (tty)
-    fputs("\r\033[K", stderr);
-
-  if (!status) {
-    printf("glint %s bench: %dx%d, %d spp, %d thread%s, math %s, accel %s, "
-           "median of %d run%s\n",
-           glint_version(), rs.width, rs.height, rs.spp, rs.threads,
-           rs.threads == 1 ? "" : "s", glint_math_name(rs.math),
-           glint_accel_name(rs.accel), runs, runs == 1 ? "" : "s");
-    for (int s = 0; s < nscenes; s++) {
-      printf("\nScene \"%s\": seconds\n%5s", stems[s], "depth");
-      for (int b = 0; b < nbackends; b++)
-        printf(" %14s", glint_backend_name(backends[b]));
-      printf("\n");
-      for (int d = 0; d < ndepths; d++) {
-        printf("%5d", depths[d]);
-        for (int b = 0; b < nbackends; b++)
-          printf(" %14.4f", bench_median(CELL(s, d, b).seconds, runs));
-        printf("\n");
-      }
-      printf("Scene \"%s\": Mrays/s\n%5s", stems[s], "depth");
-      for (int b = 0; b < nbackends; b++)
-        printf(" %14s", glint_backend_name(backends[b]));
-      printf("\n");
-      for (int d = 0; d < ndepths; d++) {
-        printf("%5d", depths[d]);
-        for (int b = 0; b < nbackends; b++) {
-          cell *cl = &CELL(s, d, b);
-          double t = bench_median(cl->seconds, runs);
-          printf(" %14.2f",
-                 t > 0 ? (double)total_rays(&cl->stats) / t / 1e6 : 0.0);
-        }
-        printf("\n");
-      }
-      int ref = -1;
-      for (int b = 0; b < nbackends; b++)
-        if (backends[b] == GLINT_BACKEND_SCALAR_FLOAT)
-          ref = b;
-      if (ref >= 0 && nbackends > 1) {
-        printf("Scene \"%s\": speed-up over scalar-float\n%5s", stems[s],
-               "depth");
-        for (int b = 0; b < nbackends; b++)
-          printf(" %14s", glint_backend_name(backends[b]));
-        printf("\n");
-        for (int d = 0; d < ndepths; d++) {
-          printf("%5d", depths[d]);
-          double base = bench_median(CELL(s, d, ref).seconds, runs);
-          for (int b = 0; b < nbackends; b++) {
-            double t = bench_median(CELL(s, d, b).seconds, runs);
-            printf(" %13.2fx", t > 0 ? base / t : 0.0);
-          }
-          printf("\n");
-        }
-      }
-      int any_packet = 0;
-      for (int b = 0; b < nbackends; b++)
-        any_packet |= glint_backend_width(backends[b]) > 1;
-      if (any_packet) {
-        printf("Scene \"%s\": SIMD lane utilisation\n%5s", stems[s], "depth");
-        for (int b = 0; b < nbackends; b++)
-          if (glint_backend_width(backends[b]) > 1)
-            printf(" %14s", glint_backend_name(backends[b]));
-        printf("\n");
-        for (int d = 0; d < ndepths; d++) {
-          printf("%5d", depths[d]);
-          for (int b = 0; b < nbackends; b++) {
-            int w = glint_backend_width(backends[b]);
-            if (w <= 1)
-              continue;
-            const glint_stats *st = &CELL(s, d, b).stats;
-            printf(" %13.1f%%", st->packet_tests
-                                    ? 100.0 * (double)st->active_lanes /
-                                          ((double)st->packet_tests * w)
-                                    : 0.0);
-          }
-          printf("\n");
-        }
-      }
-    }
-    for (int sc = 0; plot_dir && sc < nscenes && !status; sc++) {
-      double med[MAX_ITEMS * GLINT_BACKEND_COUNT];
-      for (int d = 0; d < ndepths; d++)
-        for (int b = 0; b < nbackends; b++)
-          med[d * nbackends + b] = bench_median(CELL(sc, d, b).seconds, runs);
-      if (plot_scene(plot_dir, stems[sc], depths, ndepths, backends,
-                     nbackends, med)) {
-        cli_error("--plot: gnuplot could not draw %s/%s.png", plot_dir,
-                  stems[sc]);
-        status = EXIT_USAGE;
-      }
-    }
-    if (csv) {
-      fprintf(csv, "scene,depth,backend,width,height,spp,threads,runs,"
-                   "median_s,min_s,max_s,rays,primary,secondary,shadow,"
-                   "mrays_per_s,lane_utilisation,sub_beams_per_beam\n");
-      for (int s = 0; s < nscenes; s++)
-        for (int d = 0; d < ndepths; d++)
-          for (int b = 0; b < nbackends; b++) {
-            cell *cl = &CELL(s, d, b);
-            const glint_stats *st = &cl->stats;
-            double med = bench_median(cl->seconds, runs), lo = cl->seconds[0],
-                   hi = cl->seconds[0];
-            for (int r = 1; r < runs; r++) {
-              lo = fmin(lo, cl->seconds[r]);
-              hi = fmax(hi, cl->seconds[r]);
-            }
-            int w = glint_backend_width(backends[b]);
-            fprintf(
-                csv,
-                "%s,%d,%s,%d,%d,%d,%d,%d,%.6f,%.6f,%.6f,%llu,%llu,%llu,"
-                "%llu,%.3f,%.4f,%.3f\n",
-                stems[s], depths[d], glint_backend_name(backends[b]), st->width,
-                st->height, st->spp, st->threads, runs, med, lo, hi,
-                (unsigned long long)total_rays(st),
-                (unsigned long long)st->primary_rays,
-                (unsigned long long)st->secondary_rays,
-                (unsigned long long)st->shadow_rays,
-                med > 0 ? (double)total_rays(st) / med / 1e6 : 0.0,
-                w > 1 && st->packet_tests
-                    ? (double)st->active_lanes / ((double)st->packet_tests * w)
-                    : 1.0,
-                st->beams ? (double)st->sub_beams / (double)st->beams : 0.0);
-          }
+  if (csv)
+    fprintf(csv, "scene,depth,backend,width,height,spp,threads,runs,"
+                 "median_s,min_s,max_s,rays,primary,secondary,shadow,"
+                 "mrays_per_s,lane_utilisation,sub_beams_per_beam,"
+                 "generate_s,traverse_s,shade_s,compact_s,"
+                 "generation_lane_use\n");
+  int status;
+  if (spd_dir) {
+    status = bench_spd(spd_dir, &rs, cols, ncols, runs, csv);
+  } else {
+    char *scene_names[MAX_ITEMS];
+    int nscenes = split_list(scene_list, scene_names, MAX_ITEMS);
+    if (nscenes <= 0) {
+      cli_error("--scenes: give at least one scene");
+      status = EXIT_USAGE;
+    } else {
+      status = bench_scenes(scene_names, nscenes, depths, ndepths, &rs, cols,
+                            ncols, runs, csv, plot_dir);
     }
   }
   if (csv && fclose(csv) != 0 && !status) {
     cli_error("%s: writing the CSV file failed", csv_path);
     status = EXIT_USAGE;
   }
-  free(cells);
+  return status;
+}
+
+void bench_csv_row(FILE *csv, const char *scene, int depth,
+                   const bench_column *col, const glint_stats *st,
+                   const double *seconds, int runs) {
+  double med = bench_median(seconds, runs), lo = seconds[0], hi = seconds[0];
+  for (int r = 1; r < runs; r++) {
+    lo = fmin(lo, seconds[r]);
+    hi = fmax(hi, seconds[r]);
+  }
+  int w = glint_backend_width(col->backend);
+  fprintf(csv,
+          "%s,%d,%s,%d,%d,%d,%d,%d,%.6f,%.6f,%.6f,%llu,%llu,%llu,%llu,"
+          "%.3f,%.4f,%.3f,%.6f,%.6f,%.6f,%.6f,",
+          scene, depth, glint_backend_name(col->backend), st->width,
+          st->height, st->spp, st->threads, runs, med, lo, hi,
+          (unsigned long long)bench_rays(st),
+          (unsigned long long)st->primary_rays,
+          (unsigned long long)st->secondary_rays,
+          (unsigned long long)st->shadow_rays,
+          med > 0 ? (double)bench_rays(st) / med / 1e6 : 0.0,
+          bench_lane_use(st, col->backend),
+          st->beams ? (double)st->sub_beams / (double)st->beams : 0.0,
+          st->stage_seconds[0], st->stage_seconds[1], st->stage_seconds[2],
+          st->stage_seconds[3]);
+  for (int g = 0; g < st->generations && g < GLINT_STATS_MAX_GENERATIONS; g++)
+    fprintf(csv, "%s%.4f", g ? ";" : "",
+            st->gen_packets[g] ? (double)st->gen_active_lanes[g] /
+                                     ((double)st->gen_packets[g] * w)
+                               : 0.0);
+  fprintf(csv, "\n");
+}
+
+int bench_scenes(char **names, int nscenes, const int *depths, int ndepths,
+                 const glint_render_settings *base, const bench_column *cols,
+                 int ncols, int runs, FILE *csv, const char *plot_dir) {
+  glint_scene *scenes[MAX_ITEMS];
+  char stems[MAX_ITEMS][64];
+  for (int i = 0; i < nscenes; i++) {
+    scenes[i] = cli_load_scene(names[i], stems[i], sizeof stems[i]);
+    if (!scenes[i]) {
+      for (int k = 0; k < i; k++)
+        glint_scene_destroy(scenes[k]);
+      return EXIT_USAGE;
+    }
+  }
+  size_t ncells = (size_t)nscenes * ndepths * ncols;
+  glint_stats *stats = calloc(ncells, sizeof *stats);
+  double *times = calloc(ncells * (size_t)runs, sizeof *times);
+  if (!stats || !times) {
+    cli_error("out of memory");
+    free(stats);
+    free(times);
+    return 1;
+  }
+#define IDX(s, d, c) (((size_t)(s) * ndepths + (d)) * ncols + (c))
+#define SECONDS(s, d, c) (times + IDX(s, d, c) * runs)
+  glint_render_settings rs = *base;
+  int tty = isatty(STDERR_FILENO), status = 0;
+  size_t done = 0, total = ncells * (size_t)runs;
+  for (int r = 0; r < runs && !status; r++)
+    for (int s = 0; s < nscenes && !status; s++)
+      for (int d = 0; d < ndepths && !status; d++)
+        for (int c = 0; c < ncols && !status; c++) {
+          rs.max_depth = depths[d];
+          rs.backend = cols[c].backend;
+          rs.threads = cols[c].threads;
+          if (tty) {
+            fprintf(stderr, "\r[%zu/%zu] %s depth %d %s\033[K", ++done, total,
+                    stems[s], depths[d], cols[c].name);
+            fflush(stderr);
+          }
+          glint_image *image;
+          glint_error err;
+          if (glint_render(scenes[s], &rs, &image, &stats[IDX(s, d, c)],
+                           &err)) {
+            cli_error("%s: %s", stems[s], err.message);
+            status = EXIT_USAGE;
+            break;
+          }
+          glint_image_destroy(image);
+          SECONDS(s, d, c)[r] = stats[IDX(s, d, c)].render_seconds;
+        }
+  if (tty)
+    fputs("\r\033[K", stderr);
+
+  for (int s = 0; s < nscenes && !status; s++) {
+    if (s == 0)
+      printf("glint %s bench: %dx%d, %d spp, math %s, accel %s, median of %d "
+             "run%s\n",
+             glint_version(), rs.width, rs.height, rs.spp,
+             glint_math_name(rs.math), glint_accel_name(rs.accel), runs,
+             runs == 1 ? "" : "s");
+    printf("\n");
+    print_header("seconds", stems[s], cols, ncols, 0);
+    for (int d = 0; d < ndepths; d++) {
+      printf("%5d", depths[d]);
+      for (int c = 0; c < ncols; c++)
+        printf(" %14.4f", bench_median(SECONDS(s, d, c), runs));
+      printf("\n");
+    }
+    print_header("Mrays/s", stems[s], cols, ncols, 0);
+    for (int d = 0; d < ndepths; d++) {
+      printf("%5d", depths[d]);
+      for (int c = 0; c < ncols; c++) {
+        double t = bench_median(SECONDS(s, d, c), runs);
+        printf(" %14.2f",
+               t > 0 ? (double)bench_rays(&stats[IDX(s, d, c)]) / t / 1e6
+                     : 0.0);
+      }
+      printf("\n");
+    }
+    /* Speed-up over scalar-float at the same thread count. */
+    int any_ref = 0;
+    for (int c = 0; c < ncols; c++)
+      any_ref |= cols[c].backend == GLINT_BACKEND_SCALAR_FLOAT;
+    if (any_ref && ncols > 1) {
+      print_header("speed-up over scalar-float", stems[s], cols, ncols, 0);
+      for (int d = 0; d < ndepths; d++) {
+        printf("%5d", depths[d]);
+        for (int c = 0; c < ncols; c++) {
+          int ref = -1;
+          for (int k = 0; k < ncols; k++)
+            if (cols[k].backend == GLINT_BACKEND_SCALAR_FLOAT &&
+                cols[k].threads == cols[c].threads)
+              ref = k;
+          double t = bench_median(SECONDS(s, d, c), runs);
+          if (ref < 0 || t <= 0)
+            printf(" %14s", "-");
+          else
+            printf(" %13.2fx", bench_median(SECONDS(s, d, ref), runs) / t);
+        }
+        printf("\n");
+      }
+    }
+    /* Thread scaling: the first thread count against each other one. */
+    if (ncols > 1 && cols[ncols - 1].threads != cols[0].threads) {
+      print_header("thread scaling (time at the first thread count / time)",
+                   stems[s], cols, ncols, 0);
+      for (int d = 0; d < ndepths; d++) {
+        printf("%5d", depths[d]);
+        for (int c = 0; c < ncols; c++) {
+          int base_c = -1;
+          for (int k = 0; k < ncols && base_c < 0; k++)
+            if (cols[k].backend == cols[c].backend)
+              base_c = k;
+          double t = bench_median(SECONDS(s, d, c), runs);
+          printf(" %13.2fx", t > 0 ? bench_median(SECONDS(s, d, base_c), runs) / t
+                                   : 0.0);
+        }
+        printf("\n");
+      }
+    }
+    int any_packet = 0;
+    for (int c = 0; c < ncols; c++)
+      any_packet |= glint_backend_width(cols[c].backend) > 1;
+    if (any_packet) {
+      print_header("SIMD lane utilisation", stems[s], cols, ncols, 1);
+      for (int d = 0; d < ndepths; d++) {
+        printf("%5d", depths[d]);
+        for (int c = 0; c < ncols; c++)
+          if (glint_backend_width(cols[c].backend) > 1)
+            printf(" %13.1f%%", 100.0 * bench_lane_use(&stats[IDX(s, d, c)],
+                                                       cols[c].backend));
+        printf("\n");
+      }
+    }
+    /* Stream backends: where the time goes, and how full each generation's
+     * packets are (issue 5). */
+    for (int c = 0; c < ncols; c++) {
+      if (cols[c].backend < GLINT_BACKEND_STREAM_SSE)
+        continue;
+      int w = glint_backend_width(cols[c].backend);
+      printf("Scene \"%s\", %s: seconds per stage (summed over threads) and "
+             "lane use per generation\n%5s %9s %9s %9s %9s   generations 0, "
+             "1, 2, ...\n",
+             stems[s], cols[c].name, "depth", "generate", "traverse", "shade",
+             "compact");
+      for (int d = 0; d < ndepths; d++) {
+        const glint_stats *st = &stats[IDX(s, d, c)];
+        printf("%5d %9.4f %9.4f %9.4f %9.4f  ", depths[d], st->stage_seconds[0],
+               st->stage_seconds[1], st->stage_seconds[2],
+               st->stage_seconds[3]);
+        for (int g = 0; g < st->generations && g < GLINT_STATS_MAX_GENERATIONS;
+             g++)
+          printf(" %3.0f%%", st->gen_packets[g]
+                                 ? 100.0 * (double)st->gen_active_lanes[g] /
+                                       ((double)st->gen_packets[g] * w)
+                                 : 0.0);
+        printf("\n");
+      }
+    }
+  }
+  double *med = plot_dir ? malloc(sizeof *med * (size_t)(ndepths * ncols))
+                         : NULL;
+  for (int s = 0; med && s < nscenes && !status; s++) {
+    for (int d = 0; d < ndepths; d++)
+      for (int c = 0; c < ncols; c++)
+        med[d * ncols + c] = bench_median(SECONDS(s, d, c), runs);
+    if (plot_scene(plot_dir, stems[s], depths, ndepths, cols, ncols, med,
+                   &rs)) {
+      cli_error("--plot: gnuplot could not draw %s/%s.png", plot_dir,
+                stems[s]);
+      status = EXIT_USAGE;
+    }
+  }
+  free(med);
+  for (int s = 0; csv && s < nscenes && !status; s++)
+    for (int d = 0; d < ndepths; d++)
+      for (int c = 0; c < ncols; c++)
+        bench_csv_row(csv, stems[s], depths[d], &cols[c], &stats[IDX(s, d, c)],
+                      SECONDS(s, d, c), runs);
+  free(stats);
   free(times);
   for (int i = 0; i < nscenes; i++)
     glint_scene_destroy(scenes[i]);
   return status;
+#undef IDX
+#undef SECONDS
 }

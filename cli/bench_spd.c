@@ -82,8 +82,7 @@ static double tachyon_seconds(const char *file, int threads, const char *out) {
 }
 
 int bench_spd(const char *dir, const glint_render_settings *base,
-              const glint_backend *backends, int nbackends, int runs,
-              FILE *csv) {
+              const bench_column *cols, int ncols, int runs, FILE *csv) {
   glint_scene *scenes[SPD_COUNT];
   char paths[SPD_COUNT][4096];
   for (size_t i = 0; i < SPD_COUNT; i++) {
@@ -104,43 +103,53 @@ int bench_spd(const char *dir, const glint_render_settings *base,
   else
     tachyon = 0;
 
-  size_t cells = SPD_COUNT * (size_t)(nbackends + 1);
+  /* Tachyon once per distinct thread count, as an extra column each. */
+  int tthreads[16], ntt = 0;
+  for (int c = 0; c < ncols; c++) {
+    int t = cols[c].threads ? cols[c].threads : glint_cpu_count(), seen = 0;
+    for (int k = 0; k < ntt; k++)
+      seen |= tthreads[k] == t;
+    if (!seen && ntt < 16)
+      tthreads[ntt++] = t;
+  }
+  size_t cells = SPD_COUNT * (size_t)(ncols + ntt);
   double *times = calloc(cells * (size_t)runs, sizeof *times);
   glint_stats *stats = calloc(cells, sizeof *stats);
   if (!times || !stats) {
     cli_error("out of memory");
     return 1;
   }
-#define T(s, b, r) times[(((size_t)(s) * (nbackends + 1)) + (b)) * runs + (r)]
+#define T(s, b, r) times[(((size_t)(s) * (ncols + ntt)) + (b)) * runs + (r)]
+#define ST(s, b) stats[(size_t)(s) * (ncols + ntt) + (b)]
   glint_render_settings rs = *base;
   rs.width = rs.height = 0; /* the files' own */
   rs.spp = 1;
   rs.max_depth = 5;
-  int threads = rs.threads ? rs.threads : glint_cpu_count();
   int status = 0, tty = isatty(STDERR_FILENO);
   for (int r = 0; r < runs && !status; r++)
     for (size_t s = 0; s < SPD_COUNT && !status; s++) {
-      for (int b = 0; b < nbackends; b++) {
+      for (int b = 0; b < ncols; b++) {
         if (tty)
           fprintf(stderr, "\r[run %d/%d] %s %s\033[K", r + 1, runs,
-                  spd_scenes[s], glint_backend_name(backends[b]));
-        rs.backend = backends[b];
+                  spd_scenes[s], cols[b].name);
+        rs.backend = cols[b].backend;
+        rs.threads = cols[b].threads;
         glint_image *im;
         glint_error err;
-        if (glint_render(scenes[s], &rs, &im, &stats[s * (nbackends + 1) + b],
-                         &err)) {
+        if (glint_render(scenes[s], &rs, &im, &ST(s, b), &err)) {
           cli_error("%s: %s", spd_scenes[s], err.message);
           status = EXIT_USAGE;
           break;
         }
         glint_image_destroy(im);
-        T(s, b, r) = stats[s * (nbackends + 1) + b].render_seconds;
+        T(s, b, r) = ST(s, b).render_seconds;
       }
-      if (tachyon) {
+      for (int k = 0; tachyon && k < ntt; k++) {
         if (tty)
-          fprintf(stderr, "\r[run %d/%d] %s tachyon\033[K", r + 1, runs,
-                  spd_scenes[s]);
-        T(s, nbackends, r) = tachyon_seconds(paths[s], threads, out);
+          fprintf(stderr, "\r[run %d/%d] %s tachyon %d thread%s\033[K",
+                  r + 1, runs, spd_scenes[s], tthreads[k],
+                  tthreads[k] == 1 ? "" : "s");
+        T(s, ncols + k, r) = tachyon_seconds(paths[s], tthreads[k], out);
       }
     }
   if (tty)
@@ -150,48 +159,51 @@ int bench_spd(const char *dir, const glint_render_settings *base,
 
   if (!status) {
     printf("glint %s bench --spd: the files' own 512x512, 1 spp, depth 5, "
-           "%d thread%s, median of %d run%s (seconds)\n",
-           glint_version(), threads, threads == 1 ? "" : "s", runs,
-           runs == 1 ? "" : "s");
+           "median of %d run%s (seconds)\n",
+           glint_version(), runs, runs == 1 ? "" : "s");
     if (!tachyon)
       printf("(tachyon is not installed: Debian package tachyon-bin-nox)\n");
     printf("%-10s", "scene");
-    for (int b = 0; b < nbackends; b++)
-      printf(" %14s", glint_backend_name(backends[b]));
-    if (tachyon)
-      printf(" %10s %9s", "tachyon", "speed-up");
+    for (int b = 0; b < ncols; b++)
+      printf(" %14s", cols[b].name);
+    for (int k = 0; tachyon && k < ntt; k++) {
+      char name[32];
+      snprintf(name, sizeof name, "tachyon/%dt", tthreads[k]);
+      printf(" %12s %9s", name, "speed-up");
+    }
     printf(" %10s\n", "Mrays/s");
     for (size_t s = 0; s < SPD_COUNT; s++) {
       printf("%-10s", spd_scenes[s]);
       double best = INFINITY;
       int best_b = 0;
-      for (int b = 0; b < nbackends; b++) {
+      for (int b = 0; b < ncols; b++) {
         double m = bench_median(&T(s, b, 0), runs);
         printf(" %14.4f", m);
         if (m < best)
           best = m, best_b = b;
       }
-      double tm = tachyon ? bench_median(&T(s, nbackends, 0), runs) : 0;
-      if (tachyon) {
+      for (int k = 0; tachyon && k < ntt; k++) {
+        /* glint's best column at the same thread count */
+        double tm = bench_median(&T(s, ncols + k, 0), runs), g = INFINITY;
+        for (int b = 0; b < ncols; b++) {
+          int t = cols[b].threads ? cols[b].threads : glint_cpu_count();
+          if (t == tthreads[k])
+            g = fmin(g, bench_median(&T(s, b, 0), runs));
+        }
         if (tm > 0)
-          printf(" %10.4f %8.1fx", tm, tm / best);
+          printf(" %12.4f %8.1fx", tm, tm / g);
         else
-          printf(" %10s %9s", "failed", "-");
+          printf(" %12s %9s", "failed", "-");
       }
-      const glint_stats *st = &stats[s * (nbackends + 1) + best_b];
-      double rays = (double)(st->primary_rays + st->secondary_rays +
-                             st->shadow_rays);
+      double rays = (double)bench_rays(&ST(s, best_b));
       printf(" %10.2f\n", best > 0 ? rays / best / 1e6 : 0.0);
-      if (csv) {
-        for (int b = 0; b < nbackends; b++)
-          fprintf(csv, "%s,5,%s,512,512,1,%d,%d,%.6f,,,%.0f,,,,%.3f,,\n",
-                  spd_scenes[s], glint_backend_name(backends[b]), threads,
-                  runs, bench_median(&T(s, b, 0), runs), rays,
-                  rays / bench_median(&T(s, b, 0), runs) / 1e6);
-        if (tachyon && tm > 0)
-          fprintf(csv, "%s,5,tachyon,512,512,1,%d,%d,%.6f,,,,,,,,,\n",
-                  spd_scenes[s], threads, runs, tm);
-      }
+      for (int b = 0; csv && b < ncols; b++)
+        bench_csv_row(csv, spd_scenes[s], 5, &cols[b], &ST(s, b), &T(s, b, 0),
+                      runs);
+      for (int k = 0; csv && tachyon && k < ntt; k++)
+        fprintf(csv, "%s,5,tachyon,512,512,1,%d,%d,%.6f,,,,,,,,,,,,,,\n",
+                spd_scenes[s], tthreads[k], runs,
+                bench_median(&T(s, ncols + k, 0), runs));
     }
   }
   free(times);
