@@ -44,7 +44,8 @@ static void bench_usage(FILE *f) {
       "      --csv FILE     also write every measurement as CSV\n"
       "      --plot DIR     also plot seconds against depth per scene into\n"
       "                     DIR/SCENE.png (needs gnuplot)\n"
-      "      --spd DIR      instead: the SPD scenes in DIR (balls-s4, gears-s4,\n"
+      "      --spd DIR      instead: the SPD scenes in DIR (balls-s4, "
+      "gears-s4,\n"
       "                     mount-s6, rings-s4, teapot-s4, tetra-s6, tree-s4)\n"
       "                     at 512x512, 1 spp, depth 5, against Tachyon when\n"
       "                     it is installed\n"
@@ -222,8 +223,8 @@ int cmd_bench(int argc, char **argv) {
       if (parse_int("--runs", arg_value(&c, "--runs"), 1, 255, &runs))
         return EXIT_USAGE;
     } else if (arg_is(&c, "-W", "--width")) {
-      if (parse_int("--width", arg_value(&c, "--width"), 1,
-                    GLINT_MAX_DIMENSION, &rs.width))
+      if (parse_int("--width", arg_value(&c, "--width"), 1, GLINT_MAX_DIMENSION,
+                    &rs.width))
         return EXIT_USAGE;
       width_given = 1;
     } else if (arg_is(&c, "-H", "--height")) {
@@ -232,8 +233,7 @@ int cmd_bench(int argc, char **argv) {
         return EXIT_USAGE;
       height_given = 1;
     } else if (arg_is(&c, "-s", "--spp")) {
-      if (parse_int("--spp", arg_value(&c, "--spp"), 1, GLINT_MAX_SPP,
-                    &rs.spp))
+      if (parse_int("--spp", arg_value(&c, "--spp"), 1, GLINT_MAX_SPP, &rs.spp))
         return EXIT_USAGE;
     } else if (arg_is(&c, "-t", "--threads")) {
       if (!(thread_list = (char *)arg_value(&c, "--threads")))
@@ -271,12 +271,12 @@ int cmd_bench(int argc, char **argv) {
   }
 
   int depths[MAX_ITEMS], threads[MAX_ITEMS];
-  int ndepths = parse_range_list("--depths", depth_list, 1, GLINT_MAX_DEPTH,
-                                 depths);
+  int ndepths =
+      parse_range_list("--depths", depth_list, 1, GLINT_MAX_DEPTH, depths);
   if (ndepths < 0)
     return EXIT_USAGE;
-  int nthreads = parse_range_list("--threads", thread_list, 0,
-                                  GLINT_MAX_THREADS, threads);
+  int nthreads =
+      parse_range_list("--threads", thread_list, 0, GLINT_MAX_THREADS, threads);
   if (nthreads < 0)
     return EXIT_USAGE;
   if (plot_dir && check_plot_dir(plot_dir))
@@ -379,8 +379,8 @@ void bench_csv_row(FILE *csv, const char *scene, int depth,
   fprintf(csv,
           "%s,%d,%s,%d,%d,%d,%d,%d,%.6f,%.6f,%.6f,%llu,%llu,%llu,%llu,"
           "%.3f,%.4f,%.3f,%.6f,%.6f,%.6f,%.6f,",
-          scene, depth, glint_backend_name(col->backend), st->width,
-          st->height, st->spp, st->threads, runs, med, lo, hi,
+          scene, depth, glint_backend_name(col->backend), st->width, st->height,
+          st->spp, st->threads, runs, med, lo, hi,
           (unsigned long long)bench_rays(st),
           (unsigned long long)st->primary_rays,
           (unsigned long long)st->secondary_rays,
@@ -420,7 +420,7 @@ int bench_scenes(char **names, int nscenes, const int *depths, int ndepths,
     free(times);
     return 1;
   }
-#define IDX(s, d, c) (((size_t)(s) * ndepths + (d)) * ncols + (c))
+#define IDX(s, d, c) (((size_t)(s)*ndepths + (d)) * ncols + (c))
 #define SECONDS(s, d, c) (times + IDX(s, d, c) * runs)
   glint_render_settings rs = *base;
   int tty = isatty(STDERR_FILENO), status = 0;
@@ -512,8 +512,8 @@ int bench_scenes(char **names, int nscenes, const int *depths, int ndepths,
             if (cols[k].backend == cols[c].backend)
               base_c = k;
           double t = bench_median(SECONDS(s, d, c), runs);
-          printf(" %13.2fx", t > 0 ? bench_median(SECONDS(s, d, base_c), runs) / t
-                                   : 0.0);
+          printf(" %13.2fx",
+                 t > 0 ? bench_median(SECONDS(s, d, base_c), runs) / t : 0.0);
         }
         printf("\n");
       }
@@ -558,16 +558,15 @@ int bench_scenes(char **names, int nscenes, const int *depths, int ndepths,
       }
     }
   }
-  double *med = plot_dir ? malloc(sizeof *med * (size_t)(ndepths * ncols))
-                         : NULL;
+  double *med =
+      plot_dir ? malloc(sizeof *med * (size_t)(ndepths * ncols)) : NULL;
   for (int s = 0; med && s < nscenes && !status; s++) {
     for (int d = 0; d < ndepths; d++)
       for (int c = 0; c < ncols; c++)
         med[d * ncols + c] = bench_median(SECONDS(s, d, c), runs);
     if (plot_scene(plot_dir, stems[s], depths, ndepths, cols, ncols, med,
                    &rs)) {
-      cli_error("--plot: gnuplot could not draw %s/%s.png", plot_dir,
-                stems[s]);
+      cli_error("--plot: gnuplot could not draw %s/%s.png", plot_dir, stems[s]);
       status = EXIT_USAGE;
     }
   }

@@ -44,16 +44,16 @@ static int sibling(const char *name, char *out, size_t size) {
 static glint_camera frame(const glint_scene_info *info) {
   glint_vec3 lo = info->bounds_min, hi = info->bounds_max;
   glint_vec3 c = {(lo.x + hi.x) / 2, (lo.y + hi.y) / 2, (lo.z + hi.z) / 2};
-  double r = 0.5 * sqrt((hi.x - lo.x) * (hi.x - lo.x) +
-                        (hi.y - lo.y) * (hi.y - lo.y) +
-                        (hi.z - lo.z) * (hi.z - lo.z));
+  double r =
+      0.5 * sqrt((hi.x - lo.x) * (hi.x - lo.x) + (hi.y - lo.y) * (hi.y - lo.y) +
+                 (hi.z - lo.z) * (hi.z - lo.z));
   double dist = r / sin(FOV * 3.14159265358979323846 / 360.0);
   double d[3] = {0.35, 0.25, 1}, l = sqrt(0.35 * 0.35 + 0.25 * 0.25 + 1);
-  glint_camera cam = {{c.x + dist * d[0] / l, c.y + dist * d[1] / l,
-                       c.z + dist * d[2] / l},
-                      c,
-                      {0, 1, 0},
-                      FOV};
+  glint_camera cam = {
+      {c.x + dist * d[0] / l, c.y + dist * d[1] / l, c.z + dist * d[2] / l},
+      c,
+      {0, 1, 0},
+      FOV};
   return cam;
 }
 
@@ -61,8 +61,8 @@ int bench_meshes(const char *dir, const glint_render_settings *base,
                  const glint_backend *backends, int nbackends, int runs) {
   char embree[PATH_MAX];
   int have_embree = sibling("glint-embree-bench", embree, sizeof embree);
-  int w = base->width ? base->width : 1024, h = base->height ? base->height
-                                                             : 1024;
+  int w = base->width ? base->width : 1024,
+      h = base->height ? base->height : 1024;
   printf("glint %s bench --meshes: primary rays only (nearest hits, no "
          "shading), %dx%d, 1 ray per pixel, 1 thread, median of %d runs\n",
          glint_version(), w, h, runs);
@@ -131,17 +131,17 @@ int bench_meshes(const char *dir, const glint_render_settings *base,
       char args[5][128], out[4096];
       snprintf(args[0], sizeof args[0], "%.17g,%.17g,%.17g", cam.from.x,
                cam.from.y, cam.from.z);
-      snprintf(args[1], sizeof args[1], "%.17g,%.17g,%.17g", cam.at.x,
-               cam.at.y, cam.at.z);
-      snprintf(args[2], sizeof args[2], "%.17g,%.17g,%.17g", cam.up.x,
-               cam.up.y, cam.up.z);
+      snprintf(args[1], sizeof args[1], "%.17g,%.17g,%.17g", cam.at.x, cam.at.y,
+               cam.at.z);
+      snprintf(args[2], sizeof args[2], "%.17g,%.17g,%.17g", cam.up.x, cam.up.y,
+               cam.up.z);
       snprintf(args[3], sizeof args[3], "%d", w);
       snprintf(args[4], sizeof args[4], "%d", h);
       char fov[32], nruns[16];
       snprintf(fov, sizeof fov, "%.17g", cam.fov_x_degrees);
       snprintf(nruns, sizeof nruns, "%d", runs);
-      char *argv[] = {embree,  path,    args[0], args[1], args[2],
-                      fov,     args[3], args[4], nruns,   NULL};
+      char *argv[] = {embree, path,    args[0], args[1], args[2],
+                      fov,    args[3], args[4], nruns,   NULL};
       double e = 0;
       unsigned long long ehits = 0;
       const char *p;

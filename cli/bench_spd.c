@@ -22,8 +22,8 @@
 
 extern char **environ;
 
-static const char *const spd_scenes[] = {"balls-s4",  "gears-s4", "mount-s6",
-                                         "rings-s4",  "teapot-s4", "tetra-s6",
+static const char *const spd_scenes[] = {"balls-s4", "gears-s4",  "mount-s6",
+                                         "rings-s4", "teapot-s4", "tetra-s6",
                                          "tree-s4"};
 #define SPD_COUNT (sizeof spd_scenes / sizeof *spd_scenes)
 
@@ -69,8 +69,9 @@ int bench_run_capture(char *const argv[], char *buf, size_t size) {
 static double tachyon_seconds(const char *file, int threads, const char *out) {
   char nthreads[16];
   snprintf(nthreads, sizeof nthreads, "%d", threads);
-  char *argv[] = {"tachyon", (char *)file, "-numthreads", nthreads,
-                  "-raydepth", "5", "-shade_phong", "-o", (char *)out, NULL};
+  char *argv[] = {"tachyon",   (char *)file, "-numthreads",  nthreads,
+                  "-raydepth", "5",          "-shade_phong", "-o",
+                  (char *)out, NULL};
   static char buf[1 << 16];
   if (bench_run_capture(argv, buf, sizeof buf) != 0)
     return -1;
@@ -146,8 +147,8 @@ int bench_spd(const char *dir, const glint_render_settings *base,
       }
       for (int k = 0; tachyon && k < ntt; k++) {
         if (tty)
-          fprintf(stderr, "\r[run %d/%d] %s tachyon %d thread%s\033[K",
-                  r + 1, runs, spd_scenes[s], tthreads[k],
+          fprintf(stderr, "\r[run %d/%d] %s tachyon %d thread%s\033[K", r + 1,
+                  runs, spd_scenes[s], tthreads[k],
                   tthreads[k] == 1 ? "" : "s");
         T(s, ncols + k, r) = tachyon_seconds(paths[s], tthreads[k], out);
       }

@@ -9,11 +9,13 @@
 #include <string.h>
 
 int cmd_compare(int argc, char **argv) {
-  if (argc == 1 && (strcmp(argv[0], "--help") == 0 || strcmp(argv[0], "-h") == 0)) {
-    puts("Usage: glint compare A B\n\n"
-         "Prints the peak signal-to-noise ratio between two images (.png, .bmp\n"
-         "or .ppm) of the same size, in dB over all channels ('inf' when they\n"
-         "are identical).");
+  if (argc == 1 &&
+      (strcmp(argv[0], "--help") == 0 || strcmp(argv[0], "-h") == 0)) {
+    puts(
+        "Usage: glint compare A B\n\n"
+        "Prints the peak signal-to-noise ratio between two images (.png, .bmp\n"
+        "or .ppm) of the same size, in dB over all channels ('inf' when they\n"
+        "are identical).");
     return 0;
   }
   if (argc != 2) {

@@ -52,8 +52,15 @@ static void nearest_hits_agree(void **state) {
   for (size_t si = 0; si < 4; si++) {
     glint_scene *g;
     ASSERT_OK(glint_scene_builtin(scenes[si], &g, &e_));
-    glint_frame frame = {64, 48, 1, 5, GLINT_MATH_MINIMAX, 1, GLINT_ACCEL_NONE,
-                         glint_scene_epsilon(g), samples};
+    glint_frame frame = {64,
+                         48,
+                         1,
+                         5,
+                         GLINT_MATH_MINIMAX,
+                         1,
+                         GLINT_ACCEL_NONE,
+                         glint_scene_epsilon(g),
+                         samples};
     glint_stats st = {0};
     scene_r *ref;
     ASSERT_OK(glint_scalar_scene_prepare_float(g, &frame, &ref, &st, &e_));
@@ -90,13 +97,18 @@ static void nearest_hits_agree(void **state) {
           hit_r h;
           vec3 org = v3(o[i], o[w + i], o[2 * w + i]);
           vec3 dir = v3(d[i], d[w + i], d[2 * w + i]);
-          int found = glint_scalar_nearest_hit_float(ref, org, dir, REAL_MAX, &h);
+          int found =
+              glint_scalar_nearest_hit_float(ref, org, dir, REAL_MAX, &h);
           int ref_obj = -1;
           if (found) {
             hits++;
             switch (h.shape) {
-            case GLINT_SHAPE_SPHERE: ref_obj = (int)ref->spheres[h.prim].object; break;
-            case GLINT_SHAPE_PLANE: ref_obj = (int)ref->planes[h.prim].object; break;
+            case GLINT_SHAPE_SPHERE:
+              ref_obj = (int)ref->spheres[h.prim].object;
+              break;
+            case GLINT_SHAPE_PLANE:
+              ref_obj = (int)ref->planes[h.prim].object;
+              break;
             default: ref_obj = (int)ref->triangles[h.prim].object; break;
             }
           }
@@ -110,9 +122,8 @@ static void nearest_hits_agree(void **state) {
           }
           fail_msg("%s, %s, ray %d: packet object %d t %.9g, scalar object "
                    "%d t %.9g",
-                   scenes[si], glint_backend_name(packets[k].backend),
-                   base + i, obj[i], (double)t[i], ref_obj,
-                   found ? (double)h.t : -1.0);
+                   scenes[si], glint_backend_name(packets[k].backend), base + i,
+                   obj[i], (double)t[i], ref_obj, found ? (double)h.t : -1.0);
         }
       }
       printf("%-8s %-6s %d rays, %d hits, %d ties\n", scenes[si],
@@ -148,13 +159,14 @@ static void renders_match_scalar_float(void **state) {
   static const int depths[] = {1, 5, 15};
   for (size_t si = 0; si < 4; si++)
     for (int di = 0; di < 3; di++) {
-      glint_image *ref = render(scenes[si], GLINT_BACKEND_SCALAR_FLOAT,
-                                depths[di], 0, NULL);
+      glint_image *ref =
+          render(scenes[si], GLINT_BACKEND_SCALAR_FLOAT, depths[di], 0, NULL);
       for (size_t k = 0; k < sizeof packets / sizeof *packets; k++) {
         if (!glint_backend_supported(packets[k].backend))
           continue;
         glint_stats st;
-        glint_image *im = render(scenes[si], packets[k].backend, depths[di], 0, &st);
+        glint_image *im =
+            render(scenes[si], packets[k].backend, depths[di], 0, &st);
         double psnr = glint_image_psnr(ref, im);
         printf("%-8s depth %2d %-6s PSNR %6.2f dB, lane utilisation %5.1f%%, "
                "%.2f sub-beams per beam\n",
@@ -169,7 +181,8 @@ static void renders_match_scalar_float(void **state) {
                    MATCH_PSNR);
         assert_int_equal(st.backend, packets[k].backend);
         assert_true(st.beams > 0 && st.sub_beams > 0 && st.packet_tests > 0);
-        assert_true(st.active_lanes <= st.packet_tests * (uint64_t)packets[k].width);
+        assert_true(st.active_lanes <=
+                    st.packet_tests * (uint64_t)packets[k].width);
         glint_image_destroy(im);
       }
       glint_image_destroy(ref);

@@ -93,8 +93,8 @@ static void compare(const char *scene, const char *backend, int obj_a,
     (*ties)++;
     return;
   }
-  fail_msg("%s, %s: BVH object %d t %.9g, brute force object %d t %.9g",
-           scene, backend, obj_a, (double)t_a, obj_b, (double)t_b);
+  fail_msg("%s, %s: BVH object %d t %.9g, brute force object %d t %.9g", scene,
+           backend, obj_a, (double)t_a, obj_b, (double)t_b);
 }
 
 static void nearest_hits_equal_brute_force(void **state) {
@@ -104,8 +104,15 @@ static void nearest_hits_equal_brute_force(void **state) {
     glint_scene *g = load(scenes[si]);
     glint_scene_info info;
     glint_scene_get_info(g, &info);
-    glint_frame bvh = {64, 64, 1, 5, GLINT_MATH_MINIMAX, 1, GLINT_ACCEL_BVH,
-                       glint_scene_epsilon(g), samples};
+    glint_frame bvh = {64,
+                       64,
+                       1,
+                       5,
+                       GLINT_MATH_MINIMAX,
+                       1,
+                       GLINT_ACCEL_BVH,
+                       glint_scene_epsilon(g),
+                       samples};
     glint_frame none = bvh;
     none.accel = GLINT_ACCEL_NONE;
     glint_stats st = {0};
@@ -121,10 +128,10 @@ static void nearest_hits_equal_brute_force(void **state) {
       float o[3], d[3];
       make_ray(&info, &seed, o, d);
       hit_r ha, hb;
-      int fa = glint_scalar_nearest_hit_float(fb, v3(o[0], o[1], o[2]),
-                                              v3(d[0], d[1], d[2]), REAL_MAX, &ha);
-      int fbr = glint_scalar_nearest_hit_float(fn, v3(o[0], o[1], o[2]),
-                                               v3(d[0], d[1], d[2]), REAL_MAX, &hb);
+      int fa = glint_scalar_nearest_hit_float(
+          fb, v3(o[0], o[1], o[2]), v3(d[0], d[1], d[2]), REAL_MAX, &ha);
+      int fbr = glint_scalar_nearest_hit_float(
+          fn, v3(o[0], o[1], o[2]), v3(d[0], d[1], d[2]), REAL_MAX, &hb);
       compare(scenes[si], "scalar-float", fa ? object_of(fb, &ha) : -1, ha.t,
               fbr ? object_of(fn, &hb) : -1, hb.t, &ties);
     }

@@ -288,13 +288,16 @@ static void missing_instruction_sets(void **state) {
   char p[128];
   snprintf(p, sizeof p, "%s/a.png", dir);
   extra_env = "GLINT_ISA=sse";
-  EXPECT_USAGE_ERROR("backend 'avx512' is not supported on this CPU", "render", "-b", "avx512");
-  EXPECT_USAGE_ERROR("backend 'avx2' is not supported on this CPU", "render", "-b", "avx2");
+  EXPECT_USAGE_ERROR("backend 'avx512' is not supported on this CPU", "render",
+                     "-b", "avx512");
+  EXPECT_USAGE_ERROR("backend 'avx2' is not supported on this CPU", "render",
+                     "-b", "avx2");
   assert_int_equal(run("render", "-W", "8", "-H", "8", "-o", "a.png", NULL), 0);
   assert_non_null(strstr(out, ", sse,"));
   unlink(p);
   extra_env = "GLINT_ISA=none";
-  EXPECT_USAGE_ERROR("backend 'sse' is not supported on this CPU", "render", "-b", "sse");
+  EXPECT_USAGE_ERROR("backend 'sse' is not supported on this CPU", "render",
+                     "-b", "sse");
   assert_int_equal(run("render", "-W", "8", "-H", "8", "-o", "a.png", NULL), 0);
   assert_non_null(strstr(out, ", scalar-float,"));
   unlink(p);

@@ -47,8 +47,7 @@ static glint_image *render(glint_scene *s, glint_backend b, int spp) {
  * supported packet and stream backend with scalar-float. */
 static void check_golden(glint_scene *s, const char *name, int spp) {
   char path[512];
-  snprintf(path, sizeof path, "%s/tests/golden/%s.png", GLINT_SOURCE_DIR,
-           name);
+  snprintf(path, sizeof path, "%s/tests/golden/%s.png", GLINT_SOURCE_DIR, name);
   glint_image *im = render(s, GLINT_BACKEND_SCALAR_DOUBLE, spp);
   if (update) {
     ASSERT_OK(glint_image_write(im, path, &e_));
@@ -84,7 +83,7 @@ static void check_golden(glint_scene *s, const char *name, int spp) {
 
 static void spd_size_one(void **state) {
   (void)state;
-  static const char *files[] = {"balls", "gears", "mount", "rings",
+  static const char *files[] = {"balls",  "gears", "mount", "rings",
                                 "teapot", "tetra", "tree"};
   for (size_t i = 0; i < sizeof files / sizeof *files; i++) {
     char sub[64], name[64];

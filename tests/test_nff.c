@@ -71,8 +71,8 @@ static void every_entity(void **state) {
   assert_true(fabs(s->lights[0].color.x - 1 / sqrt(3.0)) < 1e-12);
   assert_true(fabs(s->lights[1].color.y - 0.25) < 1e-12);
   /* The field of view: NFF's angle spans the outer pixel centres. */
-  double want = 2 * atan(tan(45 * 3.14159265358979323846 / 360) * 64.0 / 63.0) * 180 /
-                3.14159265358979323846;
+  double want = 2 * atan(tan(45 * 3.14159265358979323846 / 360) * 64.0 / 63.0) *
+                180 / 3.14159265358979323846;
   assert_true(fabs(info.camera.fov_x_degrees - want) < 1e-9);
   /* Material mapping: kd = Kd, ks = kr = Ks, h = Shine, kt = T, ka = 0.1. */
   const glint_material *m = &s->materials[0];
@@ -97,7 +97,7 @@ static void every_entity(void **state) {
   glint_scene_destroy(s);
 }
 
-#define EXPECT_FAIL(name, text, want_status, want)                            \
+#define EXPECT_FAIL(name, text, want_status, want)                             \
   do {                                                                         \
     const char *p_ = write_file(name, text);                                   \
     glint_scene *s_ = NULL;                                                    \
@@ -106,39 +106,49 @@ static void every_entity(void **state) {
     assert_int_equal(st_, want_status);                                        \
     assert_null(s_);                                                           \
     if (!strstr(e_.message, want))                                             \
-      fail_msg("message '%s' lacks '%s'", e_.message, want);                  \
+      fail_msg("message '%s' lacks '%s'", e_.message, want);                   \
     if (!strstr(e_.message, name))                                             \
-      fail_msg("message '%s' lacks the file name", e_.message);               \
+      fail_msg("message '%s' lacks the file name", e_.message);                \
   } while (0)
 
 static void malformed_files(void **state) {
   (void)state;
-  EXPECT_FAIL("num.nff", VIEW "f 1 1 1 1 0 1 0 1\ns 0 0 zero 1\n",
-              GLINT_E_PARSE, "num.nff:9: expected a number for the sphere's centre, found 'zero'");
-  EXPECT_FAIL("nan.nff", VIEW "f 1 1 1 1 0 1 0 1\ns 0 0 0 nan\n",
-              GLINT_E_PARSE, "nan.nff:9: the sphere's radius is 'nan', not a finite number");
+  EXPECT_FAIL(
+      "num.nff", VIEW "f 1 1 1 1 0 1 0 1\ns 0 0 zero 1\n", GLINT_E_PARSE,
+      "num.nff:9: expected a number for the sphere's centre, found 'zero'");
+  EXPECT_FAIL("nan.nff", VIEW "f 1 1 1 1 0 1 0 1\ns 0 0 0 nan\n", GLINT_E_PARSE,
+              "nan.nff:9: the sphere's radius is 'nan', not a finite number");
   EXPECT_FAIL("inf.nff", VIEW "b 1 inf 0\n", GLINT_E_PARSE,
               "inf.nff:8: the background colour is 'inf', not a finite number");
   EXPECT_FAIL("unknown.nff", VIEW "torus 0 0 0 1 2\n", GLINT_E_PARSE,
               "unknown.nff:8: unknown entity 'torus'");
-  EXPECT_FAIL("trunc.nff", VIEW "f 1 1 1 1 0 1 0 1\np 4\n0 0 0\n1 0 0\n1 1 0\n",
-              GLINT_E_PARSE, "the file ends where a polygon vertex was expected (vertex 4 of 4");
+  EXPECT_FAIL(
+      "trunc.nff", VIEW "f 1 1 1 1 0 1 0 1\np 4\n0 0 0\n1 0 0\n1 1 0\n",
+      GLINT_E_PARSE,
+      "the file ends where a polygon vertex was expected (vertex 4 of 4");
   EXPECT_FAIL("count.nff", VIEW "f 1 1 1 1 0 1 0 1\np 2\n0 0 0\n1 0 0\n",
               GLINT_E_PARSE, "count.nff:9: the vertex count is 2, outside 3..");
   EXPECT_FAIL("nomat.nff", VIEW "s 0 0 0 1\n", GLINT_E_PARSE,
               "nomat.nff:8: 's' before any 'f' material line");
   EXPECT_FAIL("view.nff", "v\nfrom 0 0 10\nat 0 0 0\nangle 45\n", GLINT_E_PARSE,
               "view.nff:4: expected 'up', found 'angle'");
-  EXPECT_FAIL("res.nff", "v\nfrom 0 0 10\nat 0 0 0\nup 0 1 0\nangle 45\nhither 1\nresolution 0 10\n",
+  EXPECT_FAIL("res.nff",
+              "v\nfrom 0 0 10\nat 0 0 0\nup 0 1 0\nangle 45\nhither "
+              "1\nresolution 0 10\n",
               GLINT_E_PARSE, "res.nff:7: the horizontal resolution is 0");
   EXPECT_FAIL("field.nff", VIEW "f 1 1 1 1 0 1 0\n", GLINT_E_PARSE,
-              "the file ends where the material's the index of refraction was expected");
-  EXPECT_FAIL("radius.nff", VIEW "f 1 1 1 1 0 1 0 1\ns 0 0 0 0\n", GLINT_E_PARSE,
-              "radius.nff:9: sphere: radius 0 must be > 0");
+              "the file ends where the material's the index of refraction was "
+              "expected");
+  EXPECT_FAIL("radius.nff", VIEW "f 1 1 1 1 0 1 0 1\ns 0 0 0 0\n",
+              GLINT_E_PARSE, "radius.nff:9: sphere: radius 0 must be > 0");
   EXPECT_FAIL("cone.nff", VIEW "f 1 1 1 1 0 1 0 1\nc\n0 0 0 1\n0 1 0 -1\n",
-              GLINT_E_PARSE, "cone.nff:9: the cone's radii 1 and -1 have different signs");
-  EXPECT_FAIL("camera.nff", "v\nfrom 0 0 0\nat 0 0 0\nup 0 1 0\nangle 45\nhither 1\nresolution 8 8\n",
-              GLINT_E_PARSE, "camera.nff:1: camera: 'from' and 'at' are the same point");
+              GLINT_E_PARSE,
+              "cone.nff:9: the cone's radii 1 and -1 have different signs");
+  EXPECT_FAIL(
+      "camera.nff",
+      "v\nfrom 0 0 0\nat 0 0 0\nup 0 1 0\nangle 45\nhither 1\nresolution 8 8\n",
+      GLINT_E_PARSE,
+      "camera.nff:1: camera: 'from' and 'at' are the same point");
   EXPECT_FAIL("glass.nff", VIEW "f 1 1 1 1 0 1 0.5 0\n", GLINT_E_PARSE,
               "glass.nff:8: material ior = 0 must be a finite number > 0");
   /* A missing file, and a binary one. */
@@ -164,8 +174,8 @@ static void spd_counts(void **state) {
   static const struct {
     const char *name;
     size_t spheres, cones, polygons, lights;
-  } want[] = {{"balls-s4", 7381, 0, 1, 3},     {"gears-s4", 0, 0, 9345, 5},
-              {"mount-s6", 4, 0, 8192, 1},     {"rings-s4", 900, 900, 1, 3},
+  } want[] = {{"balls-s4", 7381, 0, 1, 3},      {"gears-s4", 0, 0, 9345, 5},
+              {"mount-s6", 4, 0, 8192, 1},      {"rings-s4", 900, 900, 1, 3},
               {"teapot-s4", 0, 0, 16 + 992, 2}, {"tetra-s6", 0, 0, 4096, 1},
               {"tree-s4", 31, 31, 1, 7}};
   for (size_t i = 0; i < sizeof want / sizeof *want; i++) {
@@ -177,8 +187,8 @@ static void spd_counts(void **state) {
     glint_scene_get_info(s, &info);
     assert_int_equal(info.spheres, want[i].spheres);
     assert_int_equal(info.cones, want[i].cones);
-    assert_int_equal(info.objects, want[i].spheres + want[i].cones +
-                                       want[i].polygons);
+    assert_int_equal(info.objects,
+                     want[i].spheres + want[i].cones + want[i].polygons);
     assert_int_equal(info.lights, want[i].lights);
     assert_int_equal(info.width, 512);
     assert_int_equal(info.height, 512);

@@ -52,7 +52,9 @@ static void expect_pixel(glint_scene *s, int depth, double r, double g,
           fail_msg("backend %s, math %s, channel %d: got %d, want %d (%.5f)",
                    glint_backend_name((glint_backend)be),
                    glint_math_name(rs.math), c, p[c], want[c],
-                   c == 0 ? r : c == 1 ? g : b);
+                   c == 0   ? r
+                   : c == 1 ? g
+                            : b);
       glint_image_destroy(im);
     }
   }

@@ -46,10 +46,11 @@ static void thesis_scenes_match(void **state) {
         if (!glint_backend_supported(streams[k]))
           continue;
         glint_stats st;
-        glint_image *im = render(s, streams[k], 320, 240, 5, depths[di], 0, &st);
+        glint_image *im =
+            render(s, streams[k], 320, 240, 5, depths[di], 0, &st);
         double psnr = glint_image_psnr(ref, im);
-        printf("%-8s depth %2d %-13s PSNR %6.2f dB\n", scenes[si],
-               depths[di], glint_backend_name(streams[k]), psnr);
+        printf("%-8s depth %2d %-13s PSNR %6.2f dB\n", scenes[si], depths[di],
+               glint_backend_name(streams[k]), psnr);
         if (psnr < MATCH_PSNR)
           fail_msg("%s depth %d %s: PSNR %.2f dB", scenes[si], depths[di],
                    glint_backend_name(streams[k]), psnr);
@@ -65,9 +66,8 @@ static void thesis_scenes_match(void **state) {
 
 static void spd_scenes_match(void **state) {
   (void)state;
-  static const char *files[] = {"balls-s2", "gears-s1", "mount-s4",
-                                "rings-s2", "teapot-s2", "tetra-s4",
-                                "tree-s4"};
+  static const char *files[] = {"balls-s2",  "gears-s1", "mount-s4", "rings-s2",
+                                "teapot-s2", "tetra-s4", "tree-s4"};
   for (size_t i = 0; i < sizeof files / sizeof *files; i++) {
     char sub[64];
     snprintf(sub, sizeof sub, "scenes/spd/%s.nff", files[i]);
@@ -129,8 +129,8 @@ static void lanes_stay_full(void **state) {
     assert_int_equal(st.generations, depth);
     for (int g = 0; g < st.generations && g < GLINT_STATS_MAX_GENERATIONS;
          g++) {
-      double use = (double)st.gen_active_lanes[g] /
-                   ((double)st.gen_packets[g] * w);
+      double use =
+          (double)st.gen_active_lanes[g] / ((double)st.gen_packets[g] * w);
       printf("billiard depth %2d generation %2d: %8llu rays, lanes %5.1f%%\n",
              depth, g, (unsigned long long)st.gen_rays[g], 100 * use);
       assert_true(st.gen_rays[g] > 0);
@@ -163,8 +163,10 @@ static void memory_is_bounded(void **state) {
   assert_true(s15.stream_bytes_per_thread == w15.stream_bytes_per_thread);
   assert_true(s5.stream_bytes_per_thread < s15.stream_bytes_per_thread);
   /* linear in depth: the same growth from 5 to 15 as from 15 to 25 */
-  uint64_t per_level = (s15.stream_bytes_per_thread - s5.stream_bytes_per_thread) / 10;
-  assert_true(s30.stream_bytes_per_thread <= s15.stream_bytes_per_thread + 15 * per_level + 4096);
+  uint64_t per_level =
+      (s15.stream_bytes_per_thread - s5.stream_bytes_per_thread) / 10;
+  assert_true(s30.stream_bytes_per_thread <=
+              s15.stream_bytes_per_thread + 15 * per_level + 4096);
   /* under 1 MiB per level of depth */
   assert_true(per_level < 1048576);
   glint_image_destroy(i1);

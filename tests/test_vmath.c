@@ -40,11 +40,10 @@ static const double pow_bound[GLINT_MATH_COUNT] = {
     [GLINT_MATH_FAST] = 1.0, /* may lose a highlight: thesis fig. 5.7 */
     [GLINT_MATH_TAYLOR] = 5e-2,
     [GLINT_MATH_EXACT] = 1e-6};
-static const double exp_bound[GLINT_MATH_COUNT] = {
-    [GLINT_MATH_MINIMAX] = 1e-5,
-    [GLINT_MATH_FAST] = 5e-2,
-    [GLINT_MATH_TAYLOR] = 2e-3,
-    [GLINT_MATH_EXACT] = 1e-6};
+static const double exp_bound[GLINT_MATH_COUNT] = {[GLINT_MATH_MINIMAX] = 1e-5,
+                                                   [GLINT_MATH_FAST] = 5e-2,
+                                                   [GLINT_MATH_TAYLOR] = 2e-3,
+                                                   [GLINT_MATH_EXACT] = 1e-6};
 
 static float x[N], y[N], out[N];
 
@@ -74,8 +73,7 @@ static void pow_errors(void **state) {
         worst = fmax(worst, fabs(out[i] - ref) / ref);
       }
       printf("%-6s pow %-7s max relative error %.3e (bound %.0e)\n",
-             isas[k].name, glint_math_name((glint_math)m), worst,
-             pow_bound[m]);
+             isas[k].name, glint_math_name((glint_math)m), worst, pow_bound[m]);
       if (!(worst <= pow_bound[m]))
         fail_msg("%s pow %s: %.3e exceeds %.0e", isas[k].name,
                  glint_math_name((glint_math)m), worst, pow_bound[m]);
@@ -98,8 +96,7 @@ static void exp_errors(void **state) {
         worst = fmax(worst, fabs(out[i] - ref) / ref);
       }
       printf("%-6s exp %-7s max relative error %.3e (bound %.0e)\n",
-             isas[k].name, glint_math_name((glint_math)m), worst,
-             exp_bound[m]);
+             isas[k].name, glint_math_name((glint_math)m), worst, exp_bound[m]);
       if (!(worst <= exp_bound[m]))
         fail_msg("%s exp %s: %.3e exceeds %.0e", isas[k].name,
                  glint_math_name((glint_math)m), worst, exp_bound[m]);
@@ -122,8 +119,8 @@ static void rcp_errors(void **state) {
       for (int i = 0; i < N; i++)
         worst = fmax(worst, fabs((double)out[i] * x[i] - 1));
       double bound = newton ? 5e-7 : 1e-3;
-      printf("%-6s rcp %s max relative error %.3e (bound %.0e)\n",
-             isas[k].name, newton ? "+ Newton" : "alone   ", worst, bound);
+      printf("%-6s rcp %s max relative error %.3e (bound %.0e)\n", isas[k].name,
+             newton ? "+ Newton" : "alone   ", worst, bound);
       if (!(worst <= bound))
         fail_msg("%s rcp: %.3e exceeds %.0e", isas[k].name, worst, bound);
       /* Without the step the estimate is measurably coarse. */

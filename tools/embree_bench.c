@@ -75,12 +75,12 @@ int main(int argc, char **argv) {
   RTCScene rs = rtcNewScene(device);
   RTCGeometry geom = rtcNewGeometry(device, RTC_GEOMETRY_TYPE_TRIANGLE);
   size_t n = scene->triangle_count;
-  float *vb = rtcSetNewGeometryBuffer(geom, RTC_BUFFER_TYPE_VERTEX, 0,
-                                      RTC_FORMAT_FLOAT3, 3 * sizeof(float),
-                                      3 * n);
-  unsigned *ib = rtcSetNewGeometryBuffer(geom, RTC_BUFFER_TYPE_INDEX, 0,
-                                         RTC_FORMAT_UINT3,
-                                         3 * sizeof(unsigned), n);
+  float *vb =
+      rtcSetNewGeometryBuffer(geom, RTC_BUFFER_TYPE_VERTEX, 0,
+                              RTC_FORMAT_FLOAT3, 3 * sizeof(float), 3 * n);
+  unsigned *ib =
+      rtcSetNewGeometryBuffer(geom, RTC_BUFFER_TYPE_INDEX, 0, RTC_FORMAT_UINT3,
+                              3 * sizeof(unsigned), n);
   for (size_t i = 0; i < n; i++)
     for (int k = 0; k < 3; k++) {
       glint_vec3 v = scene->triangles[i].v[k];
@@ -138,13 +138,14 @@ int main(int argc, char **argv) {
   qsort(times, (size_t)runs, sizeof *times, cmp);
   double med = runs % 2 ? times[runs / 2]
                         : 0.5 * (times[runs / 2 - 1] + times[runs / 2]);
-  printf("embree %d.%d.%d rtcIntersect16: %.3f Mrays/s, %.6f s, %llu hits, "
-         "native ray16 %s\n",
-         RTC_VERSION_MAJOR, RTC_VERSION_MINOR, RTC_VERSION_PATCH,
-         (double)w * h / med / 1e6, med, hits,
-         rtcGetDeviceProperty(device, RTC_DEVICE_PROPERTY_NATIVE_RAY16_SUPPORTED)
-             ? "yes"
-             : "no");
+  printf(
+      "embree %d.%d.%d rtcIntersect16: %.3f Mrays/s, %.6f s, %llu hits, "
+      "native ray16 %s\n",
+      RTC_VERSION_MAJOR, RTC_VERSION_MINOR, RTC_VERSION_PATCH,
+      (double)w * h / med / 1e6, med, hits,
+      rtcGetDeviceProperty(device, RTC_DEVICE_PROPERTY_NATIVE_RAY16_SUPPORTED)
+          ? "yes"
+          : "no");
   free(times);
   rtcReleaseScene(rs);
   rtcReleaseDevice(device);

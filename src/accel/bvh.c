@@ -27,8 +27,6 @@ typedef struct box {
   float lo[3], hi[3];
 } box;
 
-
-
 /* Float bounds that contain [lo, hi] given in double: rounded to nearest,
  * then one step outward when that went inward (nextafterf is a call;
  * scaling by 1 -/+ 2^-23 is one float step for normal numbers, and bounds
@@ -66,8 +64,8 @@ static box sphere_box(const glint_sphere_prim *s) {
 }
 
 static box triangle_box(const glint_triangle_prim *t) {
-  double lo[3] = {DBL_MAX, DBL_MAX, DBL_MAX}, hi[3] = {-DBL_MAX, -DBL_MAX,
-                                                      -DBL_MAX};
+  double lo[3] = {DBL_MAX, DBL_MAX, DBL_MAX},
+         hi[3] = {-DBL_MAX, -DBL_MAX, -DBL_MAX};
   for (int i = 0; i < 3; i++) {
     double v[3] = {t->v[i].x, t->v[i].y, t->v[i].z};
     for (int k = 0; k < 3; k++)
@@ -85,8 +83,8 @@ static box cone_box(const glint_cone_prim *c) {
   double p[2][3] = {{c->base.x, c->base.y, c->base.z},
                     {c->apex.x, c->apex.y, c->apex.z}};
   double r[2] = {c->base_radius, c->apex_radius};
-  double lo[3] = {DBL_MAX, DBL_MAX, DBL_MAX}, hi[3] = {-DBL_MAX, -DBL_MAX,
-                                                      -DBL_MAX};
+  double lo[3] = {DBL_MAX, DBL_MAX, DBL_MAX},
+         hi[3] = {-DBL_MAX, -DBL_MAX, -DBL_MAX};
   for (int e = 0; e < 2; e++)
     for (int k = 0; k < 3; k++) {
       double ak = a[k] / len;
@@ -127,7 +125,7 @@ static void box4_grow_point(box4 *b, __m128 p) {
 static float box4_area(box4 b) {
   __m128 d = _mm_max_ps(_mm_sub_ps(b.hi, b.lo), _mm_setzero_ps());
   __m128 rot = _mm_shuffle_ps(d, d, _MM_SHUFFLE(3, 0, 2, 1)); /* y z x */
-  __m128 p = _mm_mul_ps(d, rot);                               /* xy yz zx */
+  __m128 p = _mm_mul_ps(d, rot);                              /* xy yz zx */
   __m128 s = _mm_add_ss(p, _mm_shuffle_ps(p, p, _MM_SHUFFLE(3, 3, 3, 1)));
   s = _mm_add_ss(s, _mm_shuffle_ps(p, p, _MM_SHUFFLE(3, 3, 3, 2)));
   return _mm_cvtss_f32(s);
@@ -336,11 +334,13 @@ glint_status glint_bvh_build(const glint_scene *scene, glint_bvh *bvh,
     return glint_fail(error, GLINT_E_ARGUMENT,
                       "too many primitives for the BVH (%zu)", n);
   builder b = {0};
-  b.boxes = aligned_alloc(GLINT_ALIGN, ((n * sizeof *b.boxes + GLINT_ALIGN - 1) /
-                                        GLINT_ALIGN) * GLINT_ALIGN);
+  b.boxes = aligned_alloc(
+      GLINT_ALIGN,
+      ((n * sizeof *b.boxes + GLINT_ALIGN - 1) / GLINT_ALIGN) * GLINT_ALIGN);
   b.refs = malloc(n * sizeof *b.refs);
-  b.nodes = aligned_alloc(GLINT_ALIGN, ((2 * n * sizeof *b.nodes + GLINT_ALIGN -
-                                          1) / GLINT_ALIGN) * GLINT_ALIGN);
+  b.nodes = aligned_alloc(
+      GLINT_ALIGN, ((2 * n * sizeof *b.nodes + GLINT_ALIGN - 1) / GLINT_ALIGN) *
+                       GLINT_ALIGN);
   task *stack = malloc(sizeof *stack * 4 * GLINT_BVH_MAX_DEPTH);
   if (!b.boxes || !b.refs || !b.nodes || !stack) {
     glint_aligned_free(b.boxes);
@@ -412,8 +412,7 @@ glint_status glint_bvh_build(const glint_scene *scene, glint_bvh *bvh,
   free(stack);
   glint_aligned_free(b.boxes);
 
-  glint_bvh_node *shrunk =
-      glint_aligned_calloc(b.node_count, sizeof *shrunk);
+  glint_bvh_node *shrunk = glint_aligned_calloc(b.node_count, sizeof *shrunk);
   if (shrunk) {
     memcpy(shrunk, b.nodes, b.node_count * sizeof *shrunk);
     free(b.nodes);

@@ -51,9 +51,8 @@ void glint_cpu_detect(glint_cpu_features *f) {
   int avx512bw = (b >> 30) & 1, avx512vl = (b >> 31) & 1;
   int avx512cd = (b >> 28) & 1;
   f->avx2 = avx2 && fma && popcnt && ymm_saved;
-  f->avx512 =
-      f->avx2 && avx512f && avx512dq && avx512bw && avx512vl && avx512cd &&
-      zmm_saved;
+  f->avx512 = f->avx2 && avx512f && avx512dq && avx512bw && avx512vl &&
+              avx512cd && zmm_saved;
   apply_cap(f);
 }
 #else

@@ -101,9 +101,8 @@ static inline int triangle_hit(vec3 a, vec3 e1, vec3 e2, vec3 o, vec3 d,
  *   C = w·w - (w·a)^2 - (rb + k w·a)^2.
  * Returns both crossings within (tmin, tmax) and the height window, nearest
  * first, and how many there are (0, 1 or 2). */
-static inline int cone_roots(vec3 base, vec3 axis, real height, real rb,
-                             real k, vec3 o, vec3 d, real tmin, real tmax,
-                             real t[2]) {
+static inline int cone_roots(vec3 base, vec3 axis, real height, real rb, real k,
+                             vec3 o, vec3 d, real tmin, real tmax, real t[2]) {
   vec3 w = v3_sub(o, base);
   real wa = v3_dot(w, axis), da = v3_dot(d, axis);
   real rw = rb + k * wa;

@@ -12,7 +12,7 @@
  * thesis's §5.4. */
 #include "render/backend.h"
 #include "render/packet.h"
-
+#include "render/primary.h"
 
 typedef struct beam_ctx {
   const packet_scene *ps;
@@ -28,12 +28,10 @@ typedef void (*trace_fn)(const beam_ctx *c, const vvec3 *o, const vvec3 *d,
 
 /* The thesis's sub-beam after shading: below the depth limit it traces at
  * most one reflected and one refracted beam (SPEC §6), then Beer's law. */
-static ALWAYS_INLINE void finish_sub_beam(const beam_ctx *c, vvec3 d,
-                                          const packet_hit *h,
-                                          const packet_surface *f,
-                                          int object, vmask sub, int level,
-                                          vvec3 color, vvec3 *out,
-                                          glint_math math, trace_fn trace) {
+static ALWAYS_INLINE void
+finish_sub_beam(const beam_ctx *c, vvec3 d, const packet_hit *h,
+                const packet_surface *f, int object, vmask sub, int level,
+                vvec3 color, vvec3 *out, glint_math math, trace_fn trace) {
   const packet_scene *ps = c->ps;
   const scene_r *s = ps->s;
   const object_r *ob = &s->objects[object];
@@ -43,8 +41,8 @@ static ALWAYS_INLINE void finish_sub_beam(const beam_ctx *c, vvec3 d,
     vvec3 reflected, refracted;
     vfloat kr;
     vmask refract, tir;
-    packet_secondary(mat, pm, f, d, sub, &reflected, &kr, &refracted,
-                     &refract, &tir);
+    packet_secondary(mat, pm, f, d, sub, &reflected, &kr, &refracted, &refract,
+                     &tir);
     c->st->total_internal_reflections += (uint64_t)vm_count(tir);
     if (vm_any(refract)) {
       vvec3 ct;
@@ -78,9 +76,9 @@ static ALWAYS_INLINE void finish_sub_beam(const beam_ctx *c, vvec3 d,
  * otherwise cast nearly empty shadow packets. Each lane's material
  * coefficients are gathered from its sub-beam so the light loop runs once. */
 static ALWAYS_INLINE void trace_beam_body(const beam_ctx *c, vvec3 o, vvec3 d,
-                                          vmask active, int level,
-                                          vvec3 *color, glint_math math,
-                                          int newton, trace_fn trace) {
+                                          vmask active, int level, vvec3 *color,
+                                          glint_math math, int newton,
+                                          trace_fn trace) {
   const packet_scene *ps = c->ps;
   const scene_r *s = ps->s;
   c->st->beams++;
@@ -148,10 +146,10 @@ static ALWAYS_INLINE void trace_beam_body(const beam_ctx *c, vvec3 o, vvec3 d,
     diffuse = vv_madd(diffuse, vf_keep(lit, vf_mul(kd, nl)), il);
     if (any_highlight) {
       /* R = 2(L·N)N - L and V = -D: V·R = 2(L·N)(-D·N) + D·L */
-      vfloat vr = vf_fmadd(vf_add(nl, nl), vf_neg(vv_dot(d, f.n)),
-                           vv_dot(d, l));
-      vmask hl = vm_and(vm_and(lit, vf_gt(ks, vf_zero())),
-                        vf_gt(vr, vf_zero()));
+      vfloat vr =
+          vf_fmadd(vf_add(nl, nl), vf_neg(vv_dot(d, f.n)), vv_dot(d, l));
+      vmask hl =
+          vm_and(vm_and(lit, vf_gt(ks, vf_zero())), vf_gt(vr, vf_zero()));
       if (vm_any(hl)) {
         vfloat p = vm_pow(vf_max(vr, vf_set1(FLT_MIN)), hexp, math);
         highlight = vv_madd(highlight, vf_keep(hl, vf_mul(ks, p)), il);
@@ -177,52 +175,24 @@ static void trace_generic(const beam_ctx *c, const vvec3 *o, const vvec3 *d,
                   trace_generic);
 }
 
-/* Block shapes: W lanes as BW x BH pixels. */
-#if GLINT_SIMD_WIDTH == 4
-#define BW 2
-#elif GLINT_SIMD_WIDTH == 8
-#define BW 4
-#else
-#define BW 4
-#endif
-#define BH (W / BW)
-
 static ALWAYS_INLINE void render_tile_body(const packet_scene *ps,
                                            const glint_tile *tile, float *rgb,
                                            glint_stats *st, int newton,
                                            trace_fn trace) {
   const scene_r *s = ps->s;
   beam_ctx c = {ps, ps->math, ps->newton, st};
-  const camera *cam = &s->cam;
-  /* Lane i covers pixel (bx + i % BW, by + i / BW). */
-  SIMD_ALIGN float lx[W], ly[W];
-  for (int i = 0; i < W; i++) {
-    lx[i] = (float)(i % BW);
-    ly[i] = (float)(i / BW);
-  }
-  vfloat lane_x = vf_load(lx), lane_y = vf_load(ly);
-  /* SPEC §2: x = (2 px / W - 1) tan, y = (1 - 2 py / H) tan_y */
-  vfloat sx = vf_set1(2 * cam->tan_x / cam->width), ox = vf_set1(-cam->tan_x);
-  vfloat sy = vf_set1(-2 * cam->tan_y / cam->height), oy = vf_set1(cam->tan_y);
-  vvec3 from = vv_set1(cam->from), cd = vv_set1(cam->d), cr = vv_set1(cam->r),
-        cu = vv_set1(cam->u);
+  primary_beams pb = primary_beams_init(&s->cam);
   vfloat inv_spp = vf_set1(1.0f / (float)s->spp);
   int tw = tile->x1 - tile->x0;
   for (int by = tile->y0; by < tile->y1; by += BH)
     for (int bx = tile->x0; bx < tile->x1; bx += BW) {
-      vfloat px = vf_add(vf_set1((float)bx), lane_x);
-      vfloat py = vf_add(vf_set1((float)by), lane_y);
-      vmask valid = vm_and(vf_lt(px, vf_set1((float)tile->x1)),
-                           vf_lt(py, vf_set1((float)tile->y1)));
+      vfloat px, py;
+      vmask valid = primary_block(&pb, tile, bx, by, &px, &py);
       vvec3 sum = {vf_zero(), vf_zero(), vf_zero()};
       for (int k = 0; k < s->spp; k++) {
-        vfloat x = vf_fmadd(
-            vf_add(px, vf_set1(0.5f + s->samples[k][0])), sx, ox);
-        vfloat y = vf_fmadd(
-            vf_add(py, vf_set1(0.5f + s->samples[k][1])), sy, oy);
-        vvec3 dir = vv_normalize(vv_madd(vv_madd(cd, x, cr), y, cu), newton);
+        vvec3 dir = primary_dir(&pb, px, py, s->samples[k], newton);
         vvec3 color;
-        trace(&c, &from, &dir, valid, 1, &color);
+        trace(&c, &pb.from, &dir, valid, 1, &color);
         sum = vv_add(sum, color);
       }
       st->primary_rays += (uint64_t)vm_count(valid) * (uint64_t)s->spp;
@@ -268,34 +238,18 @@ static uint64_t primary_tile(const void *prepared, const glint_tile *tile,
                              glint_stats *st) {
   const packet_scene *ps = prepared;
   const scene_r *s = ps->s;
-  const camera *cam = &s->cam;
-  SIMD_ALIGN float lx[W], ly[W];
-  for (int i = 0; i < W; i++) {
-    lx[i] = (float)(i % BW);
-    ly[i] = (float)(i / BW);
-  }
-  vfloat lane_x = vf_load(lx), lane_y = vf_load(ly);
-  vfloat sx = vf_set1(2 * cam->tan_x / cam->width), ox = vf_set1(-cam->tan_x);
-  vfloat sy = vf_set1(-2 * cam->tan_y / cam->height), oy = vf_set1(cam->tan_y);
-  vvec3 from = vv_set1(cam->from), cd = vv_set1(cam->d), cr = vv_set1(cam->r),
-        cu = vv_set1(cam->u);
+  primary_beams pb = primary_beams_init(&s->cam);
   uint64_t hits = 0;
   for (int by = tile->y0; by < tile->y1; by += BH)
     for (int bx = tile->x0; bx < tile->x1; bx += BW) {
-      vfloat px = vf_add(vf_set1((float)bx), lane_x);
-      vfloat py = vf_add(vf_set1((float)by), lane_y);
-      vmask valid = vm_and(vf_lt(px, vf_set1((float)tile->x1)),
-                           vf_lt(py, vf_set1((float)tile->y1)));
+      vfloat px, py;
+      vmask valid = primary_block(&pb, tile, bx, by, &px, &py);
       for (int k = 0; k < s->spp; k++) {
-        vfloat x = vf_fmadd(vf_add(px, vf_set1(0.5f + s->samples[k][0])), sx,
-                            ox);
-        vfloat y = vf_fmadd(vf_add(py, vf_set1(0.5f + s->samples[k][1])), sy,
-                            oy);
-        vvec3 dir = vv_normalize(vv_madd(vv_madd(cd, x, cr), y, cu), 1);
+        vvec3 dir = primary_dir(&pb, px, py, s->samples[k], 1);
         packet_hit h;
-        packet_nearest(ps, from, dir, valid, 1, &h, st);
-        hits += (uint64_t)vm_count(
-            vm_andnot(valid, vi_eq(h.object, vi_set1(-1))));
+        packet_nearest(ps, pb.from, dir, valid, 1, &h, st);
+        hits +=
+            (uint64_t)vm_count(vm_andnot(valid, vi_eq(h.object, vi_set1(-1))));
       }
       st->primary_rays += (uint64_t)vm_count(valid) * (uint64_t)s->spp;
     }
@@ -308,8 +262,8 @@ const glint_backend_ops ISA_NAME(glint_beam_ops) = {prepare, release, NULL,
 /* For the tests: the packet nearest hit of W rays (SoA arrays of W floats),
  * with the default maths. Writes t and object per lane (-1: no hit). */
 void ISA_NAME(glint_beam_nearest_hit)(const void *prepared, const float *o,
-                                      const float *d, int active_bits,
-                                      float *t, int *object) {
+                                      const float *d, int active_bits, float *t,
+                                      int *object) {
   const packet_scene *ps = prepared;
   glint_stats st = {0};
   vvec3 vo = {vf_loadu(o), vf_loadu(o + W), vf_loadu(o + 2 * W)};

@@ -130,8 +130,8 @@ static ALWAYS_INLINE void count_tests(glint_stats *st, size_t tests,
 /* Spheres and planes record only the object: each is one primitive, so the
  * object names it. */
 static ALWAYS_INLINE void packet_sphere(const psphere *sp, vvec3 o, vvec3 d,
-                                        vmask active,
-                                        vfloat eps, packet_hit *h) {
+                                        vmask active, vfloat eps,
+                                        packet_hit *h) {
   vvec3 v = vv_sub(vv_get(sp->center), o);
   vfloat proj = vv_dot(v, d);
   vvec3 perp = vv_madd(v, vf_neg(proj), d);
@@ -152,8 +152,7 @@ static ALWAYS_INLINE void packet_sphere(const psphere *sp, vvec3 o, vvec3 d,
 
 /* Eq. 2.5, the division by rcp (eq. 3.1). */
 static ALWAYS_INLINE void packet_plane(const pplane *pl, vvec3 o, vvec3 d,
-                                       vmask active,
-                                       vfloat eps, int newton,
+                                       vmask active, vfloat eps, int newton,
                                        packet_hit *h) {
   vvec3 n = vv_get(pl->n);
   vfloat denom = vv_dot(n, d);
@@ -184,20 +183,20 @@ static ALWAYS_INLINE vmask packet_triangle_cross(const ptriangle *tr, vvec3 o,
   vvec3 s = vv_sub(o, vv_get(tr->a));
   vvec3 r = vv_cross(s, d);
   /* x ^ sign(det) multiplies x by the sign of det, exactly */
-  vfloat us = vi_as_vf(vi_xor(vf_bits(vv_dot(vv_get(tr->e2), r)),
-                              vf_bits(sign)));
+  vfloat us =
+      vi_as_vf(vi_xor(vf_bits(vv_dot(vv_get(tr->e2), r)), vf_bits(sign)));
   vmask m = vm_and(vm_and(active, vf_gt(adet, vf_zero())),
                    vm_and(vf_ge(us, vf_zero()), vf_le(us, adet)));
   if (vm_none(m))
     return m;
-  vfloat vs = vi_as_vf(vi_xor(vf_bits(vf_neg(vv_dot(vv_get(tr->e1), r))),
-                              vf_bits(sign)));
+  vfloat vs = vi_as_vf(
+      vi_xor(vf_bits(vf_neg(vv_dot(vv_get(tr->e1), r))), vf_bits(sign)));
   m = vm_and(m, vm_and(vf_ge(vs, vf_zero()), vf_le(vf_add(us, vs), adet)));
   if (vm_none(m))
     return m;
   vfloat ts = vi_as_vf(vi_xor(vf_bits(vv_dot(s, n)), vf_bits(sign)));
-  m = vm_and(m, vm_and(vf_gt(ts, vf_mul(eps, adet)),
-                       vf_lt(ts, vf_mul(tmax, adet))));
+  m = vm_and(
+      m, vm_and(vf_gt(ts, vf_mul(eps, adet)), vf_lt(ts, vf_mul(tmax, adet))));
   if (vm_none(m))
     return m;
   vfloat inv = vf_rcp(adet, newton);
@@ -230,16 +229,14 @@ static ALWAYS_INLINE void packet_triangle(const ptriangle *tr, uint32_t index,
  * height window, nearest first in *t0. */
 static ALWAYS_INLINE void packet_cone_roots(const pcone *c, vvec3 o, vvec3 d,
                                             vmask active, vfloat eps,
-                                            vfloat tmax, vfloat *t0,
-                                            vmask *m0, vfloat *t1,
-                                            vmask *m1) {
+                                            vfloat tmax, vfloat *t0, vmask *m0,
+                                            vfloat *t1, vmask *m1) {
   vvec3 axis = vv_get(c->axis);
   vvec3 w = vv_sub(o, vv_get(c->base));
   vfloat k = vs_get(&c->k), rb = vs_get(&c->rb), height = vs_get(&c->height);
   vfloat wa = vv_dot(w, axis), da = vv_dot(d, axis);
   vfloat rw = vf_fmadd(k, wa, rb);
-  vfloat qa = vf_fnmadd(vf_fmadd(k, k, vf_set1(1)), vf_mul(da, da),
-                        vf_set1(1));
+  vfloat qa = vf_fnmadd(vf_fmadd(k, k, vf_set1(1)), vf_mul(da, da), vf_set1(1));
   vfloat qb = vf_mul(vf_set1(2), vf_fnmadd(vf_mul(k, da), rw,
                                            vf_fnmadd(wa, da, vv_dot(w, d))));
   vfloat qc = vf_fnmadd(rw, rw, vf_fnmadd(wa, wa, vv_dot(w, w)));
@@ -252,9 +249,8 @@ static ALWAYS_INLINE void packet_cone_roots(const pcone *c, vvec3 o, vvec3 d,
   /* The stable pair: q = -(b + sign(b) sq) / 2, roots q/a and c/q, the
    * divisions by rcp (eq. 3.1). Along a line of the surface (a ~ 0) the
    * one root is -c/b. */
-  vfloat q = vf_mul(vf_set1(-0.5f),
-                    vf_select(vf_lt(qb, vf_zero()), vf_sub(qb, sq),
-                              vf_add(qb, sq)));
+  vfloat q = vf_mul(vf_set1(-0.5f), vf_select(vf_lt(qb, vf_zero()),
+                                              vf_sub(qb, sq), vf_add(qb, sq)));
   vmask linear = vf_lt(vf_abs(qa), vf_set1(1e-12f));
   vfloat ra = vf_mul(q, vf_rcp(qa, 1)), rc = vf_mul(qc, vf_rcp(q, 1));
   vfloat a0 = vf_min(ra, rc), a1 = vf_max(ra, rc);
@@ -266,9 +262,9 @@ static ALWAYS_INLINE void packet_cone_roots(const pcone *c, vvec3 o, vvec3 d,
   vfloat h0 = vf_fmadd(a0, da, wa), h1 = vf_fmadd(a1, da, wa);
   vmask v0 = vm_and(vm_and(m, vm_and(vf_gt(a0, eps), vf_lt(a0, tmax))),
                     vm_and(vf_ge(h0, vf_zero()), vf_le(h0, height)));
-  vmask v1 = vm_and(vm_and(vm_andnot(m, linear),
-                           vm_and(vf_gt(a1, eps), vf_lt(a1, tmax))),
-                    vm_and(vf_ge(h1, vf_zero()), vf_le(h1, height)));
+  vmask v1 = vm_and(
+      vm_and(vm_andnot(m, linear), vm_and(vf_gt(a1, eps), vf_lt(a1, tmax))),
+      vm_and(vf_ge(h1, vf_zero()), vf_le(h1, height)));
   /* Nearest first. */
   *t0 = vf_select(v0, a0, a1);
   *m0 = vm_or(v0, v1);
@@ -277,8 +273,7 @@ static ALWAYS_INLINE void packet_cone_roots(const pcone *c, vvec3 o, vvec3 d,
 }
 
 static ALWAYS_INLINE void packet_cone(const pcone *c, vvec3 o, vvec3 d,
-                                      vmask active, vfloat eps,
-                                      packet_hit *h) {
+                                      vmask active, vfloat eps, packet_hit *h) {
   vfloat t0, t1;
   vmask m0, m1;
   packet_cone_roots(c, o, d, active, eps, h->t, &t0, &m0, &t1, &m1);
@@ -299,8 +294,8 @@ typedef struct packet_inv {
 
 static ALWAYS_INLINE vfloat vf_nonzero(vfloat a) {
   vfloat tiny = vf_set1(1e-30f);
-  vfloat signed_tiny =
-      vi_as_vf(vi_or(vf_bits(tiny), vi_and(vf_bits(a), vi_set1((int)0x80000000u))));
+  vfloat signed_tiny = vi_as_vf(
+      vi_or(vf_bits(tiny), vi_and(vf_bits(a), vi_set1((int)0x80000000u))));
   return vf_select(vf_lt(vf_abs(a), tiny), signed_tiny, a);
 }
 
@@ -356,9 +351,7 @@ static ALWAYS_INLINE void packet_prim(const packet_scene *ps, uint32_t ref,
   case GLINT_SHAPE_TRIANGLE:
     packet_triangle(&ps->triangles[i], i, o, d, m, eps, newton, h);
     break;
-  default:
-    packet_cone(&ps->cones[i], o, d, m, eps, h);
-    break;
+  default: packet_cone(&ps->cones[i], o, d, m, eps, h); break;
   }
 }
 
@@ -376,13 +369,12 @@ static ALWAYS_INLINE void packet_nearest(const packet_scene *ps, vvec3 o,
     packet_plane(&ps->planes[i], o, d, active, eps, newton, h);
   const glint_bvh *bvh = &s->bvh;
   if (bvh->node_count == 0) {
-    count_tests(st, s->sphere_count + s->triangle_count + s->cone_count,
-                lanes);
+    count_tests(st, s->sphere_count + s->triangle_count + s->cone_count, lanes);
     for (size_t i = 0; i < s->sphere_count; i++)
       packet_sphere(&ps->spheres[i], o, d, active, eps, h);
     for (size_t i = 0; i < s->triangle_count; i++)
-      packet_triangle(&ps->triangles[i], (uint32_t)i, o, d, active, eps,
-                      newton, h);
+      packet_triangle(&ps->triangles[i], (uint32_t)i, o, d, active, eps, newton,
+                      h);
     for (size_t i = 0; i < s->cone_count; i++)
       packet_cone(&ps->cones[i], o, d, active, eps, h);
     return;
@@ -425,8 +417,8 @@ typedef struct shadow_state {
 } shadow_state;
 
 static ALWAYS_INLINE void shadow_cross(const packet_scene *ps, int object,
-                                       vmask crossing, vfloat t,
-                                       vmask entering, shadow_state *sh) {
+                                       vmask crossing, vfloat t, vmask entering,
+                                       shadow_state *sh) {
   if (vm_none(crossing))
     return;
   uint32_t mi = ps->s->objects[object].material;
@@ -442,17 +434,16 @@ static ALWAYS_INLINE void shadow_cross(const packet_scene *ps, int object,
     vfloat signed_t = vf_select(entering, t, vf_neg(t));
     vfloat st = vf_keep(crossing, signed_t);
     sh->exponent = vv_madd(sh->exponent, st, vv_get(pm->absorb));
-    sh->absorbed |= (m->absorb.x != 0) | (m->absorb.y != 0) << 1 |
-                    (m->absorb.z != 0) << 2;
+    sh->absorbed |=
+        (m->absorb.x != 0) | (m->absorb.y != 0) << 1 | (m->absorb.z != 0) << 2;
   }
 }
 
 /* Every crossing of one primitive by the shadow lanes within (eps, dist). */
 static ALWAYS_INLINE void packet_cross_prim(const packet_scene *ps,
-                                            uint32_t shape, uint32_t i,
-                                            vvec3 o, vvec3 d, vfloat dist,
-                                            vfloat eps, int newton,
-                                            shadow_state *sh) {
+                                            uint32_t shape, uint32_t i, vvec3 o,
+                                            vvec3 d, vfloat dist, vfloat eps,
+                                            int newton, shadow_state *sh) {
   switch (shape) {
   case GLINT_SHAPE_SPHERE: {
     const psphere *sp = &ps->spheres[i];
@@ -475,8 +466,8 @@ static ALWAYS_INLINE void packet_cross_prim(const packet_scene *ps,
   case GLINT_SHAPE_TRIANGLE: {
     const ptriangle *tr = &ps->triangles[i];
     vfloat t, u, v;
-    vmask c = packet_triangle_cross(tr, o, d, sh->alive, eps, dist, newton,
-                                    &t, &u, &v);
+    vmask c = packet_triangle_cross(tr, o, d, sh->alive, eps, dist, newton, &t,
+                                    &u, &v);
     /* Entering: against the normal, which the unnormalised one shares. */
     shadow_cross(ps, tr->object, c, t,
                  vf_lt(vv_dot(vv_get(tr->n), d), vf_zero()), sh);
@@ -500,9 +491,8 @@ static ALWAYS_INLINE void packet_cross_prim(const packet_scene *ps,
       vvec3 axis = vv_get(c->axis);
       vfloat hq = vv_dot(q, axis);
       vfloat kk = vs_get(&c->k);
-      vvec3 n = vv_madd(q, vf_neg(vf_fmadd(kk, vf_fmadd(kk, hq, vs_get(&c->rb)),
-                                           hq)),
-                        axis);
+      vvec3 n = vv_madd(
+          q, vf_neg(vf_fmadd(kk, vf_fmadd(kk, hq, vs_get(&c->rb)), hq)), axis);
       shadow_cross(ps, c->object, k ? m1 : m0, t,
                    vf_lt(vv_dot(n, d), vf_zero()), sh);
     }
@@ -511,8 +501,8 @@ static ALWAYS_INLINE void packet_cross_prim(const packet_scene *ps,
   }
 }
 
-static ALWAYS_INLINE vvec3 packet_transmission(const packet_scene *ps,
-                                               vvec3 o, vvec3 d, vfloat dist,
+static ALWAYS_INLINE vvec3 packet_transmission(const packet_scene *ps, vvec3 o,
+                                               vvec3 d, vfloat dist,
                                                vmask active, glint_math math,
                                                int newton, glint_stats *st) {
   const scene_r *s = ps->s;
@@ -535,14 +525,13 @@ static ALWAYS_INLINE vvec3 packet_transmission(const packet_scene *ps,
   }
   const glint_bvh *bvh = &s->bvh;
   if (bvh->node_count == 0) {
-    count_tests(st, s->sphere_count + s->triangle_count + s->cone_count,
-                lanes);
+    count_tests(st, s->sphere_count + s->triangle_count + s->cone_count, lanes);
     for (size_t i = 0; i < s->sphere_count && vm_any(sh.alive); i++)
       packet_cross_prim(ps, GLINT_SHAPE_SPHERE, (uint32_t)i, o, d, dist, eps,
                         newton, &sh);
     for (size_t i = 0; i < s->triangle_count && vm_any(sh.alive); i++)
-      packet_cross_prim(ps, GLINT_SHAPE_TRIANGLE, (uint32_t)i, o, d, dist,
-                        eps, newton, &sh);
+      packet_cross_prim(ps, GLINT_SHAPE_TRIANGLE, (uint32_t)i, o, d, dist, eps,
+                        newton, &sh);
     for (size_t i = 0; i < s->cone_count && vm_any(sh.alive); i++)
       packet_cross_prim(ps, GLINT_SHAPE_CONE, (uint32_t)i, o, d, dist, eps,
                         newton, &sh);
@@ -600,9 +589,11 @@ typedef struct packet_surface {
 #define FLOATS_OF(type) ((int)(sizeof(type) / sizeof(float)))
 #define FLOAT_OFFSET(type, field) ((int)(offsetof(type, field) / sizeof(float)))
 
-static ALWAYS_INLINE packet_surface packet_surface_at(
-    const packet_scene *ps, const object_r *ob, const packet_hit *h, vvec3 o,
-    vvec3 d, int newton) {
+static ALWAYS_INLINE packet_surface packet_surface_at(const packet_scene *ps,
+                                                      const object_r *ob,
+                                                      const packet_hit *h,
+                                                      vvec3 o, vvec3 d,
+                                                      int newton) {
   const scene_r *s = ps->s;
   packet_surface f;
   f.p = vv_madd(o, h->t, d);
@@ -640,10 +631,10 @@ static ALWAYS_INLINE packet_surface packet_surface_at(
     f.front = vf_lt(vv_dot(ng, d), vf_zero());
     if (ob->smooth) {
       /* Interpolated vertex normals (NFF polygonal patches). */
-      vint n0 = vf_bits(vf_gather(
-          (const float *)s->triangles,
-          vi_add(vi_mul_const(h->prim, FLOATS_OF(triangle_r)),
-                 vi_set1(FLOAT_OFFSET(triangle_r, normals)))));
+      vint n0 = vf_bits(
+          vf_gather((const float *)s->triangles,
+                    vi_add(vi_mul_const(h->prim, FLOATS_OF(triangle_r)),
+                           vi_set1(FLOAT_OFFSET(triangle_r, normals)))));
       n0 = vi_mul_const(n0, 3);
       const float *nb = (const float *)s->normals;
       vvec3 a = vv_gather(nb, n0, 1, 0);
@@ -671,8 +662,8 @@ static ALWAYS_INLINE vfloat vf_parity(vfloat f) {
 /* The surface colour C (SPEC §4 textures) for one material: the parity of
  * the sum of the cell indices picks the checker colour. */
 static ALWAYS_INLINE vvec3 packet_color(const material_r *m,
-                                        const pmaterial *pm,
-                                        const object_r *ob, vvec3 p) {
+                                        const pmaterial *pm, const object_r *ob,
+                                        vvec3 p) {
   if (m->texture == GLINT_TEXTURE_NONE)
     return vv_get(pm->color);
   vfloat cells;
@@ -692,9 +683,9 @@ static ALWAYS_INLINE vvec3 packet_color(const material_r *m,
 /* Eq. 2.9/2.10's local part for the lanes of m on one material:
  * C (ka Ia + sum S kd N·L IL) + sum S ks (V·R)^h IL, shadow rays included. */
 static ALWAYS_INLINE vvec3 packet_local_shading(
-    const packet_scene *ps, const material_r *mat, const pmaterial *pm,
-    vvec3 c, const packet_surface *f, vvec3 d, vmask m, glint_math math,
-    int newton, glint_stats *st) {
+    const packet_scene *ps, const material_r *mat, const pmaterial *pm, vvec3 c,
+    const packet_surface *f, vvec3 d, vmask m, glint_math math, int newton,
+    glint_stats *st) {
   const scene_r *s = ps->s;
   vvec3 diffuse = vv_get(pm->ambient);
   vvec3 highlight = {vf_zero(), vf_zero(), vf_zero()};
@@ -716,8 +707,8 @@ static ALWAYS_INLINE vvec3 packet_local_shading(
     diffuse = vv_madd(diffuse, kdnl, il);
     if (mat->ks > 0) {
       /* R = 2(L·N)N - L, and V = -D: V·R = 2(L·N)(-D·N) + D·L */
-      vfloat vr = vf_fmadd(vf_add(nl, nl), vf_neg(vv_dot(d, f->n)),
-                           vv_dot(d, l));
+      vfloat vr =
+          vf_fmadd(vf_add(nl, nl), vf_neg(vv_dot(d, f->n)), vv_dot(d, l));
       vmask hl = vm_and(lit, vf_gt(vr, vf_zero()));
       if (vm_any(hl)) {
         vfloat p = vm_pow(vf_max(vr, vf_set1(FLT_MIN)), vs_get(&pm->h), math);
@@ -744,10 +735,9 @@ static ALWAYS_INLINE void packet_secondary(const material_r *mat,
   *refract_mask = vm_false();
   *tir = vm_false();
   if (mat->kt > 0) {
-    vfloat eta =
-        vf_select(f->front, vs_get(&pm->eta_in), vs_get(&pm->eta_out));
-    vfloat k = vf_fnmadd(vf_mul(eta, eta),
-                         vf_fnmadd(cosi, cosi, vf_set1(1)), vf_set1(1));
+    vfloat eta = vf_select(f->front, vs_get(&pm->eta_in), vs_get(&pm->eta_out));
+    vfloat k = vf_fnmadd(vf_mul(eta, eta), vf_fnmadd(cosi, cosi, vf_set1(1)),
+                         vf_set1(1));
     *tir = vm_and(m, vf_lt(k, vf_zero()));
     *refract_mask = vm_andnot(m, *tir);
     vfloat coef = vf_sub(vf_mul(eta, cosi), vf_sqrt(vf_max(k, vf_zero())));
@@ -770,15 +760,18 @@ static ALWAYS_INLINE vvec3 packet_beer(const material_r *mat,
   /* exp(0) = 1: channels that absorb nothing are left alone. */
   if (mat->absorb.x != 0)
     color.x = vf_select(
-        inside, vf_mul(color.x, vm_exp(vf_mul(vs_get(&pm->absorb[0]), nt), math)),
+        inside,
+        vf_mul(color.x, vm_exp(vf_mul(vs_get(&pm->absorb[0]), nt), math)),
         color.x);
   if (mat->absorb.y != 0)
     color.y = vf_select(
-        inside, vf_mul(color.y, vm_exp(vf_mul(vs_get(&pm->absorb[1]), nt), math)),
+        inside,
+        vf_mul(color.y, vm_exp(vf_mul(vs_get(&pm->absorb[1]), nt), math)),
         color.y);
   if (mat->absorb.z != 0)
     color.z = vf_select(
-        inside, vf_mul(color.z, vm_exp(vf_mul(vs_get(&pm->absorb[2]), nt), math)),
+        inside,
+        vf_mul(color.z, vm_exp(vf_mul(vs_get(&pm->absorb[2]), nt), math)),
         color.z);
   return color;
 }

@@ -14,9 +14,8 @@ static void put3(vscalar *dst, vec3 v) {
 }
 
 glint_status packet_scene_prepare(const glint_scene *scene,
-                                  const glint_frame *frame,
-                                  packet_scene **out, glint_stats *stats,
-                                  glint_error *error) {
+                                  const glint_frame *frame, packet_scene **out,
+                                  glint_stats *stats, glint_error *error) {
   packet_scene *ps = glint_aligned_calloc(1, sizeof *ps);
   if (!ps)
     return glint_fail(error, GLINT_E_MEMORY, "out of memory");
@@ -30,13 +29,13 @@ glint_status packet_scene_prepare(const glint_scene *scene,
   size_t materials = scene->material_count;
   ps->spheres = glint_aligned_calloc(s->sphere_count, sizeof *ps->spheres);
   ps->planes = glint_aligned_calloc(s->plane_count, sizeof *ps->planes);
-  ps->triangles = glint_aligned_calloc(s->triangle_count, sizeof *ps->triangles);
+  ps->triangles =
+      glint_aligned_calloc(s->triangle_count, sizeof *ps->triangles);
   ps->cones = glint_aligned_calloc(s->cone_count, sizeof *ps->cones);
   ps->materials = glint_aligned_calloc(materials, sizeof *ps->materials);
   ps->lights = glint_aligned_calloc(s->light_count, sizeof *ps->lights);
   if (!ps->spheres || !ps->planes || !ps->triangles || !ps->cones ||
-      !ps->materials ||
-      !ps->lights) {
+      !ps->materials || !ps->lights) {
     packet_scene_release(ps);
     return glint_fail(error, GLINT_E_MEMORY,
                       "out of memory preparing the scene");

@@ -41,8 +41,8 @@ typedef struct pmaterial {
   vscalar color[3], odd[3], even[3];
   vscalar ambient[3]; /* ka Ia */
   vscalar kd, ks, h, kr, kt;
-  vscalar kr_tir;           /* kr + kt: reflection's weight under TIR */
-  vscalar eta_in, eta_out;  /* 1/ior entering, ior leaving */
+  vscalar kr_tir;          /* kr + kt: reflection's weight under TIR */
+  vscalar eta_in, eta_out; /* 1/ior entering, ior leaving */
   vscalar ior_value;
   vscalar absorb[3], inv_size;
 } pmaterial;
@@ -68,9 +68,8 @@ typedef struct packet_scene {
 #define packet_scene_release ISA_NAME(glint_packet_scene_release)
 
 glint_status packet_scene_prepare(const glint_scene *scene,
-                                  const glint_frame *frame,
-                                  packet_scene **out, glint_stats *stats,
-                                  glint_error *error);
+                                  const glint_frame *frame, packet_scene **out,
+                                  glint_stats *stats, glint_error *error);
 void packet_scene_release(packet_scene *ps);
 
 #endif

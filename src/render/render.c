@@ -44,8 +44,7 @@ static const backend_entry backends[GLINT_BACKEND_COUNT] = {
                                      &glint_scalar_ops_double, cpu_any},
     [GLINT_BACKEND_SSE] = {"sse", 4, &glint_beam_ops_sse, cpu_sse},
     [GLINT_BACKEND_AVX2] = {"avx2", 8, &glint_beam_ops_avx2, cpu_avx2},
-    [GLINT_BACKEND_AVX512] = {"avx512", 16, &glint_beam_ops_avx512,
-                              cpu_avx512},
+    [GLINT_BACKEND_AVX512] = {"avx512", 16, &glint_beam_ops_avx512, cpu_avx512},
     [GLINT_BACKEND_STREAM] = {"stream", 0, NULL, cpu_any},
     [GLINT_BACKEND_STREAM_SSE] = {"stream-sse", 4, &glint_stream_ops_sse,
                                   cpu_sse},
@@ -308,9 +307,9 @@ static void *worker_main(void *arg) {
           pixels + ((size_t)(y - job->y0) * width + (tile.x0 - job->x0)) * 3;
       if (job->inv_gamma != 1)
         for (int i = 0; i < tw * 3; i++)
-          src[i] = src[i] > 0 ? powf(src[i] < 1 ? src[i] : 1.0f,
-                                     (float)job->inv_gamma)
-                              : 0.0f;
+          src[i] = src[i] > 0
+                       ? powf(src[i] < 1 ? src[i] : 1.0f, (float)job->inv_gamma)
+                       : 0.0f;
       for (int i = 0; i < tw * 3; i++)
         dst[i] = to_byte(src[i]);
     }
@@ -353,8 +352,8 @@ static void stats_add(glint_stats *a, const glint_stats *b) {
 /* glint_render and glint_trace_primary: the same preparation, tiles and
  * threads; primary_only skips shading and leaves *out alone. */
 static glint_status run(const glint_scene *scene,
-                        const glint_render_settings *settings,
-                        int primary_only, glint_image **out, uint64_t *hits,
+                        const glint_render_settings *settings, int primary_only,
+                        glint_image **out, uint64_t *hits,
                         glint_stats *stats_out, glint_error *error) {
   glint_render_settings defaults;
   if (!settings) {

@@ -52,8 +52,8 @@ glint_status scalar_scene_prepare(const glint_scene *g,
 
   for (size_t i = 0; i < g->sphere_count; i++) {
     const glint_sphere_prim *p = &g->spheres[i];
-    s->spheres[i] = (sphere_r){from_d(p->center), (real)(p->radius * p->radius),
-                               p->object};
+    s->spheres[i] =
+        (sphere_r){from_d(p->center), (real)(p->radius * p->radius), p->object};
   }
   for (size_t i = 0; i < g->plane_count; i++) {
     const glint_plane_prim *p = &g->planes[i];
@@ -149,7 +149,8 @@ glint_status scalar_scene_prepare(const glint_scene *g,
   stats->scene_bytes = sizeof *s + g->sphere_count * sizeof *s->spheres +
                        g->plane_count * sizeof *s->planes +
                        g->triangle_count * sizeof *s->triangles +
-      g->cone_count * sizeof *s->cones + glint_bvh_bytes(&s->bvh) +
+                       g->cone_count * sizeof *s->cones +
+                       glint_bvh_bytes(&s->bvh) +
                        g->tri_normal_count * sizeof *s->normals +
                        g->object_count * sizeof *s->objects +
                        g->material_count * sizeof *s->materials +
@@ -184,8 +185,8 @@ static inline void hit_prim(const scene_r *s, uint32_t shape, uint32_t i,
   switch (shape) {
   case GLINT_SHAPE_SPHERE: {
     int inside;
-    if (sphere_hit(s->spheres[i].center, s->spheres[i].r2, o, d, s->eps,
-                   *tmax, &t, &inside)) {
+    if (sphere_hit(s->spheres[i].center, s->spheres[i].r2, o, d, s->eps, *tmax,
+                   &t, &inside)) {
       *tmax = hit->t = t;
       hit->shape = GLINT_SHAPE_SPHERE;
       hit->prim = i;
@@ -238,13 +239,16 @@ static inline vec3 safe_inverse(vec3 d) {
  * so rounding cannot cull a hit on the box's surface. */
 static inline real box_entry(const glint_bvh_node *n, vec3 o, vec3 inv,
                              real tmin, real tmax) {
-  real t0x = ((real)n->lo[0] - o.x) * inv.x, t1x = ((real)n->hi[0] - o.x) * inv.x;
-  real t0y = ((real)n->lo[1] - o.y) * inv.y, t1y = ((real)n->hi[1] - o.y) * inv.y;
-  real t0z = ((real)n->lo[2] - o.z) * inv.z, t1z = ((real)n->hi[2] - o.z) * inv.z;
+  real t0x = ((real)n->lo[0] - o.x) * inv.x,
+       t1x = ((real)n->hi[0] - o.x) * inv.x;
+  real t0y = ((real)n->lo[1] - o.y) * inv.y,
+       t1y = ((real)n->hi[1] - o.y) * inv.y;
+  real t0z = ((real)n->lo[2] - o.z) * inv.z,
+       t1z = ((real)n->hi[2] - o.z) * inv.z;
   real near = r_max(r_max(r_min(t0x, t1x), r_min(t0y, t1y)),
-                     r_max(r_min(t0z, t1z), tmin));
+                    r_max(r_min(t0z, t1z), tmin));
   real far = r_min(r_min(r_max(t0x, t1x), r_max(t0y, t1y)),
-                    r_min(r_max(t0z, t1z), tmax));
+                   r_min(r_max(t0z, t1z), tmax));
   return near <= far * (real)1.0000005 ? near : (real)INFINITY;
 }
 
@@ -381,7 +385,8 @@ static inline int cross_prim(const scene_r *s, shadow_acc *acc, uint32_t shape,
                        dist, ts);
     for (int k = 0; k < n; k++) {
       vec3 p = v3_madd(o, ts[k], d);
-      int entering = v3_dot(cone_normal(c->base, c->axis, c->rb, c->k, p), d) < 0;
+      int entering =
+          v3_dot(cone_normal(c->base, c->axis, c->rb, c->k, p), d) < 0;
       if (!cross_surface(s, acc, c->object, ts[k], entering))
         return 0;
     }

@@ -33,7 +33,7 @@ typedef struct triangle_r {
 } triangle_r;
 
 typedef struct cone_r {
-  vec3 base, axis; /* axis: unit, from base to apex */
+  vec3 base, axis;    /* axis: unit, from base to apex */
   real height, rb, k; /* base radius and slope (apex - base radius) / height */
   uint32_t object;
 } cone_r;

@@ -216,6 +216,5 @@ static uint64_t primary_tile(const void *prepared, const glint_tile *tile,
   return hits;
 }
 
-const glint_backend_ops REAL_NAME(glint_scalar_ops) = {prepare, release, NULL,
-                                                       render_tile,
-                                                       primary_tile};
+const glint_backend_ops REAL_NAME(glint_scalar_ops) = {
+    prepare, release, NULL, render_tile, primary_tile};

@@ -27,6 +27,7 @@
  * Compiled once per ISA, like the beam tracer. */
 #include "render/backend.h"
 #include "render/packet.h"
+#include "render/primary.h"
 
 #include "core/error.h"
 #include "core/timer.h"
@@ -87,7 +88,8 @@ static size_t accum_bytes(void) {
 
 static size_t scratch_bytes(const void *prepared) {
   const stream_scene *ss = prepared;
-  return sizeof(stream_scratch) + 64 + (size_t)ss->levels * 2 * (sizeof(ray_stream) + level_bytes()) +
+  return sizeof(stream_scratch) + 64 +
+         (size_t)ss->levels * 2 * (sizeof(ray_stream) + level_bytes()) +
          accum_bytes() + 64 * 32;
 }
 
@@ -116,7 +118,8 @@ static stream_scratch *carve(void *scratch, int levels) {
     r->count = r->cursor = 0;
   }
   sc->accum = (float *)p;
-  p = align64(p + (size_t)GLINT_TILE_SIZE * GLINT_TILE_SIZE * 4 * sizeof(float));
+  p = align64(p +
+              (size_t)GLINT_TILE_SIZE * GLINT_TILE_SIZE * 4 * sizeof(float));
   sc->log = (float *)p;
   sc->log_count = 0;
   return sc;
@@ -150,8 +153,8 @@ static ALWAYS_INLINE uint64_t tick(const tracer *t) {
 
 /* ---- appending rays (the compaction) ------------------------------------ */
 
-static ALWAYS_INLINE void append_ray(tracer *t, ray_stream *r, vmask m,
-                                     vvec3 o, vvec3 d, vvec3 w, vint pixel) {
+static ALWAYS_INLINE void append_ray(tracer *t, ray_stream *r, vmask m, vvec3 o,
+                                     vvec3 d, vvec3 w, vint pixel) {
   uint64_t t0 = tick(t);
   int n = r->count;
   vf_compress_store(r->ox + n, m, o.x);
@@ -277,12 +280,9 @@ static ALWAYS_INLINE lane_material gather_material(const packet_scene *ps,
 
 /* Each lane's surface: point, normal facing the ray, front side, material
  * index, whatever shape it hit. */
-static ALWAYS_INLINE packet_surface stream_surface(const packet_scene *ps,
-                                                   const packet_hit *h,
-                                                   vmask hits, vvec3 o,
-                                                   vvec3 d, vint *material,
-                                                   vvec3 *origin, vint *axes,
-                                                   int newton) {
+static ALWAYS_INLINE packet_surface
+stream_surface(const packet_scene *ps, const packet_hit *h, vmask hits, vvec3 o,
+               vvec3 d, vint *material, vvec3 *origin, vint *axes, int newton) {
   const scene_r *s = ps->s;
   packet_surface f;
   f.p = vv_madd(o, h->t, d);
@@ -333,8 +333,8 @@ static ALWAYS_INLINE packet_surface stream_surface(const packet_scene *ps,
       vvec3 b = vv_gather(nb, n0, 1, 3);
       vvec3 c = vv_gather(nb, n0, 1, 6);
       vfloat w = vf_sub(vf_sub(vf_set1(1), h->u), h->v);
-      vvec3 ns = vv_normalize(vv_madd(vv_madd(vv_scale(a, w), h->u, b), h->v, c),
-                              newton);
+      vvec3 ns = vv_normalize(
+          vv_madd(vv_madd(vv_scale(a, w), h->u, b), h->v, c), newton);
       vmask facing = vf_lt(vv_dot(ns, d), vf_zero());
       n = vv_select(smooth, vv_select(facing, ns, vv_neg(ns)), n);
       smooth_done = smooth;
@@ -351,8 +351,7 @@ static ALWAYS_INLINE packet_surface stream_surface(const packet_scene *ps,
     vvec3 q = vv_sub(f.p, base);
     vfloat hq = vv_dot(q, axis);
     vvec3 g = vv_normalize(
-        vv_madd(q, vf_neg(vf_fmadd(k, vf_fmadd(k, hq, rb), hq)), axis),
-        newton);
+        vv_madd(q, vf_neg(vf_fmadd(k, vf_fmadd(k, hq, rb), hq)), axis), newton);
     ng = vv_select(con, g, ng);
     f.front = vm_select(con, vf_lt(vv_dot(g, d), vf_zero()), f.front);
   }
@@ -432,10 +431,11 @@ static ALWAYS_INLINE vvec3 shade_packet(tracer *t, int level, vmask active,
     vvec3 unit = {vf_set1(1), vf_set1(1), vf_set1(1)};
     w = vv_mul(w, packet_beer(mat, pm, &f, h.t, hits, unit, math));
     uint64_t t2 = tick(t);
-    vvec3 local = packet_local_shading(ps, mat, pm, c, &f, d, hits, math,
-                                       newton, t->st);
+    vvec3 local =
+        packet_local_shading(ps, mat, pm, c, &f, d, hits, math, newton, t->st);
     t1 += tick(t) - t2; /* (its shadow rays count as shading here) */
-    vvec3 brings = vv_select(hits, vv_mul(w, local), vv_select(misses, bg, zero));
+    vvec3 brings =
+        vv_select(hits, vv_mul(w, local), vv_select(misses, bg, zero));
     if (level + 1 < s->max_depth && (mat->kr > 0 || mat->kt > 0)) {
       vvec3 reflected, refracted;
       vfloat kr;
@@ -481,8 +481,8 @@ static ALWAYS_INLINE vvec3 shade_packet(tracer *t, int level, vmask active,
 
   vvec3 wc = vv_mul(w, c);
   vvec3 local = vv_mul(wc, lm.ambient);
-  int highlights = lm.uniform ? lm.m->ks > 0
-                              : vm_any(vm_and(hits, vf_gt(lm.ks, vf_zero())));
+  int highlights =
+      lm.uniform ? lm.m->ks > 0 : vm_any(vm_and(hits, vf_gt(lm.ks, vf_zero())));
   for (size_t j = 0; j < s->light_count; j++) {
     const plight *li = &ps->lights[j];
     vvec3 l = vv_sub(vv_get(li->position), f.p);
@@ -497,10 +497,10 @@ static ALWAYS_INLINE vvec3 shade_packet(tracer *t, int level, vmask active,
     /* What the light brings if nothing blocks it. */
     vvec3 bring = vv_scale(wc, vf_mul(lm.kd, nl));
     if (highlights) {
-      vfloat vr = vf_fmadd(vf_add(nl, nl), vf_neg(vv_dot(d, f.n)),
-                           vv_dot(d, l));
-      vmask hl = vm_and(vm_and(lit, vf_gt(lm.ks, vf_zero())),
-                        vf_gt(vr, vf_zero()));
+      vfloat vr =
+          vf_fmadd(vf_add(nl, nl), vf_neg(vv_dot(d, f.n)), vv_dot(d, l));
+      vmask hl =
+          vm_and(vm_and(lit, vf_gt(lm.ks, vf_zero())), vf_gt(vr, vf_zero()));
       if (vm_any(hl)) {
         vfloat p = vm_pow(vf_max(vr, vf_set1(FLT_MIN)), lm.h, math);
         bring = vv_madd(bring, vf_keep(hl, vf_mul(lm.ks, p)), w);
@@ -589,8 +589,10 @@ static ALWAYS_INLINE void drain(tracer *t, int floor, glint_math math,
       int end = r->count;
       if (deeper) {
         /* A packet has at most W children of each kind. */
-        int free_t = STREAM_CAPACITY - STREAM(t->sc, level + 1, TRANSMITTED)->count;
-        int free_r = STREAM_CAPACITY - STREAM(t->sc, level + 1, REFLECTED)->count;
+        int free_t =
+            STREAM_CAPACITY - STREAM(t->sc, level + 1, TRANSMITTED)->count;
+        int free_r =
+            STREAM_CAPACITY - STREAM(t->sc, level + 1, REFLECTED)->count;
         int budget = (free_t < free_r ? free_t : free_r) / W * W;
         if (end - r->cursor > budget)
           end = r->cursor + budget;
@@ -635,23 +637,15 @@ static ALWAYS_INLINE void drain(tracer *t, int floor, glint_math math,
 /* Primary rays need no buffer: each packet is a BW x BH block of the screen
  * at one sample position, made in registers from the camera (as the beams)
  * and traced at once; only their children enter the stream. */
-#if GLINT_SIMD_WIDTH == 4
-#define BW 2
-#else
-#define BW 4
-#endif
-#define BH (W / BW)
-
-static ALWAYS_INLINE void render_tile_body(const stream_scene *ss,
-                                           const glint_tile *tile,
-                                           void *scratch, float *rgb,
-                                           glint_stats *st, glint_math math,
-                                           int newton) {
+static ALWAYS_INLINE void
+render_tile_body(const stream_scene *ss, const glint_tile *tile, void *scratch,
+                 float *rgb, glint_stats *st, glint_math math, int newton) {
   const packet_scene *ps = ss->ps;
   const scene_r *s = ps->s;
   int levels = s->max_depth;
-  tracer t = {ss, ps, s, carve(scratch, levels), st, tile->x1 - tile->x0,
-              0, 0, 0, {0, 0, 0, 0}};
+  tracer t = {
+      ss, ps, s,           carve(scratch, levels), st, tile->x1 - tile->x0, 0,
+      0,  0,  {0, 0, 0, 0}};
   int tw = tile->x1 - tile->x0;
   int npix = tw * (tile->y1 - tile->y0);
   uint64_t tile_start = __rdtsc();
@@ -660,26 +654,14 @@ static ALWAYS_INLINE void render_tile_body(const stream_scene *ss,
   for (int l = 0; l < 2 * levels; l++)
     t.sc->levels[l].count = t.sc->levels[l].cursor = 0;
 
-  const camera *cam = &s->cam;
-  SIMD_ALIGN float lx[W], ly[W];
-  for (int i = 0; i < W; i++) {
-    lx[i] = (float)(i % BW);
-    ly[i] = (float)(i / BW);
-  }
-  vfloat lane_x = vf_load(lx), lane_y = vf_load(ly);
-  vfloat sx = vf_set1(2 * cam->tan_x / cam->width), ox = vf_set1(-cam->tan_x);
-  vfloat sy = vf_set1(-2 * cam->tan_y / cam->height), oy = vf_set1(cam->tan_y);
-  vvec3 from = vv_set1(cam->from), cd = vv_set1(cam->d), cr = vv_set1(cam->r),
-        cu = vv_set1(cam->u);
+  primary_beams pb = primary_beams_init(&s->cam);
   vvec3 one = {vf_set1(1), vf_set1(1), vf_set1(1)};
   /* Block by block, its samples innermost: their contributions are summed
    * in registers and written once per block. */
   for (int by = tile->y0; by < tile->y1; by += BH)
     for (int bx = tile->x0; bx < tile->x1; bx += BW) {
-      vfloat px = vf_add(vf_set1((float)bx), lane_x);
-      vfloat py = vf_add(vf_set1((float)by), lane_y);
-      vmask valid = vm_and(vf_lt(px, vf_set1((float)tile->x1)),
-                           vf_lt(py, vf_set1((float)tile->y1)));
+      vfloat px, py;
+      vmask valid = primary_block(&pb, tile, bx, by, &px, &py);
       vint pix = vi_add(
           vi_mul_const(vf_to_vi(vf_sub(py, vf_set1((float)tile->y0))), tw),
           vf_to_vi(vf_sub(px, vf_set1((float)tile->x0))));
@@ -691,18 +673,14 @@ static ALWAYS_INLINE void render_tile_body(const stream_scene *ss,
         t.timing = t.packets++ % TIMED_EVERY == 0;
         t.timed += (uint64_t)t.timing;
         uint64_t t0 = tick(&t);
-        vfloat x =
-            vf_fmadd(vf_add(px, vf_set1(0.5f + s->samples[k][0])), sx, ox);
-        vfloat y =
-            vf_fmadd(vf_add(py, vf_set1(0.5f + s->samples[k][1])), sy, oy);
-        vvec3 dir = vv_normalize(vv_madd(vv_madd(cd, x, cr), y, cu), newton);
+        vvec3 dir = primary_dir(&pb, px, py, s->samples[k], newton);
         t.stage_ticks[STAGE_GENERATE] += tick(&t) - t0;
         st->primary_rays += (uint64_t)n;
         st->gen_rays[0] += (uint64_t)n;
         st->gen_packets[0]++;
         st->gen_active_lanes[0] += (uint64_t)n;
-        sum = vv_add(sum, shade_packet(&t, 0, valid, from, dir, one, pix, math,
-                                       newton));
+        sum = vv_add(sum, shade_packet(&t, 0, valid, pb.from, dir, one, pix,
+                                       math, newton));
       }
       accumulate(t.sc, valid, pix, sum);
     }
@@ -719,8 +697,8 @@ static ALWAYS_INLINE void render_tile_body(const stream_scene *ss,
   /* The tile's time, shared among the stages in the proportions the timed
    * packets show (their own timer reads make them slower than the rest). */
   double tile_seconds = (double)(__rdtsc() - tile_start) * ss->tsc_to_seconds;
-  uint64_t sampled = t.stage_ticks[0] + t.stage_ticks[1] + t.stage_ticks[2] +
-                     t.stage_ticks[3];
+  uint64_t sampled =
+      t.stage_ticks[0] + t.stage_ticks[1] + t.stage_ticks[2] + t.stage_ticks[3];
   for (int k = 0; k < 4 && sampled; k++)
     st->stage_seconds[k] +=
         tile_seconds * (double)t.stage_ticks[k] / (double)sampled;
@@ -732,8 +710,7 @@ static void render_tile(const void *prepared, const glint_tile *tile,
   if (ss->ps->math == GLINT_MATH_MINIMAX && ss->ps->newton)
     render_tile_body(ss, tile, scratch, rgb, st, GLINT_MATH_MINIMAX, 1);
   else
-    render_tile_body(ss, tile, scratch, rgb, st, ss->ps->math,
-                     ss->ps->newton);
+    render_tile_body(ss, tile, scratch, rgb, st, ss->ps->math, ss->ps->newton);
 }
 
 /* Cycles of the time-stamp counter per second, measured against the

@@ -49,8 +49,8 @@ static glint_status expect_word(nff_reader *r, const char *word,
   const char *tok = text_token(&r->t, buf, sizeof buf);
   if (!tok)
     return glint_fail(e, GLINT_E_PARSE,
-                      "%s:%d: the file ends where '%s' was expected",
-                      r->t.path, r->t.line, word);
+                      "%s:%d: the file ends where '%s' was expected", r->t.path,
+                      r->t.line, word);
   if (strcmp(tok, word) != 0)
     return glint_fail(e, GLINT_E_PARSE, "%s:%d: expected '%s', found '%s'",
                       r->t.path, r->t.token_line, word, tok);
@@ -88,10 +88,10 @@ static glint_status read_view(nff_reader *r, glint_error *e) {
       (st = expect_word(r, "hither", e)) ||
       (st = text_number(&r->t, "hither", &hither, e)) ||
       (st = expect_word(r, "resolution", e)) ||
-      (st = text_int(&r->t, "the horizontal resolution", 1,
-                     GLINT_MAX_DIMENSION, &w, e)) ||
-      (st = text_int(&r->t, "the vertical resolution", 1,
-                     GLINT_MAX_DIMENSION, &h, e)))
+      (st = text_int(&r->t, "the horizontal resolution", 1, GLINT_MAX_DIMENSION,
+                     &w, e)) ||
+      (st = text_int(&r->t, "the vertical resolution", 1, GLINT_MAX_DIMENSION,
+                     &h, e)))
     return st;
   if (!(angle > 0 && angle < 180))
     return glint_fail(e, GLINT_E_PARSE,
@@ -129,8 +129,9 @@ static glint_status read_light(nff_reader *r, glint_error *e) {
 
 static glint_status read_material(nff_reader *r, glint_error *e) {
   int line = r->t.token_line;
-  static const char *names[8] = {"red", "green", "blue", "Kd", "Ks",
-                                 "Shine", "T", "the index of refraction"};
+  static const char *names[8] = {
+      "red", "green", "blue", "Kd",
+      "Ks",  "Shine", "T",    "the index of refraction"};
   double v[8];
   for (int i = 0; i < 8; i++) {
     char what[64];
@@ -174,10 +175,9 @@ static glint_status read_sphere(nff_reader *r, glint_error *e) {
       (st = text_vec3(&r->t, "the sphere's centre", &c, e)) ||
       (st = text_number(&r->t, "the sphere's radius", &radius, e)))
     return st;
-  return at_line(r, line,
-                 glint_scene_add_sphere(r->scene, c, fabs(radius),
-                                        r->material, e),
-                 e);
+  return at_line(
+      r, line,
+      glint_scene_add_sphere(r->scene, c, fabs(radius), r->material, e), e);
 }
 
 static glint_status read_cone(nff_reader *r, glint_error *e) {
@@ -197,8 +197,8 @@ static glint_status read_cone(nff_reader *r, glint_error *e) {
                       "signs",
                       r->t.path, line, rb, ra);
   return at_line(r, line,
-                 glint_scene_add_cone(r->scene, base, fabs(rb), apex,
-                                      fabs(ra), r->material, e),
+                 glint_scene_add_cone(r->scene, base, fabs(rb), apex, fabs(ra),
+                                      r->material, e),
                  e);
 }
 
@@ -223,8 +223,8 @@ static glint_status read_polygon(nff_reader *r, int patch, glint_error *e) {
   long n;
   glint_status st;
   if ((st = need_material(r, entity, e)) ||
-      (st = text_int(&r->t, "the vertex count", 3, MAX_POLYGON_VERTICES, &n,
-                     e)))
+      (st =
+           text_int(&r->t, "the vertex count", 3, MAX_POLYGON_VERTICES, &n, e)))
     return st;
   if ((size_t)n > r->vert_cap) {
     glint_vec3 *v = realloc(r->verts, sizeof *v * (size_t)n);
@@ -245,8 +245,9 @@ static glint_status read_polygon(nff_reader *r, int patch, glint_error *e) {
        * not for every vertex read). */
       if (e) {
         char msg[sizeof e->message];
-        snprintf(msg, sizeof msg, "%.900s (vertex %ld of %ld of the %s on line %d)",
-                 e->message, i + 1, n, patch ? "patch" : "polygon", line);
+        snprintf(msg, sizeof msg,
+                 "%.900s (vertex %ld of %ld of the %s on line %d)", e->message,
+                 i + 1, n, patch ? "patch" : "polygon", line);
         glint_fail(e, st, "%s", msg);
       }
       return st;
@@ -290,13 +291,14 @@ static glint_status read_nff(nff_reader *r, glint_error *e) {
     else if (strcmp(tok, "pp") == 0)
       st = read_polygon(r, 1, e);
     else
-      st = glint_fail(e, GLINT_E_PARSE, "%s:%d: unknown entity '%s'",
-                      r->t.path, r->t.token_line, tok);
+      st = glint_fail(e, GLINT_E_PARSE, "%s:%d: unknown entity '%s'", r->t.path,
+                      r->t.token_line, tok);
   }
   if (st)
     return st;
   /* Uncoloured lights: 1/sqrt(number of lights) each. */
-  double intensity = 1 / sqrt((double)(r->scene->light_count ? r->scene->light_count : 1));
+  double intensity =
+      1 / sqrt((double)(r->scene->light_count ? r->scene->light_count : 1));
   for (size_t i = 0; i < r->scene->light_count; i++)
     if (r->scene->lights[i].color.x < 0)
       r->scene->lights[i].color = (glint_vec3){intensity, intensity, intensity};

@@ -376,9 +376,9 @@ void glint_scene_get_info(const glint_scene *s, glint_scene_info *info) {
              hi = {-INFINITY, -INFINITY, -INFINITY};
 #define GROW(p, r)                                                             \
   do {                                                                         \
-    lo.x = fmin(lo.x, (p).x - (r)), hi.x = fmax(hi.x, (p).x + (r));           \
-    lo.y = fmin(lo.y, (p).y - (r)), hi.y = fmax(hi.y, (p).y + (r));           \
-    lo.z = fmin(lo.z, (p).z - (r)), hi.z = fmax(hi.z, (p).z + (r));           \
+    lo.x = fmin(lo.x, (p).x - (r)), hi.x = fmax(hi.x, (p).x + (r));            \
+    lo.y = fmin(lo.y, (p).y - (r)), hi.y = fmax(hi.y, (p).y + (r));            \
+    lo.z = fmin(lo.z, (p).z - (r)), hi.z = fmax(hi.z, (p).z + (r));            \
   } while (0)
   for (size_t i = 0; i < s->sphere_count; i++)
     GROW(s->spheres[i].center, s->spheres[i].radius);

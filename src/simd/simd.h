@@ -50,7 +50,9 @@ static inline vmask vm_select(vmask m, vmask a, vmask b) {
 }
 static inline int vm_any(vmask m) { return vm_bits(m) != 0; }
 static inline int vm_none(vmask m) { return vm_bits(m) == 0; }
-static inline int vm_first(vmask m) { return __builtin_ctz((unsigned)vm_bits(m)); }
+static inline int vm_first(vmask m) {
+  return __builtin_ctz((unsigned)vm_bits(m));
+}
 
 /* 1/a by the hardware estimate refined with one Newton–Raphson step, eq. 3.1:
  * x1 = 2 x0 - a x0^2 = x0 (2 - a x0). Without the step (newton = 0) the

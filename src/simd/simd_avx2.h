@@ -36,12 +36,24 @@ static inline vfloat vf_rcp_estimate(vfloat a) { return _mm256_rcp_ps(a); }
 static inline vfloat vf_rsqrt_estimate(vfloat a) { return _mm256_rsqrt_ps(a); }
 static inline vfloat vf_floor(vfloat a) { return _mm256_floor_ps(a); }
 
-static inline vmask vf_lt(vfloat a, vfloat b) { return _mm256_cmp_ps(a, b, _CMP_LT_OQ); }
-static inline vmask vf_le(vfloat a, vfloat b) { return _mm256_cmp_ps(a, b, _CMP_LE_OQ); }
-static inline vmask vf_gt(vfloat a, vfloat b) { return _mm256_cmp_ps(a, b, _CMP_GT_OQ); }
-static inline vmask vf_ge(vfloat a, vfloat b) { return _mm256_cmp_ps(a, b, _CMP_GE_OQ); }
-static inline vmask vf_eq(vfloat a, vfloat b) { return _mm256_cmp_ps(a, b, _CMP_EQ_OQ); }
-static inline vmask vf_neq(vfloat a, vfloat b) { return _mm256_cmp_ps(a, b, _CMP_NEQ_UQ); }
+static inline vmask vf_lt(vfloat a, vfloat b) {
+  return _mm256_cmp_ps(a, b, _CMP_LT_OQ);
+}
+static inline vmask vf_le(vfloat a, vfloat b) {
+  return _mm256_cmp_ps(a, b, _CMP_LE_OQ);
+}
+static inline vmask vf_gt(vfloat a, vfloat b) {
+  return _mm256_cmp_ps(a, b, _CMP_GT_OQ);
+}
+static inline vmask vf_ge(vfloat a, vfloat b) {
+  return _mm256_cmp_ps(a, b, _CMP_GE_OQ);
+}
+static inline vmask vf_eq(vfloat a, vfloat b) {
+  return _mm256_cmp_ps(a, b, _CMP_EQ_OQ);
+}
+static inline vmask vf_neq(vfloat a, vfloat b) {
+  return _mm256_cmp_ps(a, b, _CMP_NEQ_UQ);
+}
 static inline vfloat vf_select(vmask m, vfloat a, vfloat b) {
   return _mm256_blendv_ps(b, a, m);
 }
@@ -52,14 +64,18 @@ static inline vfloat vf_keep(vmask m, vfloat a) { return _mm256_and_ps(m, a); }
 static inline vmask vm_and(vmask a, vmask b) { return _mm256_and_ps(a, b); }
 static inline vmask vm_or(vmask a, vmask b) { return _mm256_or_ps(a, b); }
 static inline vmask vm_xor(vmask a, vmask b) { return _mm256_xor_ps(a, b); }
-static inline vmask vm_andnot(vmask a, vmask b) { return _mm256_andnot_ps(b, a); }
+static inline vmask vm_andnot(vmask a, vmask b) {
+  return _mm256_andnot_ps(b, a);
+}
 static inline vmask vm_true(void) {
   return _mm256_castsi256_ps(_mm256_set1_epi32(-1));
 }
 static inline vmask vm_false(void) { return _mm256_setzero_ps(); }
 static inline int vm_bits(vmask m) { return _mm256_movemask_ps(m); }
 /* Active lanes (POPCNT: every AVX2 CPU has it; checked by CPUID). */
-static inline int vm_count(vmask m) { return _mm_popcnt_u32((unsigned)vm_bits(m)); }
+static inline int vm_count(vmask m) {
+  return _mm_popcnt_u32((unsigned)vm_bits(m));
+}
 static inline vmask vm_from_bits(int bits) {
   __m256i lane = _mm256_setr_epi32(1, 2, 4, 8, 16, 32, 64, 128);
   __m256i b = _mm256_and_si256(_mm256_set1_epi32(bits), lane);
@@ -67,8 +83,12 @@ static inline vmask vm_from_bits(int bits) {
 }
 
 static inline vint vi_set1(int a) { return _mm256_set1_epi32(a); }
-static inline vint vi_load(const int *p) { return _mm256_load_si256((const __m256i *)p); }
-static inline void vi_store(int *p, vint a) { _mm256_store_si256((__m256i *)p, a); }
+static inline vint vi_load(const int *p) {
+  return _mm256_load_si256((const __m256i *)p);
+}
+static inline void vi_store(int *p, vint a) {
+  _mm256_store_si256((__m256i *)p, a);
+}
 static inline vint vi_add(vint a, vint b) { return _mm256_add_epi32(a, b); }
 static inline vmask vi_eq(vint a, vint b) {
   return _mm256_castsi256_ps(_mm256_cmpeq_epi32(a, b));
@@ -88,7 +108,9 @@ static inline vint vi_and(vint a, vint b) { return _mm256_and_si256(a, b); }
 static inline vint vi_or(vint a, vint b) { return _mm256_or_si256(a, b); }
 static inline vint vi_sub(vint a, vint b) { return _mm256_sub_epi32(a, b); }
 static inline vint vi_xor(vint a, vint b) { return _mm256_xor_si256(a, b); }
-static inline vint vi_mul_const(vint a, int k) { return _mm256_mullo_epi32(a, vi_set1(k)); }
+static inline vint vi_mul_const(vint a, int k) {
+  return _mm256_mullo_epi32(a, vi_set1(k));
+}
 
 /* Four consecutive floats, each broadcast (vbroadcastss from memory). */
 static inline void vf_splat4(const float *p, vfloat *a, vfloat *b, vfloat *c,
@@ -105,8 +127,10 @@ static inline void vf_store_quads(float *p, vfloat a, vfloat b, vfloat c,
                                   vfloat d) {
   __m256 t0 = _mm256_unpacklo_ps(a, b), t1 = _mm256_unpackhi_ps(a, b);
   __m256 t2 = _mm256_unpacklo_ps(c, d), t3 = _mm256_unpackhi_ps(c, d);
-  __m256 q0 = _mm256_shuffle_ps(t0, t2, 0x44), q1 = _mm256_shuffle_ps(t0, t2, 0xee);
-  __m256 q2 = _mm256_shuffle_ps(t1, t3, 0x44), q3 = _mm256_shuffle_ps(t1, t3, 0xee);
+  __m256 q0 = _mm256_shuffle_ps(t0, t2, 0x44),
+         q1 = _mm256_shuffle_ps(t0, t2, 0xee);
+  __m256 q2 = _mm256_shuffle_ps(t1, t3, 0x44),
+         q3 = _mm256_shuffle_ps(t1, t3, 0xee);
   /* q0..q3 hold lanes (0,4) (1,5) (2,6) (3,7) as 128-bit halves */
   _mm256_store_ps(p, _mm256_permute2f128_ps(q0, q1, 0x20));
   _mm256_store_ps(p + 8, _mm256_permute2f128_ps(q2, q3, 0x20));
@@ -130,9 +154,9 @@ static inline __m256i glint_compress_perm(int bits) {
   };
   uint32_t packed = table[bits];
   __m256i shifts = _mm256_setr_epi32(0, 3, 6, 9, 12, 15, 18, 21);
-  return _mm256_and_si256(_mm256_srlv_epi32(_mm256_set1_epi32((int)packed),
-                                            shifts),
-                          _mm256_set1_epi32(7));
+  return _mm256_and_si256(
+      _mm256_srlv_epi32(_mm256_set1_epi32((int)packed), shifts),
+      _mm256_set1_epi32(7));
 }
 
 /* Stores the lanes of m contiguously at p (a whole vector is written: the

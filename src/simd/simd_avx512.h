@@ -33,23 +33,39 @@ static inline vfloat vf_max(vfloat a, vfloat b) { return _mm512_max_ps(a, b); }
 static inline vfloat vf_sqrt(vfloat a) { return _mm512_sqrt_ps(a); }
 /* rcp14: a 14-bit estimate (SSE/AVX2 give about 12). */
 static inline vfloat vf_rcp_estimate(vfloat a) { return _mm512_rcp14_ps(a); }
-static inline vfloat vf_rsqrt_estimate(vfloat a) { return _mm512_rsqrt14_ps(a); }
+static inline vfloat vf_rsqrt_estimate(vfloat a) {
+  return _mm512_rsqrt14_ps(a);
+}
 static inline vfloat vf_floor(vfloat a) {
   return _mm512_roundscale_ps(a, _MM_FROUND_TO_NEG_INF | _MM_FROUND_NO_EXC);
 }
 
-static inline vmask vf_lt(vfloat a, vfloat b) { return _mm512_cmp_ps_mask(a, b, _CMP_LT_OQ); }
-static inline vmask vf_le(vfloat a, vfloat b) { return _mm512_cmp_ps_mask(a, b, _CMP_LE_OQ); }
-static inline vmask vf_gt(vfloat a, vfloat b) { return _mm512_cmp_ps_mask(a, b, _CMP_GT_OQ); }
-static inline vmask vf_ge(vfloat a, vfloat b) { return _mm512_cmp_ps_mask(a, b, _CMP_GE_OQ); }
-static inline vmask vf_eq(vfloat a, vfloat b) { return _mm512_cmp_ps_mask(a, b, _CMP_EQ_OQ); }
-static inline vmask vf_neq(vfloat a, vfloat b) { return _mm512_cmp_ps_mask(a, b, _CMP_NEQ_UQ); }
+static inline vmask vf_lt(vfloat a, vfloat b) {
+  return _mm512_cmp_ps_mask(a, b, _CMP_LT_OQ);
+}
+static inline vmask vf_le(vfloat a, vfloat b) {
+  return _mm512_cmp_ps_mask(a, b, _CMP_LE_OQ);
+}
+static inline vmask vf_gt(vfloat a, vfloat b) {
+  return _mm512_cmp_ps_mask(a, b, _CMP_GT_OQ);
+}
+static inline vmask vf_ge(vfloat a, vfloat b) {
+  return _mm512_cmp_ps_mask(a, b, _CMP_GE_OQ);
+}
+static inline vmask vf_eq(vfloat a, vfloat b) {
+  return _mm512_cmp_ps_mask(a, b, _CMP_EQ_OQ);
+}
+static inline vmask vf_neq(vfloat a, vfloat b) {
+  return _mm512_cmp_ps_mask(a, b, _CMP_NEQ_UQ);
+}
 static inline vfloat vf_select(vmask m, vfloat a, vfloat b) {
   return _mm512_mask_blend_ps(m, b, a);
 }
 
 /* m ? a : 0, a zero-masking move */
-static inline vfloat vf_keep(vmask m, vfloat a) { return _mm512_maskz_mov_ps(m, a); }
+static inline vfloat vf_keep(vmask m, vfloat a) {
+  return _mm512_maskz_mov_ps(m, a);
+}
 
 static inline vmask vm_and(vmask a, vmask b) { return (vmask)(a & b); }
 static inline vmask vm_or(vmask a, vmask b) { return (vmask)(a | b); }
@@ -59,14 +75,22 @@ static inline vmask vm_true(void) { return (vmask)0xffff; }
 static inline vmask vm_false(void) { return (vmask)0; }
 static inline int vm_bits(vmask m) { return (int)m; }
 /* Active lanes (POPCNT: every AVX2 CPU has it; checked by CPUID). */
-static inline int vm_count(vmask m) { return _mm_popcnt_u32((unsigned)vm_bits(m)); }
+static inline int vm_count(vmask m) {
+  return _mm_popcnt_u32((unsigned)vm_bits(m));
+}
 static inline vmask vm_from_bits(int bits) { return (vmask)bits; }
 
 static inline vint vi_set1(int a) { return _mm512_set1_epi32(a); }
-static inline vint vi_load(const int *p) { return _mm512_load_si512((const void *)p); }
-static inline void vi_store(int *p, vint a) { _mm512_store_si512((void *)p, a); }
+static inline vint vi_load(const int *p) {
+  return _mm512_load_si512((const void *)p);
+}
+static inline void vi_store(int *p, vint a) {
+  _mm512_store_si512((void *)p, a);
+}
 static inline vint vi_add(vint a, vint b) { return _mm512_add_epi32(a, b); }
-static inline vmask vi_eq(vint a, vint b) { return _mm512_cmpeq_epi32_mask(a, b); }
+static inline vmask vi_eq(vint a, vint b) {
+  return _mm512_cmpeq_epi32_mask(a, b);
+}
 static inline vint vi_select(vmask m, vint a, vint b) {
   return _mm512_mask_blend_epi32(m, b, a);
 }
@@ -74,14 +98,22 @@ static inline vint vf_to_vi(vfloat a) { return _mm512_cvttps_epi32(a); }
 static inline vfloat vi_to_vf(vint a) { return _mm512_cvtepi32_ps(a); }
 static inline vint vf_bits(vfloat a) { return _mm512_castps_si512(a); }
 static inline vfloat vi_as_vf(vint a) { return _mm512_castsi512_ps(a); }
-static inline vint vi_shl(vint a, int n) { return _mm512_slli_epi32(a, (unsigned)n); }
-static inline vint vi_shr(vint a, int n) { return _mm512_srli_epi32(a, (unsigned)n); }
-static inline vint vi_sra(vint a, int n) { return _mm512_srai_epi32(a, (unsigned)n); }
+static inline vint vi_shl(vint a, int n) {
+  return _mm512_slli_epi32(a, (unsigned)n);
+}
+static inline vint vi_shr(vint a, int n) {
+  return _mm512_srli_epi32(a, (unsigned)n);
+}
+static inline vint vi_sra(vint a, int n) {
+  return _mm512_srai_epi32(a, (unsigned)n);
+}
 static inline vint vi_and(vint a, vint b) { return _mm512_and_si512(a, b); }
 static inline vint vi_or(vint a, vint b) { return _mm512_or_si512(a, b); }
 static inline vint vi_sub(vint a, vint b) { return _mm512_sub_epi32(a, b); }
 static inline vint vi_xor(vint a, vint b) { return _mm512_xor_si512(a, b); }
-static inline vint vi_mul_const(vint a, int k) { return _mm512_mullo_epi32(a, vi_set1(k)); }
+static inline vint vi_mul_const(vint a, int k) {
+  return _mm512_mullo_epi32(a, vi_set1(k));
+}
 
 /* Four consecutive floats, each broadcast (vbroadcastss from memory). */
 static inline void vf_splat4(const float *p, vfloat *a, vfloat *b, vfloat *c,
@@ -99,15 +131,16 @@ static inline void vf_store_quads(float *p, vfloat a, vfloat b, vfloat c,
   __m512 t0 = _mm512_unpacklo_ps(a, b), t1 = _mm512_unpackhi_ps(a, b);
   __m512 t2 = _mm512_unpacklo_ps(c, d), t3 = _mm512_unpackhi_ps(c, d);
   /* per 128-bit block k: q0 = lane 4k, q1 = 4k+1, q2 = 4k+2, q3 = 4k+3 */
-  __m512 q0 = _mm512_shuffle_ps(t0, t2, 0x44), q1 = _mm512_shuffle_ps(t0, t2, 0xee);
-  __m512 q2 = _mm512_shuffle_ps(t1, t3, 0x44), q3 = _mm512_shuffle_ps(t1, t3, 0xee);
+  __m512 q0 = _mm512_shuffle_ps(t0, t2, 0x44),
+         q1 = _mm512_shuffle_ps(t0, t2, 0xee);
+  __m512 q2 = _mm512_shuffle_ps(t1, t3, 0x44),
+         q3 = _mm512_shuffle_ps(t1, t3, 0xee);
   for (int k = 0; k < 4; k++) {
     /* lanes 4k..4k+3: block k of q0, q1, q2, q3 */
-    __m512i sel = _mm512_setr_epi32(4 * k, 4 * k + 1, 4 * k + 2, 4 * k + 3,
-                                    16 + 4 * k, 17 + 4 * k, 18 + 4 * k,
-                                    19 + 4 * k, 4 * k, 4 * k + 1, 4 * k + 2,
-                                    4 * k + 3, 16 + 4 * k, 17 + 4 * k,
-                                    18 + 4 * k, 19 + 4 * k);
+    __m512i sel = _mm512_setr_epi32(
+        4 * k, 4 * k + 1, 4 * k + 2, 4 * k + 3, 16 + 4 * k, 17 + 4 * k,
+        18 + 4 * k, 19 + 4 * k, 4 * k, 4 * k + 1, 4 * k + 2, 4 * k + 3,
+        16 + 4 * k, 17 + 4 * k, 18 + 4 * k, 19 + 4 * k);
     __m512 lo = _mm512_permutex2var_ps(q0, sel, q1);
     __m512 hi = _mm512_permutex2var_ps(q2, sel, q3);
     _mm512_store_ps(p + 16 * k,

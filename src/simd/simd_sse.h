@@ -74,8 +74,12 @@ static inline vmask vm_from_bits(int bits) {
 }
 
 static inline vint vi_set1(int a) { return _mm_set1_epi32(a); }
-static inline vint vi_load(const int *p) { return _mm_load_si128((const __m128i *)p); }
-static inline void vi_store(int *p, vint a) { _mm_store_si128((__m128i *)p, a); }
+static inline vint vi_load(const int *p) {
+  return _mm_load_si128((const __m128i *)p);
+}
+static inline void vi_store(int *p, vint a) {
+  _mm_store_si128((__m128i *)p, a);
+}
 static inline vint vi_add(vint a, vint b) { return _mm_add_epi32(a, b); }
 static inline vmask vi_eq(vint a, vint b) {
   return _mm_castsi128_ps(_mm_cmpeq_epi32(a, b));
@@ -95,7 +99,9 @@ static inline vint vi_and(vint a, vint b) { return _mm_and_si128(a, b); }
 static inline vint vi_or(vint a, vint b) { return _mm_or_si128(a, b); }
 static inline vint vi_sub(vint a, vint b) { return _mm_sub_epi32(a, b); }
 static inline vint vi_xor(vint a, vint b) { return _mm_xor_si128(a, b); }
-static inline vint vi_mul_const(vint a, int k) { return _mm_mullo_epi32(a, vi_set1(k)); }
+static inline vint vi_mul_const(vint a, int k) {
+  return _mm_mullo_epi32(a, vi_set1(k));
+}
 
 /* Four consecutive floats, each splat across a vector: one load and four
  * shuffles (SSE has no broadcast load; set1 from memory costs two

@@ -52,8 +52,7 @@ static inline vfloat vm_pow2i(vfloat k) {
 /* Taylor coefficients: log2(1+x)/x = (1 - x/2 + x^2/3 - x^3/4 + x^4/5)/ln 2
  * and 2^f = e^(f ln 2) = sum (f ln 2)^k / k!, k <= 3. */
 static const float glint_taylor_log2[5] = {
-    1.442695041f, -0.7213475204f, 0.4808983469f, -0.3606737602f,
-    0.2885390082f};
+    1.442695041f, -0.7213475204f, 0.4808983469f, -0.3606737602f, 0.2885390082f};
 static const float glint_taylor_exp2[4] = {1.0f, 0.6931471806f, 0.2402265070f,
                                            0.05550410866f};
 
@@ -82,8 +81,8 @@ static inline vfloat vm_exp2(vfloat x, glint_math math) {
   x = vf_min(vf_max(x, vf_set1(-126.0f)), vf_set1(127.0f));
   if (math == GLINT_MATH_FAST) {
     /* The inverse of the fast log2: write (x + 127 - c) 2^23 as bits. */
-    vfloat b = vf_mul(vf_add(x, vf_set1(127.0f - 0.0430357f)),
-                      vf_set1(8388608.0f));
+    vfloat b =
+        vf_mul(vf_add(x, vf_set1(127.0f - 0.0430357f)), vf_set1(8388608.0f));
     return vi_as_vf(vf_to_vi(vf_max(b, vf_set1(8388608.0f))));
   }
   vfloat k = vf_floor(vf_add(x, vf_set1(0.5f)));

@@ -1,0 +1,68 @@
+/* Primary beams (SPEC §2, §6): W camera rays made in registers for a block of
+ * BW x BH pixels of a tile, lane i on pixel (bx + i % BW, by + i / BW), one
+ * sample position at a time. Shared by the beam and the stream tracers (and
+ * glint_trace_primary), so all of them aim their rays identically. */
+#ifndef GLINT_RENDER_PRIMARY_H
+#define GLINT_RENDER_PRIMARY_H
+
+#include "render/camera.h"
+#include "render/frame.h"
+#include "render/packet.h"
+
+/* Block shapes: 2x2 for SSE, 4x2 for AVX2, 4x4 for AVX-512 (issue 3). */
+#if GLINT_SIMD_WIDTH == 4
+#define BW 2
+#else
+#define BW 4
+#endif
+#define BH (W / BW)
+
+typedef struct primary_beams {
+  vfloat lane_x, lane_y; /* each lane's pixel offset in its block */
+  vfloat sx, ox, sy, oy; /* pixel -> image plane: x = px sx + ox */
+  vvec3 from, d, r, u;   /* the camera, splatted */
+} primary_beams;
+
+static ALWAYS_INLINE primary_beams primary_beams_init(const camera *cam) {
+  primary_beams pb;
+  SIMD_ALIGN float lx[W], ly[W];
+  for (int i = 0; i < W; i++) {
+    lx[i] = (float)(i % BW);
+    ly[i] = (float)(i / BW);
+  }
+  pb.lane_x = vf_load(lx);
+  pb.lane_y = vf_load(ly);
+  /* SPEC §2: x = (2 px / W - 1) tan_x, y = (1 - 2 py / H) tan_y */
+  pb.sx = vf_set1(2 * cam->tan_x / cam->width);
+  pb.ox = vf_set1(-cam->tan_x);
+  pb.sy = vf_set1(-2 * cam->tan_y / cam->height);
+  pb.oy = vf_set1(cam->tan_y);
+  pb.from = vv_set1(cam->from);
+  pb.d = vv_set1(cam->d);
+  pb.r = vv_set1(cam->r);
+  pb.u = vv_set1(cam->u);
+  return pb;
+}
+
+/* The pixel coordinates of the block at (bx, by) in *px, *py; returns the
+ * lanes whose pixels lie inside the tile (a tile's edge may cut a block). */
+static ALWAYS_INLINE vmask primary_block(const primary_beams *pb,
+                                         const glint_tile *tile, int bx, int by,
+                                         vfloat *px, vfloat *py) {
+  *px = vf_add(vf_set1((float)bx), pb->lane_x);
+  *py = vf_add(vf_set1((float)by), pb->lane_y);
+  return vm_and(vf_lt(*px, vf_set1((float)tile->x1)),
+                vf_lt(*py, vf_set1((float)tile->y1)));
+}
+
+/* The unit directions through the block's pixels at sample offset
+ * (sample[0], sample[1]) from each pixel's centre. */
+static ALWAYS_INLINE vvec3 primary_dir(const primary_beams *pb, vfloat px,
+                                       vfloat py, const float sample[2],
+                                       int newton) {
+  vfloat x = vf_fmadd(vf_add(px, vf_set1(0.5f + sample[0])), pb->sx, pb->ox);
+  vfloat y = vf_fmadd(vf_add(py, vf_set1(0.5f + sample[1])), pb->sy, pb->oy);
+  return vv_normalize(vv_madd(vv_madd(pb->d, x, pb->r), y, pb->u), newton);
+}
+
+#endif
