@@ -99,3 +99,45 @@ int split_list(char *text, char **items, int max) {
   }
   return n;
 }
+
+int arg_render_setting(arg_cursor *c, glint_render_settings *rs) {
+  const char *v;
+  glint_error err;
+  if (arg_is(c, "-W", "--width"))
+    return parse_int("--width", arg_value(c, "--width"), 1, GLINT_MAX_DIMENSION,
+                     &rs->width)
+               ? ARG_BAD
+               : ARG_TAKEN;
+  if (arg_is(c, "-H", "--height"))
+    return parse_int("--height", arg_value(c, "--height"), 1,
+                     GLINT_MAX_DIMENSION, &rs->height)
+               ? ARG_BAD
+               : ARG_TAKEN;
+  if (arg_is(c, "-s", "--spp"))
+    return parse_int("--spp", arg_value(c, "--spp"), 1, GLINT_MAX_SPP, &rs->spp)
+               ? ARG_BAD
+               : ARG_TAKEN;
+  if (arg_is(c, NULL, "--no-newton")) {
+    rs->rcp_newton = 0;
+    return ARG_TAKEN;
+  }
+  if (arg_is(c, NULL, "--math")) {
+    if (!(v = arg_value(c, "--math")))
+      return ARG_BAD;
+    if (glint_math_parse(v, &rs->math, &err)) {
+      cli_error("--math: %s", err.message);
+      return ARG_BAD;
+    }
+    return ARG_TAKEN;
+  }
+  if (arg_is(c, NULL, "--accel")) {
+    if (!(v = arg_value(c, "--accel")))
+      return ARG_BAD;
+    if (glint_accel_parse(v, &rs->accel, &err)) {
+      cli_error("--accel: %s", err.message);
+      return ARG_BAD;
+    }
+    return ARG_TAKEN;
+  }
+  return ARG_NOT_MINE;
+}

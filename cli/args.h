@@ -3,6 +3,8 @@
 #ifndef GLINT_CLI_ARGS_H
 #define GLINT_CLI_ARGS_H
 
+#include "glint.h"
+
 #include <stddef.h>
 
 /* Exit statuses: bad arguments or input get 2 (SPEC of the CLI). */
@@ -27,6 +29,13 @@ const char *arg_value(arg_cursor *c, const char *option);
 int parse_int(const char *option, const char *text, long min, long max,
               int *out);
 int parse_double(const char *option, const char *text, double min, double *out);
+
+/* The settings options that render and bench share: -W/--width,
+ * -H/--height, -s/--spp, --math, --no-newton and --accel. Returns
+ * ARG_NOT_MINE if argv[i] is none of them, ARG_TAKEN once it has set *rs,
+ * ARG_BAD after printing what is wrong with the value. */
+enum { ARG_NOT_MINE, ARG_TAKEN, ARG_BAD };
+int arg_render_setting(arg_cursor *c, glint_render_settings *rs);
 
 /* Prints "glint: <message>" to stderr. */
 void cli_error(const char *format, ...)

@@ -197,16 +197,20 @@ int cmd_bench(int argc, char **argv) {
   char *scene_list = default_scenes, *depth_list = default_depths;
   char *backend_list = NULL, *thread_list = default_threads;
   const char *csv_path = NULL, *plot_dir = NULL, *spd_dir = NULL,
-             *mesh_dir = NULL, *v;
-  int runs = 3, width_given = 0, height_given = 0;
+             *mesh_dir = NULL;
+  int runs = 3;
   glint_render_settings rs;
   glint_render_settings_default(&rs);
-  rs.width = 640;
-  rs.height = 480;
+  rs.width = rs.height = 0; /* 0: not given */
   glint_error err;
   arg_cursor c = {argc, argv, 0, NULL};
   while (c.i < argc) {
     const char *a = argv[c.i];
+    int shared = arg_render_setting(&c, &rs);
+    if (shared == ARG_BAD)
+      return EXIT_USAGE;
+    if (shared == ARG_TAKEN)
+      continue;
     if (arg_is(&c, "-h", "--help")) {
       bench_usage(stdout);
       return 0;
@@ -222,36 +226,9 @@ int cmd_bench(int argc, char **argv) {
     } else if (arg_is(&c, NULL, "--runs")) {
       if (parse_int("--runs", arg_value(&c, "--runs"), 1, 255, &runs))
         return EXIT_USAGE;
-    } else if (arg_is(&c, "-W", "--width")) {
-      if (parse_int("--width", arg_value(&c, "--width"), 1, GLINT_MAX_DIMENSION,
-                    &rs.width))
-        return EXIT_USAGE;
-      width_given = 1;
-    } else if (arg_is(&c, "-H", "--height")) {
-      if (parse_int("--height", arg_value(&c, "--height"), 1,
-                    GLINT_MAX_DIMENSION, &rs.height))
-        return EXIT_USAGE;
-      height_given = 1;
-    } else if (arg_is(&c, "-s", "--spp")) {
-      if (parse_int("--spp", arg_value(&c, "--spp"), 1, GLINT_MAX_SPP, &rs.spp))
-        return EXIT_USAGE;
     } else if (arg_is(&c, "-t", "--threads")) {
       if (!(thread_list = (char *)arg_value(&c, "--threads")))
         return EXIT_USAGE;
-    } else if (arg_is(&c, NULL, "--math")) {
-      if (!(v = arg_value(&c, "--math")))
-        return EXIT_USAGE;
-      if (glint_math_parse(v, &rs.math, &err)) {
-        cli_error("--math: %s", err.message);
-        return EXIT_USAGE;
-      }
-    } else if (arg_is(&c, NULL, "--accel")) {
-      if (!(v = arg_value(&c, "--accel")))
-        return EXIT_USAGE;
-      if (glint_accel_parse(v, &rs.accel, &err)) {
-        cli_error("--accel: %s", err.message);
-        return EXIT_USAGE;
-      }
     } else if (arg_is(&c, NULL, "--csv")) {
       if (!(csv_path = arg_value(&c, "--csv")))
         return EXIT_USAGE;
@@ -329,10 +306,7 @@ int cmd_bench(int argc, char **argv) {
     }
 
   if (mesh_dir) {
-    glint_render_settings mr = rs;
-    mr.width = width_given ? rs.width : 0;
-    mr.height = height_given ? rs.height : 0;
-    return bench_meshes(mesh_dir, &mr, backends, nbackends, runs);
+    return bench_meshes(mesh_dir, &rs, backends, nbackends, runs);
   }
 
   FILE *csv = NULL;
@@ -455,7 +429,7 @@ int bench_scenes(char **names, int nscenes, const int *depths, int ndepths,
     if (s == 0)
       printf("glint %s bench: %dx%d, %d spp, math %s, accel %s, median of %d "
              "run%s\n",
-             glint_version(), rs.width, rs.height, rs.spp,
+             glint_version(), stats[0].width, stats[0].height, rs.spp,
              glint_math_name(rs.math), glint_accel_name(rs.accel), runs,
              runs == 1 ? "" : "s");
     printf("\n");

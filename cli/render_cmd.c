@@ -158,26 +158,20 @@ int cmd_render(int argc, char **argv) {
   arg_cursor c = {argc, argv, 0, NULL};
   while (c.i < argc) {
     const char *a = argv[c.i];
+    int shared = arg_render_setting(&c, &rs);
+    if (shared == ARG_BAD)
+      return EXIT_USAGE;
+    if (shared == ARG_TAKEN)
+      continue;
     if (arg_is(&c, "-h", "--help")) {
       render_usage(stdout);
       return 0;
     } else if (arg_is(&c, "-o", "--output")) {
       if (!(output = arg_value(&c, "--output")))
         return EXIT_USAGE;
-    } else if (arg_is(&c, "-W", "--width")) {
-      if (parse_int("--width", arg_value(&c, "--width"), 1, GLINT_MAX_DIMENSION,
-                    &rs.width))
-        return EXIT_USAGE;
-    } else if (arg_is(&c, "-H", "--height")) {
-      if (parse_int("--height", arg_value(&c, "--height"), 1,
-                    GLINT_MAX_DIMENSION, &rs.height))
-        return EXIT_USAGE;
     } else if (arg_is(&c, "-d", "--depth")) {
       if (parse_int("--depth", arg_value(&c, "--depth"), 1, GLINT_MAX_DEPTH,
                     &rs.max_depth))
-        return EXIT_USAGE;
-    } else if (arg_is(&c, "-s", "--spp")) {
-      if (parse_int("--spp", arg_value(&c, "--spp"), 1, GLINT_MAX_SPP, &rs.spp))
         return EXIT_USAGE;
     } else if (arg_is(&c, "-t", "--threads")) {
       if (parse_int("--threads", arg_value(&c, "--threads"), 0,
@@ -192,22 +186,6 @@ int cmd_render(int argc, char **argv) {
       }
       if (!glint_backend_supported(rs.backend)) {
         cli_error("backend '%s' is not supported on this CPU", v);
-        return EXIT_USAGE;
-      }
-    } else if (arg_is(&c, NULL, "--math")) {
-      if (!(v = arg_value(&c, "--math")))
-        return EXIT_USAGE;
-      if (glint_math_parse(v, &rs.math, &err)) {
-        cli_error("--math: %s", err.message);
-        return EXIT_USAGE;
-      }
-    } else if (arg_is(&c, NULL, "--no-newton")) {
-      rs.rcp_newton = 0;
-    } else if (arg_is(&c, NULL, "--accel")) {
-      if (!(v = arg_value(&c, "--accel")))
-        return EXIT_USAGE;
-      if (glint_accel_parse(v, &rs.accel, &err)) {
-        cli_error("--accel: %s", err.message);
         return EXIT_USAGE;
       }
     } else if (arg_is(&c, NULL, "--region")) {
