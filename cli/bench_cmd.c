@@ -427,12 +427,11 @@ int bench_scenes(char **names, int nscenes, const int *depths, int ndepths,
 
   for (int s = 0; s < nscenes && !status; s++) {
     if (s == 0)
-      printf("glint %s bench: %dx%d, %d spp, math %s, accel %s, median of %d "
-             "run%s\n",
-             glint_version(), stats[0].width, stats[0].height, rs.spp,
-             glint_math_name(rs.math), glint_accel_name(rs.accel), runs,
-             runs == 1 ? "" : "s");
-    printf("\n");
+      printf("glint %s bench: %d spp, math %s, accel %s, median of %d run%s\n",
+             glint_version(), rs.spp, glint_math_name(rs.math),
+             glint_accel_name(rs.accel), runs, runs == 1 ? "" : "s");
+    printf("\n%s at %dx%d\n", stems[s], stats[IDX(s, 0, 0)].width,
+           stats[IDX(s, 0, 0)].height);
     print_header("seconds", stems[s], cols, ncols, 0);
     for (int d = 0; d < ndepths; d++) {
       printf("%5d", depths[d]);
