@@ -97,7 +97,7 @@ static void spd_size_one(void **state) {
 }
 
 /* A JSON scene written at test time, because the mesh's path is that of the
- * shared folder here: the bunny (an OBJ of 4968 triangles) on a checkered
+ * shared folder here: the bunny (an OBJ of 3674 triangles) on a checkered
  * floor, a mirror sphere behind it, and a glass sphere in front. */
 static void mesh_scene(void **state) {
   (void)state;

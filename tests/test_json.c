@@ -768,7 +768,7 @@ static void unreadable_files_are_io_errors(void **state) {
   load_fails(path, GLINT_E_IO, ": No such file or directory");
   snprintf(path, sizeof path, "%s/folder.json", f->dir);
   assert_int_equal(mkdir(path, 0700), 0);
-  load_fails(path, GLINT_E_IO, ": cannot read: Is a directory");
+  load_fails(path, GLINT_E_IO, ": not a regular file");
   /* The extension is matched without regard to case. */
   write_json(f, "UPPER.JSON", "{'background': [0, 0, 1]}", path, sizeof path);
   glint_scene *s;

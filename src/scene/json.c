@@ -9,6 +9,7 @@
  * and column (columns count UTF-8 characters, from 1), anything else the
  * JSON path of the offending value, as "objects[2].radius". */
 #include "core/error.h"
+#include "scene/file.h"
 #include "scene/scene.h"
 
 #include <cJSON.h>
@@ -22,7 +23,6 @@
 /* cJSON needs several times the text's size for its tree; beyond this, a
  * scene belongs in mesh files. */
 #define MAX_FILE_BYTES ((size_t)1 << 30)
-#define MAX_FILE_TEXT "1 GiB"
 
 /* Quoted user text for a message, cut to this many bytes. */
 #define QUOTE_LIMIT 64
@@ -679,64 +679,6 @@ static glint_status read_scene(json_reader *r, const cJSON *root) {
   return GLINT_OK;
 }
 
-/* ---- the text ----------------------------------------------------------- */
-
-static glint_status io_fail(glint_error *e, const char *path, const char *what,
-                            int err) {
-  char buf[256];
-  /* strerror_r (XSI), not strerror: loaders may run on several threads. */
-  if (strerror_r(err, buf, sizeof buf) != 0)
-    snprintf(buf, sizeof buf, "error %d", err);
-  return glint_fail(e, GLINT_E_IO, "%s: %s%s", path, what, buf);
-}
-
-/* The whole file, NUL-terminated. */
-static glint_status read_text(const char *path, char **out, size_t *out_size,
-                              glint_error *e) {
-  FILE *f = fopen(path, "rb");
-  if (!f)
-    return io_fail(e, path, "", errno);
-  size_t cap = (size_t)1 << 16, size = 0;
-  char *data = malloc(cap + 1);
-  for (;;) {
-    if (!data) {
-      fclose(f);
-      return glint_fail(e, GLINT_E_MEMORY, "%s: out of memory", path);
-    }
-    size_t want = cap - size;
-    errno = 0;
-    size_t n = fread(data + size, 1, want, f);
-    size += n;
-    if (n < want) {
-      if (ferror(f)) { /* a folder fails here, with EISDIR */
-        int err = errno ? errno : EIO;
-        fclose(f);
-        free(data);
-        return io_fail(e, path, "cannot read: ", err);
-      }
-      break;
-    }
-    if (cap >= MAX_FILE_BYTES) {
-      fclose(f);
-      free(data);
-      return glint_fail(e, GLINT_E_IO,
-                        "%s: larger than " MAX_FILE_TEXT
-                        "; put big geometry in mesh files",
-                        path);
-    }
-    cap *= 2;
-    char *bigger = realloc(data, cap + 1);
-    if (!bigger)
-      free(data);
-    data = bigger;
-  }
-  fclose(f);
-  data[size] = '\0';
-  *out = data;
-  *out_size = size;
-  return GLINT_OK;
-}
-
 /* Line and column (UTF-8 characters, both from 1) of `at`. */
 static void line_column(const char *data, const char *at, size_t *line,
                         size_t *column) {
@@ -890,7 +832,7 @@ glint_status glint_json_load(const char *path, glint_scene **out,
   char *data = NULL;
   size_t size = 0;
   cJSON *root = NULL;
-  glint_status st = read_text(path, &data, &size, error);
+  glint_status st = file_read_all(path, MAX_FILE_BYTES, &data, &size, error);
   if (st)
     return st;
   st = parse_text(path, data, size, &root, error);

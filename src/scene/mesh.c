@@ -27,17 +27,16 @@
  * shifting every later value. */
 #include "core/error.h"
 #include "core/memory.h"
+#include "scene/file.h"
+#include "scene/number.h"
 #include "scene/scene.h"
 
 #include <errno.h>
-#include <locale.h>
 #include <math.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
 #include <strings.h>
-#include <sys/stat.h>
-#include <zlib.h>
 
 /* The same limit as the text reader: files beyond it are not meshes we
  * could render anyway, and it keeps sizes well inside size_t arithmetic. */
@@ -150,106 +149,6 @@ static int parse_whole(const char **s, const char *end, long long *out) {
 }
 
 /* ------------------------------------------------------------------------ */
-/* Reading the whole file, gzip or not                                      */
-/* ------------------------------------------------------------------------ */
-
-/* Unlike the text reader this keeps NUL bytes (binary PLY has them). The
- * buffer gets one NUL past the end so that strtod always stops. */
-static glint_status read_file(const char *path, char **out, size_t *out_size,
-                              glint_error *e) {
-  struct stat sb;
-  if (stat(path, &sb) != 0)
-    return glint_fail(e, GLINT_E_IO, "%s: %s", path, strerror(errno));
-  /* A FIFO or a device could block or never end. */
-  if (!S_ISREG(sb.st_mode))
-    return glint_fail(e, GLINT_E_IO, "%s: not a regular file", path);
-  errno = 0;
-  gzFile f = gzopen(path, "rb");
-  if (!f)
-    return glint_fail(e, GLINT_E_IO, "%s: %s", path,
-                      errno ? strerror(errno) : "cannot open");
-  gzbuffer(f, 1 << 17);
-  /* Plain files fit exactly; compressed ones grow by doubling. */
-  size_t cap = (size_t)sb.st_size + 1, size = 0;
-  if (cap < (1 << 16))
-    cap = 1 << 16;
-  if (cap > MAX_FILE_BYTES)
-    cap = MAX_FILE_BYTES;
-  char *data = malloc(cap + 1);
-  for (;;) {
-    if (!data) {
-      gzclose(f);
-      return oom(path, e);
-    }
-    size_t want = cap - size;
-    int n =
-        gzread(f, data + size, (unsigned)(want < (1u << 30) ? want : 1u << 30));
-    if (n < 0) {
-      int zerr;
-      const char *msg = gzerror(f, &zerr);
-      /* zlib's message starts with the path we are about to print. */
-      size_t plen = strlen(path);
-      if (strncmp(msg, path, plen) == 0 && msg[plen] == ':')
-        msg += plen + (msg[plen + 1] == ' ' ? 2 : 1);
-      glint_status st =
-          zerr == Z_ERRNO
-              ? glint_fail(e, GLINT_E_IO, "%s: read error: %s", path,
-                           strerror(errno))
-              : glint_fail(e, GLINT_E_PARSE, "%s: damaged compressed file: %s",
-                           path, msg);
-      gzclose(f);
-      free(data);
-      return st;
-    }
-    size += (size_t)n;
-    if (n == 0)
-      break;
-    if (size == cap) {
-      if (cap >= MAX_FILE_BYTES) {
-        gzclose(f);
-        free(data);
-        return glint_fail(e, GLINT_E_IO, "%s: larger than 4 GiB", path);
-      }
-      cap = cap * 2 < MAX_FILE_BYTES ? cap * 2 : MAX_FILE_BYTES;
-      char *bigger = realloc(data, cap + 1);
-      if (!bigger)
-        free(data);
-      data = bigger;
-    }
-  }
-  /* A truncated gzip stream reads as a short file without an error from
-   * gzread; only gzclose_r reports it. */
-  int zst = gzclose_r(f);
-  if (zst != Z_OK) {
-    free(data);
-    if (zst == Z_BUF_ERROR)
-      return glint_fail(e, GLINT_E_PARSE,
-                        "%s: the compressed file is truncated", path);
-    /* Only the system failing to read is I/O; bad data is the file's. */
-    return glint_fail(e, zst == Z_ERRNO ? GLINT_E_IO : GLINT_E_PARSE,
-                      "%s: damaged compressed file", path);
-  }
-  data[size] = '\0';
-  *out = data;
-  *out_size = size;
-  return GLINT_OK;
-}
-
-/* Text formats must not hold NUL bytes: they would end strtod early and
- * hide the rest of the line. Reports the line of the first one. */
-static glint_status check_text(const char *path, const char *data, size_t size,
-                               size_t first_line, glint_error *e) {
-  const char *nul = memchr(data, '\0', size);
-  if (!nul)
-    return GLINT_OK;
-  size_t line = first_line;
-  for (const char *p = data; p < nul; p++)
-    line += *p == '\n';
-  return glint_fail(e, GLINT_E_PARSE,
-                    "%s:%zu: binary data where text was expected", path, line);
-}
-
-/* ------------------------------------------------------------------------ */
 /* OBJ                                                                      */
 /* ------------------------------------------------------------------------ */
 
@@ -310,14 +209,14 @@ static glint_status obj_number(obj_reader *r, const char *what, double *out,
                       "the line",
                       r->path, r->line, what);
   /* The byte after the token is a blank, '#', a newline or the final NUL,
-   * none of which strtod accepts, so it cannot read past the token. */
-  char *end;
-  double v = strtod(t, &end);
-  if (end != t + len)
+   * none of which continues a number. */
+  double v;
+  int parsed = number_parse(t, len, &v);
+  if (parsed == NUMBER_BAD)
     return glint_fail(e, GLINT_E_PARSE,
                       "%s:%zu: expected a number for %s, found '%s'", r->path,
                       r->line, what, quote(q, sizeof q, t, len));
-  if (!isfinite(v))
+  if (parsed == NUMBER_NOT_FINITE)
     return glint_fail(e, GLINT_E_PARSE,
                       "%s:%zu: %s is '%s', not a finite number", r->path,
                       r->line, what, quote(q, sizeof q, t, len));
@@ -480,7 +379,7 @@ static int obj_ignored(const char *kw, size_t len) {
 
 static glint_status obj_parse(const char *path, const char *data, size_t size,
                               mesh_data *m, glint_error *e) {
-  glint_status st = check_text(path, data, size, 1, e);
+  glint_status st = file_check_text(path, data, size, 1, e);
   if (st)
     return st;
   obj_reader r = {path, data, 1, 0, m};
@@ -717,15 +616,13 @@ static glint_status ply_number(ply_reader *r, const ply_property *p,
   const char *t = ply_token(r, &len);
   if (len == 0)
     return ply_missing(r, p, 0, e);
-  char *end;
-  double v = strtod(t, &end);
-  if (end != t + len)
-    return glint_fail(e, GLINT_E_PARSE,
-                      "%s: expected a number for %s, found "
-                      "'%s'",
-                      ply_where(r, w, sizeof w), what,
-                      quote(q, sizeof q, t, len));
-  if (!isfinite(v))
+  double v;
+  int parsed = number_parse(t, len, &v);
+  if (parsed == NUMBER_BAD)
+    return glint_fail(
+        e, GLINT_E_PARSE, "%s: expected a number for %s, found '%s'",
+        ply_where(r, w, sizeof w), what, quote(q, sizeof q, t, len));
+  if (parsed == NUMBER_NOT_FINITE)
     return glint_fail(e, GLINT_E_PARSE, "%s: %s is '%s', not a finite number",
                       ply_where(r, w, sizeof w), what,
                       quote(q, sizeof q, t, len));
@@ -1116,7 +1013,7 @@ static glint_status ply_header(ply_reader *r, glint_error *e) {
       b = nl ? nl + 1 : end;
       continue;
     }
-    glint_status st = check_text(r->path, b, (size_t)(le - b), line, e);
+    glint_status st = file_check_text(r->path, b, (size_t)(le - b), line, e);
     if (st)
       return st;
     span tok[6];
@@ -1198,7 +1095,8 @@ static glint_status ply_header(ply_reader *r, glint_error *e) {
                       "%s: the face element has no 'vertex_indices' list",
                       r->path);
   if (r->format == PLY_ASCII)
-    return check_text(r->path, data + r->pos, r->size - r->pos, r->line, e);
+    return file_check_text(r->path, data + r->pos, r->size - r->pos, r->line,
+                           e);
   return GLINT_OK;
 }
 
@@ -1339,21 +1237,17 @@ glint_status glint_scene_add_mesh_file(glint_scene *scene, const char *path,
                       path);
   char *data = NULL;
   size_t size = 0;
-  glint_status st = read_file(path, &data, &size, error);
+  glint_status st = file_read_all(path, MAX_FILE_BYTES, &data, &size, error);
   if (st)
     return st;
   /* Numbers in mesh files always use '.', whatever LC_NUMERIC the host
    * program chose; uselocale changes this thread only, and only for now. */
-  locale_t c_locale = newlocale(LC_NUMERIC_MASK, "C", (locale_t)0);
-  locale_t old = c_locale ? uselocale(c_locale) : (locale_t)0;
+  number_locale locale = number_locale_begin();
   mesh_data m;
   memset(&m, 0, sizeof m);
   st = kind == MESH_OBJ ? obj_parse(path, data, size, &m, error)
                         : ply_parse(path, data, size, &m, error);
-  if (c_locale) {
-    uselocale(old);
-    freelocale(c_locale);
-  }
+  number_locale_end(locale);
   free(data);
   if (!st)
     st = add_to_scene(scene, path, &m, scale, translate, material_id, error);

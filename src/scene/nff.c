@@ -22,6 +22,7 @@
  * NFF's negative radii (only the inside visible) are read as their
  * magnitude: glint shows both sides of every surface. */
 #include "core/error.h"
+#include "scene/number.h"
 #include "scene/polygon.h"
 #include "scene/scene.h"
 #include "scene/text.h"
@@ -317,7 +318,9 @@ glint_status glint_nff_load(const char *path, glint_scene **out,
     return st;
   }
   /* NFF's defaults: black background, white ambient light. */
+  number_locale locale = number_locale_begin();
   st = read_nff(&r, e);
+  number_locale_end(locale);
   text_close(&r.t);
   free(r.verts);
   free(r.norms);

@@ -1,6 +1,8 @@
 #include "scene/text.h"
 
 #include "core/error.h"
+#include "scene/file.h"
+#include "scene/number.h"
 
 #include <ctype.h>
 #include <errno.h>
@@ -9,7 +11,6 @@
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
-#include <zlib.h>
 
 #define MAX_FILE_BYTES ((size_t)4 << 30)
 
@@ -19,62 +20,14 @@ glint_status text_open(text_file *t, const char *path, char comment,
   t->path = path;
   t->comment = comment;
   t->line = 1;
-  /* zlib reads plain files as they are, and gzip-compressed ones
-   * decompressed, whatever their name. */
-  gzFile f = gzopen(path, "rb");
-  if (!f)
-    return glint_fail(error, GLINT_E_IO, "%s: %s", path,
-                      errno ? strerror(errno) : "cannot open");
-  size_t cap = 1 << 16, size = 0;
-  char *data = malloc(cap + 1);
-  for (;;) {
-    if (!data) {
-      gzclose(f);
-      return glint_fail(error, GLINT_E_MEMORY, "%s: out of memory", path);
-    }
-    int n = gzread(f, data + size, (unsigned)(cap - size));
-    if (n < 0) {
-      int zerr;
-      const char *msg = gzerror(f, &zerr);
-      gzclose(f);
-      free(data);
-      return glint_fail(error, GLINT_E_IO, "%s: read error: %s", path,
-                        zerr == Z_ERRNO ? strerror(errno) : msg);
-    }
-    size += (size_t)n;
-    if (n == 0)
-      break;
-    if (size == cap) {
-      if (cap >= MAX_FILE_BYTES) {
-        gzclose(f);
-        free(data);
-        return glint_fail(error, GLINT_E_IO, "%s: larger than 4 GiB", path);
-      }
-      cap *= 2;
-      char *bigger = realloc(data, cap + 1);
-      if (!bigger)
-        free(data);
-      data = bigger;
-    }
-  }
-  /* A truncated gzip stream reads as a short file without an error from
-   * gzread; gzclose_r reports it. */
-  int zst = gzclose_r(f);
-  if (zst != Z_OK && zst != Z_BUF_ERROR) {
+  char *data;
+  size_t size;
+  glint_status st = file_read_all(path, MAX_FILE_BYTES, &data, &size, error);
+  if (st != GLINT_OK)
+    return st;
+  if ((st = file_check_text(path, data, size, 1, error)) != GLINT_OK) {
     free(data);
-    return glint_fail(error, GLINT_E_PARSE, "%s: damaged compressed file",
-                      path);
-  }
-  if (zst == Z_BUF_ERROR) {
-    free(data);
-    return glint_fail(error, GLINT_E_PARSE,
-                      "%s: the compressed file is truncated", path);
-  }
-  data[size] = '\0';
-  if (memchr(data, '\0', size)) {
-    free(data);
-    return glint_fail(error, GLINT_E_PARSE,
-                      "%s: binary data where text was expected", path);
+    return st;
   }
   t->data = data;
   t->size = size;
@@ -128,18 +81,6 @@ int text_more_on_line(text_file *t) {
   return *t->pos && *t->pos != '\n';
 }
 
-int parse_finite(const char *s, double *out) {
-  char *end;
-  errno = 0;
-  double v = strtod(s, &end);
-  if (end == s || *end != '\0')
-    return -1;
-  if (!isfinite(v))
-    return -2;
-  *out = v;
-  return 0;
-}
-
 glint_status text_number(text_file *t, const char *what, double *out,
                          glint_error *error) {
   char buf[128];
@@ -148,12 +89,12 @@ glint_status text_number(text_file *t, const char *what, double *out,
     return glint_fail(error, GLINT_E_PARSE,
                       "%s:%d: the file ends where %s was expected", t->path,
                       t->line, what);
-  int r = parse_finite(tok, out);
-  if (r == -1)
+  int r = number_parse(tok, strlen(tok), out);
+  if (r == NUMBER_BAD)
     return glint_fail(error, GLINT_E_PARSE,
                       "%s:%d: expected a number for %s, found '%s'", t->path,
                       t->token_line, what, tok);
-  if (r == -2)
+  if (r == NUMBER_NOT_FINITE)
     return glint_fail(error, GLINT_E_PARSE,
                       "%s:%d: %s is '%s', not a finite number", t->path,
                       t->token_line, what, tok);

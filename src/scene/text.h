@@ -39,7 +39,4 @@ glint_status text_vec3(text_file *t, const char *what, glint_vec3 *out,
 glint_status text_int(text_file *t, const char *what, long min, long max,
                       long *out, glint_error *error);
 
-/* Strict number parsing of one token: 0 on success. */
-int parse_finite(const char *s, double *out);
-
 #endif

@@ -1,0 +1,120 @@
+#include "scene/file.h"
+
+#include "core/error.h"
+
+#include <errno.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+#include <sys/stat.h>
+#include <zlib.h>
+
+/* strerror_r (XSI), not strerror: scenes may be loaded on several threads. */
+static glint_status io_fail(glint_error *e, const char *path, const char *what,
+                            int err) {
+  char buf[256];
+  if (strerror_r(err, buf, sizeof buf) != 0)
+    snprintf(buf, sizeof buf, "error %d", err);
+  return glint_fail(e, GLINT_E_IO, "%s: %s%s", path, what, buf);
+}
+
+static glint_status too_large(glint_error *e, const char *path,
+                              size_t max_bytes) {
+  if (max_bytes >= (size_t)1 << 30 && max_bytes % ((size_t)1 << 30) == 0)
+    return glint_fail(e, GLINT_E_IO, "%s: larger than %zu GiB", path,
+                      max_bytes >> 30);
+  return glint_fail(e, GLINT_E_IO, "%s: larger than %zu bytes", path,
+                    max_bytes);
+}
+
+glint_status file_read_all(const char *path, size_t max_bytes, char **out,
+                           size_t *out_size, glint_error *e) {
+  struct stat sb;
+  if (stat(path, &sb) != 0)
+    return io_fail(e, path, "", errno);
+  if (!S_ISREG(sb.st_mode))
+    return glint_fail(e, GLINT_E_IO, "%s: not a regular file", path);
+  errno = 0;
+  gzFile f = gzopen(path, "rb");
+  if (!f)
+    return errno ? io_fail(e, path, "", errno)
+                 : glint_fail(e, GLINT_E_MEMORY, "%s: out of memory", path);
+  gzbuffer(f, 1 << 17);
+  /* A plain file fits exactly; a compressed one grows by doubling. */
+  size_t cap = (size_t)sb.st_size + 1, size = 0;
+  if (cap < (1 << 16))
+    cap = 1 << 16;
+  if (cap > max_bytes + 1)
+    cap = max_bytes + 1; /* one more than allowed, to see that it is more */
+  char *data = malloc(cap + 1);
+  for (;;) {
+    if (!data) {
+      gzclose(f);
+      return glint_fail(e, GLINT_E_MEMORY, "%s: out of memory", path);
+    }
+    size_t want = cap - size;
+    int n =
+        gzread(f, data + size, (unsigned)(want < (1u << 30) ? want : 1u << 30));
+    if (n < 0) {
+      int zerr;
+      const char *msg = gzerror(f, &zerr);
+      /* zlib's message starts with the path we are about to print. */
+      size_t plen = strlen(path);
+      if (strncmp(msg, path, plen) == 0 && msg[plen] == ':')
+        msg += plen + (msg[plen + 1] == ' ' ? 2 : 1);
+      glint_status st =
+          zerr == Z_ERRNO
+              ? io_fail(e, path, "cannot read: ", errno ? errno : EIO)
+              : glint_fail(e, GLINT_E_PARSE, "%s: damaged compressed file: %s",
+                           path, msg);
+      gzclose(f);
+      free(data);
+      return st;
+    }
+    size += (size_t)n;
+    if (size > max_bytes) {
+      gzclose(f);
+      free(data);
+      return too_large(e, path, max_bytes);
+    }
+    if (n == 0)
+      break;
+    if (size == cap) {
+      cap = cap * 2 < max_bytes + 1 ? cap * 2 : max_bytes + 1;
+      char *bigger = realloc(data, cap + 1);
+      if (!bigger)
+        free(data);
+      data = bigger;
+    }
+  }
+  /* A truncated gzip stream reads as a short file without an error from
+   * gzread; only gzclose_r reports it. */
+  int zst = gzclose_r(f);
+  if (zst != Z_OK) {
+    free(data);
+    if (zst == Z_BUF_ERROR)
+      return glint_fail(e, GLINT_E_PARSE,
+                        "%s: the compressed file is truncated", path);
+    /* Only the system failing to read is I/O; bad data is the file's. */
+    return zst == Z_ERRNO
+               ? io_fail(e, path, "cannot read: ", errno ? errno : EIO)
+               : glint_fail(e, GLINT_E_PARSE, "%s: damaged compressed file",
+                            path);
+  }
+  data[size] = '\0';
+  *out = data;
+  *out_size = size;
+  return GLINT_OK;
+}
+
+glint_status file_check_text(const char *path, const char *data, size_t size,
+                             size_t first_line, glint_error *e) {
+  const char *nul = memchr(data, '\0', size);
+  if (!nul)
+    return GLINT_OK;
+  size_t line = first_line;
+  for (const char *p = data; p < nul; p++)
+    line += *p == '\n';
+  return glint_fail(e, GLINT_E_PARSE,
+                    "%s:%zu: binary data where text was expected", path, line);
+}

@@ -1,0 +1,27 @@
+/* Reading a whole scene or mesh file into memory, the one way every reader
+ * does it: gzip-compressed files are decompressed transparently (zlib reads
+ * plain files as they are, whatever their name), only regular files are
+ * read (a FIFO or a device could block or never end), and every failure is
+ * one message that starts with the path. */
+#ifndef GLINT_SCENE_FILE_H
+#define GLINT_SCENE_FILE_H
+
+#include "glint.h"
+
+#include <stddef.h>
+
+/* The whole of `path` in *data (malloc'ed, to be freed by the caller), with
+ * a NUL one past the last of its *size bytes; NUL bytes inside are kept.
+ * Files of more than max_bytes (after decompression) are refused, naming
+ * the limit. GLINT_E_IO when the system cannot read the file, GLINT_E_PARSE
+ * for a damaged or truncated compressed stream. Thread-safe. */
+glint_status file_read_all(const char *path, size_t max_bytes, char **data,
+                           size_t *size, glint_error *error);
+
+/* GLINT_E_PARSE "PATH:LINE: binary data where text was expected" if data
+ * holds a NUL byte (it would end a number early and hide the rest of the
+ * line); LINE counts from first_line. */
+glint_status file_check_text(const char *path, const char *data, size_t size,
+                             size_t first_line, glint_error *error);
+
+#endif
