@@ -131,13 +131,9 @@ static ALWAYS_INLINE void trace_beam_body(const beam_ctx *c, vvec3 o, vvec3 d,
   vvec3 highlight = {vf_zero(), vf_zero(), vf_zero()};
   for (size_t j = 0; j < s->light_count; j++) {
     const plight *li = &ps->lights[j];
-    vvec3 l = vv_sub(vv_get(li->position), f.p);
-    vfloat dist2 = vv_dot(l, l);
-    vfloat inv = vf_rsqrt(dist2, newton);
-    vfloat dist = vf_mul(dist2, inv);
-    l = vv_scale(l, inv);
-    vfloat nl = vv_dot(f.n, l);
-    vmask lit = vm_and(hits, vf_gt(nl, vf_zero()));
+    vvec3 l;
+    vfloat dist, nl;
+    vmask lit = packet_toward_light(li, f.p, f.n, hits, newton, &l, &dist, &nl);
     if (vm_none(lit))
       continue;
     c->st->shadow_rays += (uint64_t)vm_count(lit);

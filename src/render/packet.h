@@ -680,6 +680,21 @@ static ALWAYS_INLINE vvec3 packet_color(const material_r *m,
   return vv_select(odd, vv_get(pm->odd), vv_get(pm->even));
 }
 
+/* The unit direction l from p to a light, its distance, and N·l; returns
+ * the lanes of m that face the light (the others need no shadow ray). */
+static ALWAYS_INLINE vmask packet_toward_light(const plight *li, vvec3 p,
+                                               vvec3 n, vmask m, int newton,
+                                               vvec3 *l, vfloat *dist,
+                                               vfloat *nl) {
+  vvec3 v = vv_sub(vv_get(li->position), p);
+  vfloat dist2 = vv_dot(v, v);
+  vfloat inv = vf_rsqrt(dist2, newton);
+  *dist = vf_mul(dist2, inv);
+  *l = vv_scale(v, inv);
+  *nl = vv_dot(n, *l);
+  return vm_and(m, vf_gt(*nl, vf_zero()));
+}
+
 /* Eq. 2.9/2.10's local part for the lanes of m on one material:
  * C (ka Ia + sum S kd N·L IL) + sum S ks (V·R)^h IL, shadow rays included. */
 static ALWAYS_INLINE vvec3 packet_local_shading(
@@ -691,13 +706,9 @@ static ALWAYS_INLINE vvec3 packet_local_shading(
   vvec3 highlight = {vf_zero(), vf_zero(), vf_zero()};
   for (size_t j = 0; j < s->light_count; j++) {
     const plight *li = &ps->lights[j];
-    vvec3 l = vv_sub(vv_get(li->position), f->p);
-    vfloat dist2 = vv_dot(l, l);
-    vfloat inv = vf_rsqrt(dist2, newton);
-    vfloat dist = vf_mul(dist2, inv);
-    l = vv_scale(l, inv);
-    vfloat nl = vv_dot(f->n, l);
-    vmask lit = vm_and(m, vf_gt(nl, vf_zero()));
+    vvec3 l;
+    vfloat dist, nl;
+    vmask lit = packet_toward_light(li, f->p, f->n, m, newton, &l, &dist, &nl);
     if (vm_none(lit))
       continue;
     st->shadow_rays += (uint64_t)vm_count(lit);

@@ -485,13 +485,9 @@ static ALWAYS_INLINE vvec3 shade_packet(tracer *t, int level, vmask active,
       lm.uniform ? lm.m->ks > 0 : vm_any(vm_and(hits, vf_gt(lm.ks, vf_zero())));
   for (size_t j = 0; j < s->light_count; j++) {
     const plight *li = &ps->lights[j];
-    vvec3 l = vv_sub(vv_get(li->position), f.p);
-    vfloat dist2 = vv_dot(l, l);
-    vfloat inv = vf_rsqrt(dist2, newton);
-    vfloat dist = vf_mul(dist2, inv);
-    l = vv_scale(l, inv);
-    vfloat nl = vv_dot(f.n, l);
-    vmask lit = vm_and(hits, vf_gt(nl, vf_zero()));
+    vvec3 l;
+    vfloat dist, nl;
+    vmask lit = packet_toward_light(li, f.p, f.n, hits, newton, &l, &dist, &nl);
     if (vm_none(lit))
       continue;
     /* What the light brings if nothing blocks it. */
