@@ -179,6 +179,7 @@ static void failed_write_keeps_existing_file(void **state) {
     glint_image *big = pattern(200, 200); /* 120 kB: cannot fit */
     glint_error e;
     int st = glint_image_write(big, p, &e);
+    glint_image_destroy(big);
     _exit(st == GLINT_E_IO && strstr(e.message, "keep.ppm") ? 0 : 1);
   }
   int status;

@@ -635,7 +635,8 @@ static ALWAYS_INLINE packet_surface packet_surface_at(const packet_scene *ps,
           vf_gather((const float *)s->triangles,
                     vi_add(vi_mul_const(h->prim, FLOATS_OF(triangle_r)),
                            vi_set1(FLOAT_OFFSET(triangle_r, normals)))));
-      n0 = vi_mul_const(n0, 3);
+      /* Lanes outside the sub-beam may hold a flat triangle's -1. */
+      n0 = vi_mul_const(vi_select(vi_eq(n0, vi_set1(-1)), vi_set1(0), n0), 3);
       const float *nb = (const float *)s->normals;
       vvec3 a = vv_gather(nb, n0, 1, 0);
       vvec3 b = vv_gather(nb, n0, 1, 3);

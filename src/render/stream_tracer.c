@@ -286,10 +286,13 @@ stream_surface(const packet_scene *ps, const packet_hit *h, vmask hits, vvec3 o,
   const scene_r *s = ps->s;
   packet_surface f;
   f.p = vv_madd(o, h->t, d);
-  vint obj = vi_select(hits, h->object, vi_set1(0));
+  vint obj = vi_select(hits, h->object, vi_set1(0)); /* misses: object 0 */
   const object_r *ob = s->objects;
   vint shape = gather_i(ob, obj, OBJ_FLOATS, OBJ_AT(shape));
   vint first = gather_i(ob, obj, OBJ_FLOATS, OBJ_AT(first));
+  /* Each shape's gathers index its own array with the lanes of that shape
+   * only; the others read element 0, never past an array's end. */
+  const vint none = vi_set1(0);
   *material = gather_i(ob, obj, OBJ_FLOATS, OBJ_AT(material));
   *origin = vv_gather((const float *)ob, obj, OBJ_FLOATS, OBJ_AT(origin));
   vint au = gather_i(ob, obj, OBJ_FLOATS, OBJ_AT(axis_u));
@@ -302,22 +305,22 @@ stream_surface(const packet_scene *ps, const packet_hit *h, vmask hits, vvec3 o,
 
   vmask sph = vm_and(hits, vi_eq(shape, vi_set1(GLINT_SHAPE_SPHERE)));
   if (vm_any(sph)) {
-    vvec3 c = vv_gather((const float *)s->spheres, first, FLOATS_OF(sphere_r),
-                        FLOAT_OFFSET(sphere_r, center));
+    vvec3 c = vv_gather((const float *)s->spheres, vi_select(sph, first, none),
+                        FLOATS_OF(sphere_r), FLOAT_OFFSET(sphere_r, center));
     vvec3 g = vv_normalize(vv_sub(f.p, c), newton);
     ng = vv_select(sph, g, ng);
     f.front = vm_select(sph, vm_andnot(vm_true(), h->inside), f.front);
   }
   vmask pla = vm_and(hits, vi_eq(shape, vi_set1(GLINT_SHAPE_PLANE)));
   if (vm_any(pla)) {
-    vvec3 g = vv_gather((const float *)s->planes, first, FLOATS_OF(plane_r),
-                        FLOAT_OFFSET(plane_r, n));
+    vvec3 g = vv_gather((const float *)s->planes, vi_select(pla, first, none),
+                        FLOATS_OF(plane_r), FLOAT_OFFSET(plane_r, n));
     ng = vv_select(pla, g, ng);
     f.front = vm_select(pla, vf_lt(vv_dot(g, d), vf_zero()), f.front);
   }
   vmask tri = vm_and(hits, vi_eq(shape, vi_set1(GLINT_SHAPE_TRIANGLE)));
   if (vm_any(tri)) {
-    vint prim = vi_select(tri, h->prim, vi_set1(0));
+    vint prim = vi_select(tri, h->prim, none);
     vvec3 g = vv_gather((const float *)s->triangles, prim,
                         FLOATS_OF(triangle_r), FLOAT_OFFSET(triangle_r, ng));
     ng = vv_select(tri, g, ng);
@@ -327,7 +330,7 @@ stream_surface(const packet_scene *ps, const packet_hit *h, vmask hits, vvec3 o,
     vmask smooth = vm_andnot(tri, vi_eq(nidx, vi_set1(-1)));
     if (vm_any(smooth)) {
       /* Interpolated vertex normals (NFF polygonal patches). */
-      vint n0 = vi_mul_const(vi_select(smooth, nidx, vi_set1(0)), 3);
+      vint n0 = vi_mul_const(vi_select(smooth, nidx, none), 3);
       const float *nb = (const float *)s->normals;
       vvec3 a = vv_gather(nb, n0, 1, 0);
       vvec3 b = vv_gather(nb, n0, 1, 3);
@@ -344,6 +347,7 @@ stream_surface(const packet_scene *ps, const packet_hit *h, vmask hits, vvec3 o,
   if (vm_any(con)) {
     const float *cb = (const float *)s->cones;
     int stride = FLOATS_OF(cone_r);
+    first = vi_select(con, first, none);
     vvec3 base = vv_gather(cb, first, stride, FLOAT_OFFSET(cone_r, base));
     vvec3 axis = vv_gather(cb, first, stride, FLOAT_OFFSET(cone_r, axis));
     vfloat rb = gather_f(cb, first, stride, FLOAT_OFFSET(cone_r, rb));
