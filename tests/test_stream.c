@@ -141,6 +141,38 @@ static void lanes_stay_full(void **state) {
   glint_scene_destroy(s);
 }
 
+/* Every ray a generation spawns is traced by a later one: the rays the
+ * generations traced add up to the primary and secondary rays counted when
+ * they were made. (Full child packets chained in registers skip their
+ * level's stream; the others must still all be drained.) */
+static void every_ray_is_traced(void **state) {
+  (void)state;
+  static const char *scenes[] = {"whitted", "giza", "billiard"};
+  static const int depths[] = {2, 5, 15};
+  for (int si = 0; si < 3; si++) {
+    glint_scene *s;
+    ASSERT_OK(glint_scene_builtin(scenes[si], &s, &e_));
+    for (int di = 0; di < 3; di++)
+      for (size_t k = 0; k < 3; k++) {
+        if (!glint_backend_supported(streams[k]))
+          continue;
+        glint_stats st;
+        glint_image *im =
+            render(s, streams[k], 160, 120, 2, depths[di], 0, &st);
+        uint64_t traced = 0;
+        for (int g = 0; g < GLINT_STATS_MAX_GENERATIONS; g++)
+          traced += st.gen_rays[g];
+        if (traced != st.primary_rays + st.secondary_rays)
+          fail_msg("%s depth %d %s: %llu rays traced of %llu made", scenes[si],
+                   depths[di], glint_backend_name(streams[k]),
+                   (unsigned long long)traced,
+                   (unsigned long long)(st.primary_rays + st.secondary_rays));
+        glint_image_destroy(im);
+      }
+    glint_scene_destroy(s);
+  }
+}
+
 /* Stream memory is set by the depth limit alone: Billiard at depth 15 (a
  * ray tree that branches at every glass ball) needs no more than Whitted at
  * depth 15 (one that barely branches), and it grows linearly with depth. */
@@ -183,6 +215,7 @@ int main(void) {
       cmocka_unit_test(spd_scenes_match),
       cmocka_unit_test(identical_across_threads_and_runs),
       cmocka_unit_test(lanes_stay_full),
+      cmocka_unit_test(every_ray_is_traced),
       cmocka_unit_test(memory_is_bounded),
   };
   return cmocka_run_group_tests(tests, NULL, NULL);
