@@ -3,7 +3,7 @@
 BUILD ?= build
 JOBS ?= $(shell nproc 2>/dev/null || echo 2)
 
-.PHONY: render test build deps clean format
+.PHONY: render test build deps peers clean format
 
 render: build
 	./$(BUILD)/glint render whitted -o whitted.png
@@ -17,6 +17,10 @@ build: deps
 
 deps:
 	bash scripts/install-deps.sh
+
+# Optional: Tachyon, Embree 3 and assimp for glint bench's comparisons.
+peers:
+	bash scripts/install-deps.sh --peers
 
 format:
 	clang-format -i $$(git ls-files '*.c' '*.h')

@@ -34,12 +34,13 @@ static void bench_usage(FILE *f) {
       "  --depths LIST      depths, e.g. 1-15 or 1,5,10,15 (default: 1-15)\n"
       "  --backends LIST    backends (default: every one this CPU supports)\n"
       "  --runs N           repetitions; the median is reported (default: 3)\n"
-      "  -W, --width N      (default: 640)\n"
-      "  -H, --height N     (default: 480)\n"
+      "  -W, --width N      (default: the scene's own; 640 for built-ins)\n"
+      "  -H, --height N     (default: the scene's own; 480 for built-ins)\n"
       "  -s, --spp N        samples per pixel (default: 5)\n"
       "  -t, --threads LIST worker threads, e.g. 1 or 1,2 for a scaling\n"
       "                     table; 0 = all cores (default: 1)\n"
       "      --math NAME    minimax, fast, taylor, exact (default: minimax)\n"
+      "      --no-newton    skip the Newton step after rcp\n"
       "      --accel NAME   bvh or none (default: bvh)\n"
       "      --csv FILE     also write every measurement as CSV\n"
       "      --plot DIR     also plot seconds against depth per scene into\n"
@@ -141,7 +142,7 @@ static int check_plot_dir(const char *dir) {
  * DIR/SCENE.png (the plot). */
 static int plot_scene(const char *dir, const char *scene, const int *depths,
                       int ndepths, const bench_column *cols, int ncols,
-                      const double *medians, const glint_render_settings *rs) {
+                      const double *medians, const glint_stats *st) {
   char path[8192];
   snprintf(path, sizeof path, "%s/%s.dat", dir, scene);
   FILE *f = fopen(path, "w");
@@ -170,7 +171,7 @@ static int plot_scene(const char *dir, const char *scene, const int *depths,
           "set xlabel 'recursion depth'\nset ylabel 'seconds'\n"
           "set key top left\nset grid\nset xtics 1\n"
           "plot ",
-          dir, scene, scene, rs->width, rs->height, rs->spp);
+          dir, scene, scene, st->width, st->height, st->spp);
   for (int c = 0; c < ncols; c++)
     fprintf(f, "%s'%s/%s.dat' using 1:%d with linespoints lw 2 title '%s'",
             c ? ", " : "", dir, scene, c + 2, cols[c].name);
@@ -538,7 +539,7 @@ int bench_scenes(char **names, int nscenes, const int *depths, int ndepths,
       for (int c = 0; c < ncols; c++)
         med[d * ncols + c] = bench_median(SECONDS(s, d, c), runs);
     if (plot_scene(plot_dir, stems[s], depths, ndepths, cols, ncols, med,
-                   &rs)) {
+                   &stats[IDX(s, 0, 0)])) {
       cli_error("--plot: gnuplot could not draw %s/%s.png", plot_dir, stems[s]);
       status = EXIT_USAGE;
     }

@@ -1,6 +1,9 @@
 #!/usr/bin/env bash
 # Installs the Debian packages glint needs to build and test, if missing.
 # Safe to run repeatedly: it does nothing when everything is present.
+#   scripts/install-deps.sh          what make render and make test need
+#   scripts/install-deps.sh --peers  also the renderers glint bench compares
+#                                    against (Tachyon, Embree 3) and assimp
 set -euo pipefail
 
 packages=(
@@ -13,6 +16,16 @@ packages=(
   libcmocka-dev     # the unit-test framework
   gnuplot-nox       # glint bench --plot
 )
+if [ "${1:-}" = "--peers" ]; then
+  packages+=(
+    tachyon-bin-nox # glint bench --spd times Tachyon on the same files
+    libembree-dev   # glint-embree-bench, for glint bench --meshes
+    libassimp-dev   # glint-mesh-load-bench
+  )
+elif [ $# -gt 0 ]; then
+  echo "usage: $0 [--peers]" >&2
+  exit 2
+fi
 
 missing=()
 for p in "${packages[@]}"; do

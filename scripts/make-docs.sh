@@ -22,6 +22,17 @@ done
 "$glint" render whitted -b sse --no-newton --region "$region" -q \
   -o docs/highlight-no-newton.png
 
+# The README's Tachyon comparison pictures (when Tachyon is installed).
+if command -v tachyon >/dev/null 2>&1; then
+  mkdir -p docs/tachyon
+  for s in rings-s4 gears-s4; do
+    "$glint" render "../shared/scenes/spd/$s.nff" -W 256 -H 256 -s 1 -q \
+      -o "docs/tachyon/$s-glint.png"
+    tachyon "../shared/scenes/spd/$s.nff" -res 256 256 -raydepth 5 \
+      -shade_phong -format PNG -o "docs/tachyon/$s-tachyon.png" >/dev/null
+  done
+fi
+
 if [ "${1:-}" = "--bench" ]; then
   "$glint" bench --depths 1-15 --runs 3 --csv docs/bench.csv --plot docs/plots \
     | tee docs/bench.txt

@@ -15,7 +15,9 @@
  *       h = Shine, kt = T, ior; no absorption.
  *   c   an open cylinder or cone (no end caps).
  *   s   a sphere.
- *   p   a convex polygon, triangulated as a fan: one object.
+ *   p   a polygon, one object, triangulated by scene/polygon.c (NFF says
+ *       convex, but SPD's gears have concave faces: ear clipping down to
+ *       a convex rest, then well-shaped triangles by recursive bisection).
  *   pp  a polygonal patch: the same, with vertex normals, shaded smooth.
  *   #   a comment to the end of the line.
  *
