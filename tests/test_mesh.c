@@ -7,6 +7,7 @@
 #include "test_util.h"
 
 #include "scene/scene.h"
+#include "shared.h"
 
 #include <math.h>
 #include <stdio.h>
@@ -965,9 +966,7 @@ static void bad_arguments(void **state) {
 /* The real meshes                                                          */
 /* ------------------------------------------------------------------------ */
 
-#define DATA_DIR GLINT_SHARED_DIR "/data/"
-
-static void real_meshes(void **state) {
+static void real_meshes_shared(void **state) {
   (void)state;
   static const struct {
     const char *name;
@@ -982,9 +981,9 @@ static void real_meshes(void **state) {
       {"dragon_vrip_res2.ply.gz", 202520},
   };
   for (size_t i = 0; i < sizeof meshes / sizeof *meshes; i++) {
-    char path[1024];
-    snprintf(path, sizeof path, "%s%s", DATA_DIR, meshes[i].name);
-    glint_scene *s = load(path, 1, (V){0, 0, 0});
+    char sub[64];
+    snprintf(sub, sizeof sub, "data/%s", meshes[i].name);
+    glint_scene *s = load(shared_path(sub), 1, (V){0, 0, 0});
     if (s->triangle_count != meshes[i].triangles)
       fail_msg("%s: %zu triangles, expected %zu", meshes[i].name,
                s->triangle_count, meshes[i].triangles);
@@ -993,11 +992,7 @@ static void real_meshes(void **state) {
   }
 }
 
-int main(void) {
-  /* Without the shared meshes everything else still runs; the result is
-   * then SKIPPED (77) so that the missing coverage is visible. */
-  struct stat sb;
-  int have_data = stat(DATA_DIR "bunny.obj", &sb) == 0;
+int main(int argc, char **argv) {
   const struct CMUnitTest tests[] = {
       cmocka_unit_test(obj_triangle_scaled_and_moved),
       cmocka_unit_test(obj_polygons_are_fans),
@@ -1016,18 +1011,7 @@ int main(void) {
       cmocka_unit_test(files_of_every_kind_of_wrong),
       cmocka_unit_test(gzip_damage_is_an_error),
       cmocka_unit_test(bad_arguments),
-      cmocka_unit_test(real_meshes),
+      cmocka_unit_test(real_meshes_shared),
   };
-  size_t count = sizeof tests / sizeof *tests - (have_data ? 0 : 1);
-  int failed = _cmocka_run_group_tests("mesh", tests, count, setup, teardown);
-  if (failed)
-    return failed;
-  if (!have_data) {
-    fprintf(stderr,
-            "SKIPPED the real meshes: %s is missing (set GLINT_SHARED_DIR "
-            "to the shared folder); every other mesh test passed\n",
-            DATA_DIR);
-    return SKIP_EXIT;
-  }
-  return 0;
+  return glint_run_tests(tests, argc, argv, setup, teardown);
 }

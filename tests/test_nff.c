@@ -169,7 +169,7 @@ static void malformed_files(void **state) {
 
 /* Every SPD scene loads with the primitive counts its file holds (p: one
  * object each; sphereflake etc. at the given sizes). */
-static void spd_counts(void **state) {
+static void spd_counts_shared(void **state) {
   (void)state;
   static const struct {
     const char *name;
@@ -199,11 +199,11 @@ static void spd_counts(void **state) {
   }
 }
 
-int main(void) {
+int main(int argc, char **argv) {
   const struct CMUnitTest tests[] = {
       cmocka_unit_test(every_entity),
       cmocka_unit_test(malformed_files),
-      cmocka_unit_test(spd_counts),
+      cmocka_unit_test(spd_counts_shared),
   };
-  return cmocka_run_group_tests(tests, setup, teardown);
+  return glint_run_tests(tests, argc, argv, setup, teardown);
 }

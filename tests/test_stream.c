@@ -64,7 +64,7 @@ static void thesis_scenes_match(void **state) {
   }
 }
 
-static void spd_scenes_match(void **state) {
+static void spd_scenes_match_shared(void **state) {
   (void)state;
   static const char *files[] = {"balls-s2",  "gears-s1", "mount-s4", "rings-s2",
                                 "teapot-s2", "tetra-s4", "tree-s4"};
@@ -209,14 +209,14 @@ static void memory_is_bounded(void **state) {
   glint_scene_destroy(w);
 }
 
-int main(void) {
+int main(int argc, char **argv) {
   const struct CMUnitTest tests[] = {
       cmocka_unit_test(thesis_scenes_match),
-      cmocka_unit_test(spd_scenes_match),
+      cmocka_unit_test(spd_scenes_match_shared),
       cmocka_unit_test(identical_across_threads_and_runs),
       cmocka_unit_test(lanes_stay_full),
       cmocka_unit_test(every_ray_is_traced),
       cmocka_unit_test(memory_is_bounded),
   };
-  return cmocka_run_group_tests(tests, NULL, NULL);
+  return glint_run_tests(tests, argc, argv, NULL, NULL);
 }
