@@ -9,6 +9,7 @@
 
 #include <glint.h>
 
+#include <errno.h>
 #include <limits.h>
 #include <math.h>
 #include <stdio.h>
@@ -63,6 +64,15 @@ int bench_meshes(const char *dir, const glint_render_settings *base,
   int have_embree = sibling("glint-embree-bench", embree, sizeof embree);
   int w = base->width ? base->width : 1024,
       h = base->height ? base->height : 1024;
+  /* Both meshes must be there before anything is printed or timed. */
+  for (size_t m = 0; m < MESH_COUNT; m++) {
+    char path[PATH_MAX];
+    snprintf(path, sizeof path, "%s/%s", dir, meshes[m]);
+    if (access(path, R_OK) != 0) {
+      cli_error("--meshes: %s: %s", path, strerror(errno));
+      return EXIT_USAGE;
+    }
+  }
   printf("glint %s bench --meshes: primary rays only (nearest hits, no "
          "shading), %dx%d, 1 ray per pixel, 1 thread, median of %d runs\n",
          glint_version(), w, h, runs);

@@ -279,6 +279,29 @@ static void bench_errors(void **state) {
   EXPECT_USAGE_ERROR("unknown scene 'atlantis'", "bench", "--scenes",
                      "atlantis");
   EXPECT_USAGE_ERROR("unknown option", "bench", "--frobnicate");
+  EXPECT_USAGE_ERROR("--threads: 'x' is not a whole number", "bench", "-t",
+                     "1,x");
+  EXPECT_USAGE_ERROR("--spd: /nonexistent/balls-s4.nff: No such file", "bench",
+                     "--spd", "/nonexistent");
+  EXPECT_USAGE_ERROR("--meshes: /nonexistent/bunny.obj: No such file", "bench",
+                     "--meshes", "/nonexistent");
+  EXPECT_USAGE_ERROR("--plot: cannot create the folder /proc/glint", "bench",
+                     "--plot", "/proc/glint");
+  EXPECT_USAGE_ERROR("cannot write the CSV file", "bench", "--csv",
+                     "/nonexistent/b.csv", "--depths", "1", "--scenes",
+                     "whitted", "--backends", "scalar-float", "-W", "8", "-H",
+                     "8");
+}
+
+/* -t 1,2: every backend at each thread count, side by side. */
+static void bench_thread_columns(void **state) {
+  (void)state;
+  assert_int_equal(run("bench", "--scenes", "whitted", "--depths", "2",
+                       "--runs", "1", "-W", "16", "-H", "12", "-s", "1",
+                       "--backends", "scalar-float,sse", "-t", "1,2", NULL),
+                   0);
+  assert_non_null(strstr(out, "scalar-float/1t"));
+  assert_non_null(strstr(out, "sse/2t"));
 }
 
 /* A backend the CPU lacks is refused; auto falls back to the widest one
@@ -315,6 +338,7 @@ int main(void) {
       cmocka_unit_test(defaults_quiet_and_stats),
       cmocka_unit_test(bench_runs_and_writes_csv),
       cmocka_unit_test(bench_errors),
+      cmocka_unit_test(bench_thread_columns),
       cmocka_unit_test(missing_instruction_sets),
   };
   return cmocka_run_group_tests(tests, setup, teardown);
