@@ -1,7 +1,8 @@
 /* Binned SAH construction (see bvh.h). Each node's primitives are binned by
  * centroid into BINS slabs along all three axes in one pass; a sweep over the
  * bins gives the surface area heuristic cost of every slab boundary,
- *   cost = C_node + C_prim (A_left N_left + A_right N_right) / A,
+ *   cost = C_node + (A_left C_left + A_right C_right) / A,
+ * with C a side's summed primitive costs,
  * and the cheapest split wins unless keeping a leaf is cheaper. */
 #include "accel/bvh.h"
 
@@ -18,10 +19,18 @@
 
 #define BINS 16
 #define MAX_LEAF 16 /* never more references in a leaf */
-/* Visiting an inner node tests both children's boxes: measured at about
- * two and a half sphere tests in the scalar tracer. */
+/* Costs in triangle tests. Visiting an inner node tests both children's
+ * boxes; a sphere or cylinder test is cheaper than a triangle's in packets.
+ * Chosen by measurement on the SPD suite (glint bench --spd, avx512 and
+ * stream-avx512): with one cost for every shape, balls-s4 (spheres) wanted
+ * a node cost near 8 and the triangle scenes near 2.5; per-shape costs give
+ * both (balls-s4 6% faster, rings-s4 2%, the triangle scenes unchanged). */
 #define COST_NODE 2.5f
-#define COST_PRIM 1.0f
+static const float prim_cost[3] = {
+    [GLINT_SHAPE_SPHERE] = 0.4f,
+    [GLINT_SHAPE_TRIANGLE] = 1.0f,
+    [GLINT_SHAPE_CONE] = 0.6f,
+};
 
 typedef struct box {
   float lo[3], hi[3];
@@ -206,12 +215,12 @@ static uint32_t split(builder *b, const task *t, int *axis_out, box4 *lb,
    * store: two sets of bins, for even and odd primitives, merged after,
    * break that chain. */
   box4 bin_box[3][BINS], bin_box2[3][BINS];
-  uint32_t bin_count[3][BINS], bin_count2[3][BINS];
+  float bin_cost[3][BINS], bin_cost2[3][BINS]; /* sums of prim_cost */
   int dual = n > 256;
   for (int k = 0; k < 3; k++)
     for (int i = 0; i < bins; i++) {
       bin_box[k][i] = bin_box2[k][i] = box4_empty();
-      bin_count[k][i] = bin_count2[k][i] = 0;
+      bin_cost[k][i] = bin_cost2[k][i] = 0;
     }
   __m128 vlo = t->cbounds.lo, vscale = _mm_loadu_ps(scale);
   __m128i maxbin = _mm_set1_epi32(bins - 1), zero = _mm_setzero_si128();
@@ -228,9 +237,10 @@ static uint32_t split(builder *b, const task *t, int *axis_out, box4 *lb,
     _mm_storeu_si128((__m128i *)idx, bi);
     int odd = dual & (int)i;
     box4(*bb)[BINS] = odd ? bin_box2 : bin_box;
-    uint32_t(*counts)[BINS] = odd ? bin_count2 : bin_count;
+    float(*costs)[BINS] = odd ? bin_cost2 : bin_cost;
+    float cost = prim_cost[GLINT_REF_SHAPE(b->refs[i])];
     for (int k = 0; k < 3; k++) {
-      counts[k][idx[k]]++;
+      costs[k][idx[k]] += cost;
       box4_grow(&bb[k][idx[k]], bx);
     }
   }
@@ -238,7 +248,7 @@ static uint32_t split(builder *b, const task *t, int *axis_out, box4 *lb,
     for (int k = 0; k < 3; k++)
       for (int i = 0; i < bins; i++) {
         box4_grow(&bin_box[k][i], bin_box2[k][i]);
-        bin_count[k][i] += bin_count2[k][i];
+        bin_cost[k][i] += bin_cost2[k][i];
       }
 
   float best = FLT_MAX;
@@ -247,25 +257,23 @@ static uint32_t split(builder *b, const task *t, int *axis_out, box4 *lb,
     if (scale[k] == 0)
       continue;
     /* Right-to-left sweep, then left-to-right evaluating each boundary. */
-    float right_area[BINS];
-    uint32_t right_count[BINS];
+    float right_area[BINS], right_cost[BINS];
     box4 acc = box4_empty();
-    uint32_t cnt = 0;
+    float sum = 0;
     for (int i = bins - 1; i > 0; i--) {
       box4_grow(&acc, bin_box[k][i]);
-      cnt += bin_count[k][i];
+      sum += bin_cost[k][i];
       right_area[i] = box4_area(acc);
-      right_count[i] = cnt;
+      right_cost[i] = sum;
     }
     acc = box4_empty();
-    cnt = 0;
+    sum = 0;
     for (int i = 0; i < bins - 1; i++) {
       box4_grow(&acc, bin_box[k][i]);
-      cnt += bin_count[k][i];
-      if (cnt == 0 || right_count[i + 1] == 0)
+      sum += bin_cost[k][i];
+      if (sum == 0 || right_cost[i + 1] == 0)
         continue;
-      float cost = box4_area(acc) * (float)cnt +
-                   right_area[i + 1] * (float)right_count[i + 1];
+      float cost = box4_area(acc) * sum + right_area[i + 1] * right_cost[i + 1];
       if (cost < best) {
         best = cost;
         best_axis = k;
@@ -273,10 +281,11 @@ static uint32_t split(builder *b, const task *t, int *axis_out, box4 *lb,
       }
     }
   }
+  float leaf_cost = 0; /* every primitive is in one bin of axis 0 */
+  for (int i = 0; i < bins; i++)
+    leaf_cost += bin_cost[0][i];
   float area = box4_area(t->bounds);
-  float split_cost =
-      COST_NODE + COST_PRIM * (area > 0 ? best / area : (float)n);
-  float leaf_cost = COST_PRIM * (float)n;
+  float split_cost = COST_NODE + (area > 0 ? best / area : leaf_cost);
   if (best_axis < 0 || (n <= MAX_LEAF && leaf_cost <= split_cost)) {
     if (n <= MAX_LEAF)
       return begin;
