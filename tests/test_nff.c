@@ -167,6 +167,106 @@ static void malformed_files(void **state) {
   assert_non_null(strstr(e.message, "binary data"));
 }
 
+#define EXPECT_FAIL_FILE(name, want_status, want)                              \
+  do {                                                                         \
+    char p_[256];                                                              \
+    snprintf(p_, sizeof p_, "%s/%s", dir, name);                               \
+    glint_scene *s_ = NULL;                                                    \
+    glint_error e_;                                                            \
+    assert_int_equal(glint_scene_load(p_, &s_, &e_), want_status);             \
+    assert_null(s_);                                                           \
+    if (!strstr(e_.message, want))                                             \
+      fail_msg("message '%s' lacks '%s'", e_.message, want);                   \
+  } while (0)
+
+/* Large polygons load in time proportional to their size and inward
+ * corners, not to its square: a "pac-man" of 200 000 vertices with one
+ * inward corner (the fuzzer's find: quadratic ear clipping took minutes),
+ * a comb with 2 000 teeth, both covering exactly their area; a comb of
+ * 20 000 teeth is refused with FILE:LINE rather than left to run for long. */
+static const char *polygon_file(const char *name, const double (*pt)[2],
+                                size_t n) {
+  static char path[256];
+  snprintf(path, sizeof path, "%s/%s", dir, name);
+  FILE *f = fopen(path, "w");
+  fputs(VIEW "f 1 0 0 1 0 1 0 1\n", f);
+  fprintf(f, "p %zu\n", n);
+  for (size_t i = 0; i < n; i++)
+    fprintf(f, "%.17g %.17g 0\n", pt[i][0], pt[i][1]);
+  fclose(f);
+  return path;
+}
+
+static double shoelace(const double (*pt)[2], size_t n) {
+  double a = 0;
+  for (size_t i = 0; i < n; i++) {
+    const double *p = pt[i], *q = pt[(i + 1) % n];
+    a += 0.5 * (p[0] * q[1] - q[0] * p[1]);
+  }
+  return a;
+}
+
+static void expect_cover(const char *path, const double (*pt)[2], size_t n) {
+  glint_scene *s;
+  ASSERT_OK(glint_scene_load(path, &s, &e_));
+  assert_int_equal(s->triangle_count, n - 2);
+  double area = 0;
+  for (size_t i = 0; i < s->triangle_count; i++) {
+    const glint_triangle_prim *q = &s->triangles[i];
+    double ax = q->v[1].x - q->v[0].x, ay = q->v[1].y - q->v[0].y;
+    double bx = q->v[2].x - q->v[0].x, by = q->v[2].y - q->v[0].y;
+    double a = 0.5 * (ax * by - ay * bx);
+    if (a < -1e-9) /* every triangle keeps the orientation */
+      fail_msg("%s: triangle %zu has area %g: (%g %g) (%g %g) (%g %g)", path, i,
+               a, q->v[0].x, q->v[0].y, q->v[1].x, q->v[1].y, q->v[2].x,
+               q->v[2].y);
+    area += a;
+  }
+  double want = shoelace(pt, n);
+  if (fabs(area - want) > 1e-9 * want)
+    fail_msg("%s: triangles cover %.12g, the polygon %.12g", path, area, want);
+  glint_scene_destroy(s);
+}
+
+/* A comb: a bar along y in [-1, 0] with `teeth` spikes to y = 10. */
+static size_t comb(double (*pt)[2], size_t teeth) {
+  size_t n = 0;
+  pt[n][0] = 0, pt[n++][1] = -1;
+  pt[n][0] = 2.0 * (double)teeth, pt[n++][1] = -1;
+  for (size_t i = teeth; i > 0; i--) {
+    pt[n][0] = 2.0 * (double)i, pt[n++][1] = 0;
+    pt[n][0] = 2.0 * (double)i - 1, pt[n++][1] = 10;
+  }
+  pt[n][0] = 0, pt[n++][1] = 0;
+  return n;
+}
+
+static void large_polygons(void **state) {
+  (void)state;
+  enum { PACMAN = 200000, TEETH = 20000 };
+  double(*pt)[2] =
+      malloc(sizeof *pt * (PACMAN > 2 * TEETH + 3 ? PACMAN : 2 * TEETH + 3));
+  assert_non_null(pt);
+  /* A 300-degree arc and the centre last: its only inward corner. */
+  for (size_t i = 0; i + 1 < PACMAN; i++) {
+    double a =
+        (30.0 + 300.0 * (double)i / (PACMAN - 2)) * 3.14159265358979 / 180;
+    pt[i][0] = cos(a), pt[i][1] = sin(a);
+  }
+  pt[PACMAN - 1][0] = pt[PACMAN - 1][1] = 0;
+  expect_cover(polygon_file("pacman.nff", (const double(*)[2])pt, PACMAN),
+               (const double(*)[2])pt, PACMAN);
+  size_t n = comb(pt, 2000);
+  expect_cover(polygon_file("comb.nff", (const double(*)[2])pt, n),
+               (const double(*)[2])pt, n);
+  n = comb(pt, TEETH);
+  polygon_file("bigcomb.nff", (const double(*)[2])pt, n);
+  free(pt);
+  EXPECT_FAIL_FILE("bigcomb.nff", GLINT_E_PARSE,
+                   "bigcomb.nff:9: p: the polygon of 40003 vertices has too "
+                   "many inward corners to triangulate");
+}
+
 /* Every SPD scene loads with the primitive counts its file holds (p: one
  * object each; sphereflake etc. at the given sizes). */
 static void spd_counts_shared(void **state) {
@@ -203,6 +303,7 @@ int main(int argc, char **argv) {
   const struct CMUnitTest tests[] = {
       cmocka_unit_test(every_entity),
       cmocka_unit_test(malformed_files),
+      cmocka_unit_test(large_polygons),
       cmocka_unit_test(spd_counts_shared),
   };
   return glint_run_tests(tests, argc, argv, setup, teardown);

@@ -306,7 +306,10 @@ static uint32_t split(builder *b, const task *t, int *axis_out, box4 *lb,
       __m128 c = _mm_add_ps(b->boxes[i].lo, b->boxes[i].hi);
       const float *blo = (const float *)&b->boxes[i].lo;
       const float *bhi = (const float *)&b->boxes[i].hi;
-      int bi = (int)((blo[k] + bhi[k] - lo_k) * scale_k);
+      /* The binning's conversion and clamp exactly (cvtt gives INT_MIN for
+       * NaN or out of range, where a C cast would be undefined). */
+      int bi = _mm_cvtt_ss2si(_mm_set_ss((blo[k] + bhi[k] - lo_k) * scale_k));
+      bi = bi < 0 ? 0 : bi > bins - 1 ? bins - 1 : bi;
       if (bi <= best_bin) {
         box4_grow_point(lc, c);
         i++;

@@ -213,10 +213,14 @@ typedef struct polygon_emit {
 
 static int emit_triangle(void *user, size_t a, size_t b, size_t c) {
   polygon_emit *pe = user;
-  const glint_vec3 *v = pe->r->verts, *n = pe->r->norms;
+  const glint_vec3 *v = pe->r->verts;
+  if (!pe->patch)
+    return (int)glint_scene_push_triangle(pe->r->scene, v[a], v[b], v[c], NULL,
+                                          pe->e);
+  const glint_vec3 *n = pe->r->norms;
   glint_vec3 nrm[3] = {n[a], n[b], n[c]};
-  return (int)glint_scene_push_triangle(pe->r->scene, v[a], v[b], v[c],
-                                        pe->patch ? nrm : NULL, pe->e);
+  return (int)glint_scene_push_triangle(pe->r->scene, v[a], v[b], v[c], nrm,
+                                        pe->e);
 }
 
 /* p and pp: a polygon of n vertices (see polygon.c), as one object. */
@@ -261,9 +265,14 @@ static glint_status read_polygon(nff_reader *r, int patch, glint_error *e) {
     return at_line(r, line, st, e);
   polygon_emit pe = {r, patch, e};
   int res = glint_triangulate(r->verts, (size_t)n, emit_triangle, &pe);
-  if (res == -1)
+  if (res == GLINT_TRIANGULATE_NO_MEMORY)
     return glint_fail(e, GLINT_E_MEMORY, "%s:%d: out of memory", r->t.path,
                       line);
+  if (res == GLINT_TRIANGULATE_TOO_COMPLEX)
+    return glint_fail(e, GLINT_E_PARSE,
+                      "%s:%d: %s: the polygon of %ld vertices has too many "
+                      "inward corners to triangulate",
+                      r->t.path, line, entity, n);
   if (res)
     return at_line(r, line, (glint_status)res, e);
   return GLINT_OK;

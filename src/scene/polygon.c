@@ -47,20 +47,21 @@ static int turns_left(glint_vec3 a, glint_vec3 b, glint_vec3 c,
   return dot(cross(sub(b, a), sub(c, b)), nrm) > 0;
 }
 
-static int is_convex(const glint_vec3 *v, const size_t *idx, size_t n,
-                     glint_vec3 nrm) {
-  for (size_t i = 0; i < n; i++)
-    if (!turns_left(v[idx[i]], v[idx[(i + 1) % n]], v[idx[(i + 2) % n]], nrm))
-      return 0;
-  return 1;
+static int same_point(glint_vec3 p, glint_vec3 q) {
+  return p.x == q.x && p.y == q.y && p.z == q.z;
 }
 
-/* p strictly inside triangle abc (all seen along nrm). */
-static int inside(glint_vec3 p, glint_vec3 a, glint_vec3 b, glint_vec3 c,
+/* p inside triangle abc or on its edges (all seen along nrm), p not one of
+ * its corners. An inward corner on the cut a-c blocks the ear too: cutting
+ * there would leave a polygon that touches itself, and the next ear could
+ * then span the gap (a comb whose teeth stand on one line). */
+static int blocks(glint_vec3 p, glint_vec3 a, glint_vec3 b, glint_vec3 c,
                   glint_vec3 nrm) {
-  return dot(cross(sub(b, a), sub(p, a)), nrm) > 0 &&
-         dot(cross(sub(c, b), sub(p, b)), nrm) > 0 &&
-         dot(cross(sub(a, c), sub(p, c)), nrm) > 0;
+  if (same_point(p, a) || same_point(p, b) || same_point(p, c))
+    return 0;
+  return dot(cross(sub(b, a), sub(p, a)), nrm) >= 0 &&
+         dot(cross(sub(c, b), sub(p, b)), nrm) >= 0 &&
+         dot(cross(sub(a, c), sub(p, c)), nrm) >= 0;
 }
 
 /* A convex polygon idx[0..n): cut by the diagonal idx[0]-idx[n/2] and each
@@ -79,53 +80,138 @@ static int bisect(const size_t *idx, size_t n, size_t *tmp,
   return bisect(tmp, n - k + 1, tmp + n - k + 1, emit, user);
 }
 
+/* Work allowed to ear clipping, in point-in-triangle tests: about a second.
+ * Only inward corners are tested (see below), so this is reached only by
+ * polygons with tens of thousands of them. */
+#define EAR_TEST_BUDGET (1u << 27)
+
+typedef struct ring {
+  const glint_vec3 *v;
+  glint_vec3 nrm;
+  size_t *prev, *next;
+  unsigned char *reflex;       /* the corner does not turn the polygon's way */
+  size_t *rlist, rlen, rcount; /* reflex vertices (rlen entries, rcount live) */
+} ring;
+
+static int corner_reflex(const ring *g, size_t i) {
+  return !turns_left(g->v[g->prev[i]], g->v[i], g->v[g->next[i]], g->nrm);
+}
+
+/* A corner's neighbour was cut off: its turn is measured again. (For a
+ * simple polygon an inward corner can only become convex; a corner that
+ * rounding makes inward is listed again.) */
+static void update_corner(ring *g, size_t i) {
+  int now = corner_reflex(g, i);
+  if (now && !g->reflex[i]) {
+    g->rcount++;
+    g->rlist[g->rlen++] = i;
+  } else if (!now && g->reflex[i]) {
+    g->rcount--;
+  }
+  g->reflex[i] = (unsigned char)now;
+}
+
+/* The remaining vertex that came first in the polygon: what is left is
+ * bisected (or fanned) from there. */
+static size_t first_vertex(const ring *g, size_t b, size_t m) {
+  size_t first = b;
+  for (size_t k = 0, i = b; k < m; k++, i = g->next[i])
+    if (i < first)
+      first = i;
+  return first;
+}
+
 int glint_triangulate(const glint_vec3 *v, size_t n, glint_polygon_emit emit,
                       void *user) {
   if (n < 3)
-    return -1;
+    return GLINT_TRIANGULATE_NO_MEMORY;
   if (n == 3)
     return emit(user, 0, 1, 2);
-  /* idx: the polygon's remaining vertices; tmp: bisection's scratch (each
-   * level needs at most n/2 + 2 more, 2n in all). */
-  size_t *idx = malloc(3 * n * sizeof *idx + 2 * sizeof *idx);
-  if (!idx)
-    return -1;
+  /* idx: the convex rest in order; tmp: bisection's scratch (each level
+   * needs at most n/2 + 2 more, 2n in all); prev/next: the remaining
+   * polygon as a ring; rlist: room for the n corners and two re-listings
+   * per ear cut. */
+  size_t *idx = malloc((8 * n + 2) * sizeof *idx);
+  unsigned char *reflex = malloc(n);
+  if (!idx || !reflex) {
+    free(idx);
+    free(reflex);
+    return GLINT_TRIANGULATE_NO_MEMORY;
+  }
   size_t *tmp = idx + n;
-  for (size_t i = 0; i < n; i++)
+  ring g = {
+      v, {0, 0, 0}, tmp + 2 * n + 2, tmp + 3 * n + 2, reflex, tmp + 4 * n + 2,
+      0, 0};
+  for (size_t i = 0; i < n; i++) {
     idx[i] = i;
-  glint_vec3 nrm = newell(v, idx, n);
+    g.prev[i] = i ? i - 1 : n - 1;
+    g.next[i] = i + 1 < n ? i + 1 : 0;
+  }
+  g.nrm = newell(v, idx, n);
+  for (size_t i = 0; i < n; i++) {
+    reflex[i] = (unsigned char)corner_reflex(&g, i);
+    if (reflex[i])
+      g.rlist[g.rlen++] = i, g.rcount++;
+  }
+
   int r = 0;
-  size_t m = n, guard = 0, i = 0;
-  while (!r) {
-    if (m == 3 || is_convex(v, idx, m, nrm)) {
+  size_t m = n, b = 0, misses = 0, tests = 0;
+  for (;;) {
+    if (m == 3 || g.rcount == 0) { /* convex: bisection */
+      b = first_vertex(&g, b, m);
+      for (size_t k = 0, i = b; k < m; k++, i = g.next[i])
+        idx[k] = i;
       r = m == 4 ? emit(user, idx[0], idx[1], idx[2]) ||
                        emit(user, idx[0], idx[2], idx[3])
                  : bisect(idx, m, tmp, emit, user);
       break;
     }
-    /* Ear clipping: a vertex whose corner turns the polygon's way and whose
-     * triangle holds no other vertex is cut off. */
-    size_t a = idx[(i + m - 1) % m], b = idx[i % m], c = idx[(i + 1) % m];
-    int ear = turns_left(v[a], v[b], v[c], nrm);
-    for (size_t k = 0; ear && k < m; k++) {
-      size_t p = idx[k];
-      if (p != a && p != b && p != c && inside(v[p], v[a], v[b], v[c], nrm))
-        ear = 0;
+    /* Ear clipping: a corner that turns the polygon's way and whose triangle
+     * holds no other vertex is cut off. Only inward corners need testing: if
+     * any vertex is inside the triangle, one of them is (Meisters 1975). */
+    size_t a = g.prev[b], c = g.next[b];
+    int ear = !reflex[b];
+    if (ear) {
+      if (g.rlen > 2 * g.rcount + 16) { /* drop entries no longer inward */
+        size_t live = 0;
+        for (size_t k = 0; k < g.rlen; k++)
+          if (reflex[g.rlist[k]])
+            g.rlist[live++] = g.rlist[k];
+        g.rlen = live;
+      }
+      tests += g.rlen;
+      for (size_t k = 0; ear && k < g.rlen; k++) {
+        size_t p = g.rlist[k];
+        if (reflex[p] && p != a && p != c &&
+            blocks(v[p], v[a], v[b], v[c], g.nrm))
+          ear = 0;
+      }
     }
     if (ear) {
-      r = emit(user, a, b, c);
-      memmove(idx + i % m, idx + i % m + 1, (m - i % m - 1) * sizeof *idx);
+      if ((r = emit(user, a, b, c)))
+        break;
+      g.next[a] = c;
+      g.prev[c] = a;
       m--;
-      guard = 0;
+      update_corner(&g, a);
+      update_corner(&g, c);
+      b = c;
+      misses = 0;
     } else {
-      i++;
-      if (++guard > m) { /* degenerate (collinear or self-crossing): fan */
-        for (size_t k = 1; k + 1 < m && !r; k++)
-          r = emit(user, idx[0], idx[k], idx[k + 1]);
+      b = c;
+      if (++misses > m) { /* degenerate (collinear or self-crossing): fan */
+        b = first_vertex(&g, b, m);
+        for (size_t k = 0, i = g.next[b]; k + 2 < m && !r; k++, i = g.next[i])
+          r = emit(user, b, i, g.next[i]);
         break;
       }
     }
+    if (tests > EAR_TEST_BUDGET) {
+      r = GLINT_TRIANGULATE_TOO_COMPLEX;
+      break;
+    }
   }
   free(idx);
+  free(reflex);
   return r;
 }

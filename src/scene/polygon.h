@@ -10,9 +10,14 @@
  * stops and is returned. */
 typedef int (*glint_polygon_emit)(void *user, size_t a, size_t b, size_t c);
 
+#define GLINT_TRIANGULATE_NO_MEMORY (-1) /* or n < 3 */
+#define GLINT_TRIANGULATE_TOO_COMPLEX (-2)
+
 /* Triangulates the n >= 3 vertices v (in order around the polygon), keeping
- * their orientation. Returns 0, an emit's non-zero result, or -1 (n < 3,
- * out of memory). */
+ * their orientation. Returns 0, an emit's non-zero result,
+ * GLINT_TRIANGULATE_NO_MEMORY, or GLINT_TRIANGULATE_TOO_COMPLEX when ear
+ * clipping would take more than about 2^27 point-in-triangle tests (a
+ * polygon with tens of thousands of inward corners) rather than hang. */
 int glint_triangulate(const glint_vec3 *v, size_t n, glint_polygon_emit emit,
                       void *user);
 
