@@ -210,6 +210,48 @@ static void obj_polygons_are_fans(void **state) {
   glint_scene_destroy(s);
 }
 
+/* The summed signed area (in z = const planes) of triangles [from, to). */
+static double area_xy(const glint_scene *s, size_t from, size_t to) {
+  double area = 0;
+  for (size_t i = from; i < to; i++) {
+    const glint_triangle_prim *t = &s->triangles[i];
+    double a = 0.5 * ((t->v[1].x - t->v[0].x) * (t->v[2].y - t->v[0].y) -
+                      (t->v[1].y - t->v[0].y) * (t->v[2].x - t->v[0].x));
+    if (a < -1e-12)
+      fail_msg("triangle %zu is turned over (area %g)", i, a);
+    area += a;
+  }
+  return area;
+}
+
+/* A concave face is not fanned (a fan from its first corner would cover
+ * what is not the face): an L that its first corner cannot see whole, and an
+ * arrow quad whose fan from corner 1 would double-cover, in OBJ and in PLY.
+ * Their triangles cover exactly the face's area, all facing its way. */
+static void concave_faces_are_ear_clipped(void **state) {
+  fixture *f = *state;
+  static const char obj[] = "v 0 0 0\nv 4 0 0\nv 4 1 0\nv 1 1 0\nv 1 3 0\n"
+                            "v 0 3 0\n"
+                            "v 0 0 1\nv 2 1 1\nv 0 2 1\nv 1 1 1\n"
+                            "f 3 4 5 6 1 2\n" /* L: area 4 + 2 = 6 */
+                            "f 7 8 9 10\n";   /* arrow: area 1 */
+  glint_scene *s = load(write_text(f, "concave.obj", obj), 1, (V){0, 0, 0});
+  assert_int_equal(s->triangle_count, 4 + 2);
+  assert_true(fabs(area_xy(s, 0, 4) - 6) < 1e-12);
+  assert_true(fabs(area_xy(s, 4, 6) - 1) < 1e-12);
+  glint_scene_destroy(s);
+  static const char ply[] = "ply\nformat ascii 1.0\nelement vertex 6\n"
+                            "property float x\nproperty float y\n"
+                            "property float z\nelement face 1\n"
+                            "property list uchar int vertex_indices\n"
+                            "end_header\n0 0 0\n4 0 0\n4 1 0\n1 1 0\n"
+                            "1 3 0\n0 3 0\n6 2 3 4 5 0 1\n";
+  s = load(write_text(f, "concave.ply", ply), 1, (V){0, 0, 0});
+  assert_int_equal(s->triangle_count, 4);
+  assert_true(fabs(area_xy(s, 0, 4) - 6) < 1e-12);
+  glint_scene_destroy(s);
+}
+
 static void obj_negative_indices(void **state) {
   fixture *f = *state;
   const char *p = write_text(f, "neg.obj",
@@ -996,6 +1038,7 @@ int main(int argc, char **argv) {
   const struct CMUnitTest tests[] = {
       cmocka_unit_test(obj_triangle_scaled_and_moved),
       cmocka_unit_test(obj_polygons_are_fans),
+      cmocka_unit_test(concave_faces_are_ear_clipped),
       cmocka_unit_test(obj_negative_indices),
       cmocka_unit_test(obj_vertex_forms_and_normals),
       cmocka_unit_test(obj_ignores_known_statements),

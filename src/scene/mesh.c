@@ -14,10 +14,11 @@
  *
  * OBJ: v (w and the common r g b colour extension ignored), vn, f with the
  * i, i/t, i//n and i/t/n forms (1-based; negative counts back from the last
- * one defined), polygons as fans (v0, vi, vi+1). A face whose corners all
- * have normals is smooth, any other face flat. Every other statement of the
- * OBJ specification is accepted and ignored; an unknown keyword is an error,
- * because a typo should not silently drop geometry.
+ * one defined), convex polygons as fans (v0, vi, vi+1), concave ones by ear
+ * clipping (polygon.c). A face whose corners all have normals is smooth, any
+ * other face flat. Every other statement of the OBJ specification is accepted
+ * and ignored; an unknown keyword is an error, because a typo should not
+ * silently drop geometry.
  *
  * PLY: the vertex element's x, y, z (and nx, ny, nz, when all three are
  * there, for smooth shading) and the face element's vertex_indices (or
@@ -29,6 +30,7 @@
 #include "core/memory.h"
 #include "scene/file.h"
 #include "scene/number.h"
+#include "scene/polygon.h"
 #include "scene/scene.h"
 
 #include <errno.h>
@@ -86,25 +88,83 @@ static glint_status oom(const char *path, glint_error *e) {
   return glint_fail(e, GLINT_E_MEMORY, "%s: out of memory", path);
 }
 
-/* Appends the fan (c0, ci, ci+1) of the face in m->corners. `with_normals`
- * stores the corners' normal indices too (OBJ), else NO_INDEX. */
-static int emit_fan(mesh_data *m, int obj, int with_normals) {
+/* A face whose corners turn one way about its normal (Newell's) is convex
+ * and is cut as a fan; straight corners count as convex. Corners not read
+ * yet (a PLY whose faces come before its vertices) cannot be checked: fan. */
+static int face_is_convex(const mesh_data *m) {
+  const corner *c = m->corners;
+  size_t n = m->ncorners;
+  if (n == 3)
+    return 1;
+  for (size_t i = 0; i < n; i++)
+    if (c[i].v >= m->npos)
+      return 1;
+  glint_vec3 nrm = {0, 0, 0};
+  for (size_t i = 0; i < n; i++) {
+    glint_vec3 a = m->pos[c[i].v], b = m->pos[c[(i + 1) % n].v];
+    nrm.x += (a.y - b.y) * (a.z + b.z);
+    nrm.y += (a.z - b.z) * (a.x + b.x);
+    nrm.z += (a.x - b.x) * (a.y + b.y);
+  }
+  for (size_t i = 0; i < n; i++) {
+    glint_vec3 a = m->pos[c[i].v], b = m->pos[c[(i + 1) % n].v],
+               d = m->pos[c[(i + 2) % n].v];
+    double ux = b.x - a.x, uy = b.y - a.y, uz = b.z - a.z;
+    double vx = d.x - b.x, vy = d.y - b.y, vz = d.z - b.z;
+    double turn = (uy * vz - uz * vy) * nrm.x + (uz * vx - ux * vz) * nrm.y +
+                  (ux * vy - uy * vx) * nrm.z;
+    if (turn < 0)
+      return 0;
+  }
+  return 1;
+}
+
+typedef struct face_emit {
+  mesh_data *m;
+  int obj, with_normals;
+} face_emit;
+
+/* Appends the triangle of the face's corners a, b, c (room is made by the
+ * caller). `with_normals` stores the corners' normal indices too (OBJ),
+ * else NO_INDEX. */
+static int emit_corners(void *user, size_t a, size_t b, size_t c) {
+  face_emit *fe = user;
+  mesh_data *m = fe->m;
+  const corner *k = m->corners;
+  m->tri[m->ntri] = (tri3){{k[a].v, k[b].v, k[c].v}};
+  if (fe->obj)
+    m->tri_nrm[m->ntri] = fe->with_normals
+                              ? (tri3){{k[a].n, k[b].n, k[c].n}}
+                              : (tri3){{NO_INDEX, NO_INDEX, NO_INDEX}};
+  m->ntri++;
+  return 0;
+}
+
+/* Appends the n - 2 triangles of the face in m->corners: a fan (c0, ci,
+ * ci+1) when it is convex, else the ear clipping of polygon.c (a fan of a
+ * concave face would cover what is not the face). Returns 0, -1 (out of
+ * memory) or GLINT_TRIANGULATE_TOO_COMPLEX. */
+static int emit_face(mesh_data *m, int obj, int with_normals) {
   size_t n = m->ncorners, add = n - 2;
   if (glint_grow((void **)&m->tri, &m->tri_cap, m->ntri + add, sizeof(tri3)))
     return -1;
   if (obj && glint_grow((void **)&m->tri_nrm, &m->tri_nrm_cap, m->ntri + add,
                         sizeof(tri3)))
     return -1;
-  const corner *c = m->corners;
-  for (size_t i = 1; i + 1 < n; i++) {
-    m->tri[m->ntri] = (tri3){{c[0].v, c[i].v, c[i + 1].v}};
-    if (obj)
-      m->tri_nrm[m->ntri] = with_normals
-                                ? (tri3){{c[0].n, c[i].n, c[i + 1].n}}
-                                : (tri3){{NO_INDEX, NO_INDEX, NO_INDEX}};
-    m->ntri++;
+  face_emit fe = {m, obj, with_normals};
+  if (face_is_convex(m)) {
+    for (size_t i = 1; i + 1 < n; i++)
+      emit_corners(&fe, 0, i, i + 1);
+    return 0;
   }
-  return 0;
+  glint_vec3 *v = malloc(n * sizeof *v);
+  if (!v)
+    return -1;
+  for (size_t i = 0; i < n; i++)
+    v[i] = m->pos[m->corners[i].v];
+  int r = glint_triangulate(v, n, emit_corners, &fe);
+  free(v);
+  return r;
 }
 
 /* A piece of the file for an error message: at most about 40 bytes, with
@@ -357,7 +417,15 @@ static glint_status obj_face(obj_reader *r, glint_error *e) {
   if (m->ntri + m->ncorners - 2 > MAX_ITEMS)
     return glint_fail(e, GLINT_E_PARSE, "%s:%zu: too many triangles", r->path,
                       r->line);
-  return emit_fan(m, 1, smooth) ? oom(r->path, e) : GLINT_OK;
+  switch (emit_face(m, 1, smooth)) {
+  case 0: return GLINT_OK;
+  case GLINT_TRIANGULATE_TOO_COMPLEX:
+    return glint_fail(e, GLINT_E_PARSE,
+                      "%s:%zu: the face of %zu vertices has too many inward "
+                      "corners to triangulate",
+                      r->path, r->line, m->ncorners);
+  default: return oom(r->path, e);
+  }
 }
 
 /* Statements of the OBJ specification that glint has no use for: texture
@@ -713,7 +781,15 @@ static glint_status ply_face(ply_reader *r, const ply_property *p, long long n,
                         r->vertex_count == 1 ? "is" : "are");
     m->corners[k] = (corner){(uint32_t)v, NO_INDEX};
   }
-  return emit_fan(m, 0, 0) ? oom(r->path, e) : GLINT_OK;
+  switch (emit_face(m, 0, 0)) {
+  case 0: return GLINT_OK;
+  case GLINT_TRIANGULATE_TOO_COMPLEX:
+    return glint_fail(e, GLINT_E_PARSE,
+                      "%s: the face of %zu vertices has too many inward "
+                      "corners to triangulate",
+                      ply_where(r, w, sizeof w), m->ncorners);
+  default: return oom(r->path, e);
+  }
 }
 
 /* ASCII: moves to the next non-blank line; 1 at the end of the file. */
