@@ -88,37 +88,6 @@ static glint_status oom(const char *path, glint_error *e) {
   return glint_fail(e, GLINT_E_MEMORY, "%s: out of memory", path);
 }
 
-/* A face whose corners turn one way about its normal (Newell's) is convex
- * and is cut as a fan; straight corners count as convex. Corners not read
- * yet (a PLY whose faces come before its vertices) cannot be checked: fan. */
-static int face_is_convex(const mesh_data *m) {
-  const corner *c = m->corners;
-  size_t n = m->ncorners;
-  if (n == 3)
-    return 1;
-  for (size_t i = 0; i < n; i++)
-    if (c[i].v >= m->npos)
-      return 1;
-  glint_vec3 nrm = {0, 0, 0};
-  for (size_t i = 0; i < n; i++) {
-    glint_vec3 a = m->pos[c[i].v], b = m->pos[c[(i + 1) % n].v];
-    nrm.x += (a.y - b.y) * (a.z + b.z);
-    nrm.y += (a.z - b.z) * (a.x + b.x);
-    nrm.z += (a.x - b.x) * (a.y + b.y);
-  }
-  for (size_t i = 0; i < n; i++) {
-    glint_vec3 a = m->pos[c[i].v], b = m->pos[c[(i + 1) % n].v],
-               d = m->pos[c[(i + 2) % n].v];
-    double ux = b.x - a.x, uy = b.y - a.y, uz = b.z - a.z;
-    double vx = d.x - b.x, vy = d.y - b.y, vz = d.z - b.z;
-    double turn = (uy * vz - uz * vy) * nrm.x + (uz * vx - ux * vz) * nrm.y +
-                  (ux * vy - uy * vx) * nrm.z;
-    if (turn < 0)
-      return 0;
-  }
-  return 1;
-}
-
 typedef struct face_emit {
   mesh_data *m;
   int obj, with_normals;
@@ -152,18 +121,26 @@ static int emit_face(mesh_data *m, int obj, int with_normals) {
                         sizeof(tri3)))
     return -1;
   face_emit fe = {m, obj, with_normals};
-  if (face_is_convex(m)) {
-    for (size_t i = 1; i + 1 < n; i++)
-      emit_corners(&fe, 0, i, i + 1);
-    return 0;
-  }
-  glint_vec3 *v = malloc(n * sizeof *v);
+  /* Corners not read yet (a PLY whose faces come before its vertices)
+   * cannot be checked: a fan. */
+  int known = n > 3;
+  for (size_t i = 0; known && i < n; i++)
+    known = m->corners[i].v < m->npos;
+  glint_vec3 small[16], *v = n <= 16 ? small : malloc(n * sizeof *v);
   if (!v)
     return -1;
-  for (size_t i = 0; i < n; i++)
+  for (size_t i = 0; known && i < n; i++)
     v[i] = m->pos[m->corners[i].v];
+  if (!known || glint_polygon_is_convex(v, n)) {
+    for (size_t i = 1; i + 1 < n; i++)
+      emit_corners(&fe, 0, i, i + 1);
+    if (v != small)
+      free(v);
+    return 0;
+  }
   int r = glint_triangulate(v, n, emit_corners, &fe);
-  free(v);
+  if (v != small)
+    free(v);
   return r;
 }
 

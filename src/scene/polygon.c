@@ -30,11 +30,13 @@ static double dot(glint_vec3 a, glint_vec3 b) {
 }
 
 /* Newell's method: the polygon's area-weighted normal, robust for any
- * planar (even concave) polygon. */
+ * planar (even concave) polygon. Its vertices are v[idx[i]], or v[i] when
+ * idx is NULL. */
 static glint_vec3 newell(const glint_vec3 *v, const size_t *idx, size_t n) {
   glint_vec3 nrm = {0, 0, 0};
   for (size_t i = 0; i < n; i++) {
-    glint_vec3 a = v[idx[i]], b = v[idx[(i + 1) % n]];
+    size_t j = (i + 1) % n;
+    glint_vec3 a = v[idx ? idx[i] : i], b = v[idx ? idx[j] : j];
     nrm.x += (a.y - b.y) * (a.z + b.z);
     nrm.y += (a.z - b.z) * (a.x + b.x);
     nrm.z += (a.x - b.x) * (a.y + b.y);
@@ -109,6 +111,16 @@ static void update_corner(ring *g, size_t i) {
     g->rcount--;
   }
   g->reflex[i] = (unsigned char)now;
+}
+
+int glint_polygon_is_convex(const glint_vec3 *v, size_t n) {
+  glint_vec3 nrm = newell(v, NULL, n);
+  for (size_t i = 0; i < n; i++) {
+    glint_vec3 a = v[i], b = v[(i + 1) % n], c = v[(i + 2) % n];
+    if (dot(cross(sub(b, a), sub(c, b)), nrm) < 0)
+      return 0;
+  }
+  return 1;
 }
 
 /* The remaining vertex that came first in the polygon: what is left is

@@ -10,6 +10,11 @@
  * stops and is returned. */
 typedef int (*glint_polygon_emit)(void *user, size_t a, size_t b, size_t c);
 
+/* 1 if no corner of the polygon v[0..n) turns against its (Newell) normal:
+ * a fan from any corner then covers it exactly. Straight corners count as
+ * convex. */
+int glint_polygon_is_convex(const glint_vec3 *v, size_t n);
+
 #define GLINT_TRIANGULATE_NO_MEMORY (-1) /* or n < 3 */
 #define GLINT_TRIANGULATE_TOO_COMPLEX (-2)
 
