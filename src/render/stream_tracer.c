@@ -628,6 +628,14 @@ static ALWAYS_INLINE vvec3 shade_chain(tracer *t, int level, vmask active,
   return sum;
 }
 
+/* The deeper generations' packets call this copy out of line: the drain
+ * loop stays small, while the primary packets keep theirs inlined. */
+static __attribute__((noinline)) vvec3
+shade_chain_deeper(tracer *t, int level, vmask active, vvec3 o, vvec3 d,
+                   vvec3 w, vint pixel, glint_math math, int newton) {
+  return shade_chain(t, level, active, o, d, w, pixel, math, newton);
+}
+
 /* ---- a tile ------------------------------------------------------------ */
 
 /* Consumes the generations from level `floor` down, depth first at the
@@ -677,8 +685,9 @@ static ALWAYS_INLINE void drain(tracer *t, int floor, glint_math math,
         st->gen_packets[g]++;
         st->gen_active_lanes[g] += (uint64_t)n;
         vint pixel = vi_load(r->pixel + i);
-        accumulate(t->sc, m, pixel,
-                   shade_chain(t, level, m, o, d, w, pixel, math, newton));
+        accumulate(
+            t->sc, m, pixel,
+            shade_chain_deeper(t, level, m, o, d, w, pixel, math, newton));
       }
       if (level + 1 > st->generations)
         st->generations = level + 1;
