@@ -125,34 +125,8 @@ static ALWAYS_INLINE void trace_beam_body(const beam_ctx *c, vvec3 o, vvec3 d,
     sub_mask[nsub++] = sub;
   }
 
-  /* Eq. 2.9/2.10's local part: C (ka Ia + sum S kd N·L IL) +
-   * sum S ks (V·R)^h IL, one shadow beam per light. */
-  vvec3 diffuse = ambient;
-  vvec3 highlight = {vf_zero(), vf_zero(), vf_zero()};
-  for (size_t j = 0; j < s->light_count; j++) {
-    const plight *li = &ps->lights[j];
-    vvec3 l;
-    vfloat dist, nl;
-    vmask lit = packet_toward_light(li, f.p, f.n, hits, newton, &l, &dist, &nl);
-    if (vm_none(lit))
-      continue;
-    c->st->shadow_rays += (uint64_t)vm_count(lit);
-    vvec3 sj = packet_transmission(ps, f.p, l, dist, lit, math, newton, c->st);
-    vvec3 il = vv_mul(sj, vv_get(li->color));
-    diffuse = vv_madd(diffuse, vf_keep(lit, vf_mul(kd, nl)), il);
-    if (any_highlight) {
-      /* R = 2(L·N)N - L and V = -D: V·R = 2(L·N)(-D·N) + D·L */
-      vfloat vr =
-          vf_fmadd(vf_add(nl, nl), vf_neg(vv_dot(d, f.n)), vv_dot(d, l));
-      vmask hl =
-          vm_and(vm_and(lit, vf_gt(ks, vf_zero())), vf_gt(vr, vf_zero()));
-      if (vm_any(hl)) {
-        vfloat p = vm_pow(vf_max(vr, vf_set1(FLT_MIN)), hexp, math);
-        highlight = vv_madd(highlight, vf_keep(hl, vf_mul(ks, p)), il);
-      }
-    }
-  }
-  vvec3 local = vv_add(vv_mul(base, diffuse), highlight);
+  vvec3 local = packet_lights(ps, &f, d, hits, base, ambient, kd, ks, hexp,
+                              any_highlight, math, newton, c->st, NULL);
 
   for (int k = 0; k < nsub; k++)
     finish_sub_beam(c, d, &h, &f, sub_object[k], sub_mask[k], level, local,

@@ -16,6 +16,7 @@
 
 #include <float.h>
 #include <stddef.h>
+#include <x86intrin.h>
 
 #ifdef GLINT_PROFILE_NOINLINE
 #define ALWAYS_INLINE __attribute__((noinline))
@@ -696,14 +697,18 @@ static ALWAYS_INLINE vmask packet_toward_light(const plight *li, vvec3 p,
   return vm_and(m, vf_gt(*nl, vf_zero()));
 }
 
-/* Eq. 2.9/2.10's local part for the lanes of m on one material:
- * C (ka Ia + sum S kd N·L IL) + sum S ks (V·R)^h IL, shadow rays included. */
-static ALWAYS_INLINE vvec3 packet_local_shading(
-    const packet_scene *ps, const material_r *mat, const pmaterial *pm, vvec3 c,
-    const packet_surface *f, vvec3 d, vmask m, glint_math math, int newton,
-    glint_stats *st) {
+/* Eq. 2.9/2.10's local part for the lanes of m, whose coefficients may
+ * differ lane by lane (a beam's sub-beams, a stream's mixed packet) or not:
+ *   C (ka Ia + sum S kd N·L IL) + sum S ks (V·R)^h IL,
+ * one shadow packet per light. `highlights` = 0 says no lane has ks > 0.
+ * When `shadow_ticks` is given, the time-stamp cycles spent tracing shadow
+ * rays are added to it (the stream tracer's stage timing). */
+static ALWAYS_INLINE vvec3 packet_lights(
+    const packet_scene *ps, const packet_surface *f, vvec3 d, vmask m, vvec3 c,
+    vvec3 ambient, vfloat kd, vfloat ks, vfloat h, int highlights,
+    glint_math math, int newton, glint_stats *st, uint64_t *shadow_ticks) {
   const scene_r *s = ps->s;
-  vvec3 diffuse = vv_get(pm->ambient);
+  vvec3 diffuse = ambient;
   vvec3 highlight = {vf_zero(), vf_zero(), vf_zero()};
   for (size_t j = 0; j < s->light_count; j++) {
     const plight *li = &ps->lights[j];
@@ -713,19 +718,21 @@ static ALWAYS_INLINE vvec3 packet_local_shading(
     if (vm_none(lit))
       continue;
     st->shadow_rays += (uint64_t)vm_count(lit);
+    uint64_t t0 = shadow_ticks ? __rdtsc() : 0;
     vvec3 sj = packet_transmission(ps, f->p, l, dist, lit, math, newton, st);
+    if (shadow_ticks)
+      *shadow_ticks += __rdtsc() - t0;
     vvec3 il = vv_mul(sj, vv_get(li->color));
-    vfloat kdnl = vf_keep(lit, vf_mul(vs_get(&pm->kd), nl));
-    diffuse = vv_madd(diffuse, kdnl, il);
-    if (mat->ks > 0) {
+    diffuse = vv_madd(diffuse, vf_keep(lit, vf_mul(kd, nl)), il);
+    if (highlights) {
       /* R = 2(L·N)N - L, and V = -D: V·R = 2(L·N)(-D·N) + D·L */
       vfloat vr =
           vf_fmadd(vf_add(nl, nl), vf_neg(vv_dot(d, f->n)), vv_dot(d, l));
-      vmask hl = vm_and(lit, vf_gt(vr, vf_zero()));
+      vmask hl =
+          vm_and(vm_and(lit, vf_gt(ks, vf_zero())), vf_gt(vr, vf_zero()));
       if (vm_any(hl)) {
-        vfloat p = vm_pow(vf_max(vr, vf_set1(FLT_MIN)), vs_get(&pm->h), math);
-        vfloat k = vf_keep(hl, vf_mul(vs_get(&pm->ks), p));
-        highlight = vv_madd(highlight, k, il);
+        vfloat p = vm_pow(vf_max(vr, vf_set1(FLT_MIN)), h, math);
+        highlight = vv_madd(highlight, vf_keep(hl, vf_mul(ks, p)), il);
       }
     }
   }

@@ -486,10 +486,13 @@ static ALWAYS_INLINE vvec3 shade_packet(tracer *t, int level, vmask active,
     vvec3 c = packet_color(mat, pm, ob, f.p);
     vvec3 unit = {vf_set1(1), vf_set1(1), vf_set1(1)};
     w = vv_mul(w, packet_beer(mat, pm, &f, h.t, hits, unit, math));
-    uint64_t t2 = tick(t);
+    uint64_t shadow = 0; /* shadow rays: traversal, not shading */
     vvec3 local =
-        packet_local_shading(ps, mat, pm, c, &f, d, hits, math, newton, t->st);
-    t1 += tick(t) - t2; /* (its shadow rays count as shading here) */
+        packet_lights(ps, &f, d, hits, c, vv_get(pm->ambient), vs_get(&pm->kd),
+                      vs_get(&pm->ks), vs_get(&pm->h), mat->ks > 0, math,
+                      newton, t->st, t->timing ? &shadow : NULL);
+    t->stage_ticks[STAGE_TRAVERSE] += shadow;
+    t1 += shadow;
     vvec3 brings =
         vv_select(hits, vv_mul(w, local), vv_select(misses, bg, zero));
     if (level + 1 < s->max_depth && (mat->kr > 0 || mat->kt > 0)) {
@@ -535,38 +538,14 @@ static ALWAYS_INLINE vvec3 shade_packet(tracer *t, int level, vmask active,
     w = vv_select(inside, vv_mul(w, a), w);
   }
 
-  vvec3 wc = vv_mul(w, c);
-  vvec3 local = vv_mul(wc, lm.ambient);
+  uint64_t shadow = 0; /* shadow rays: traversal, not shading */
   int highlights =
       lm.uniform ? lm.m->ks > 0 : vm_any(vm_and(hits, vf_gt(lm.ks, vf_zero())));
-  for (size_t j = 0; j < s->light_count; j++) {
-    const plight *li = &ps->lights[j];
-    vvec3 l;
-    vfloat dist, nl;
-    vmask lit = packet_toward_light(li, f.p, f.n, hits, newton, &l, &dist, &nl);
-    if (vm_none(lit))
-      continue;
-    /* What the light brings if nothing blocks it. */
-    vvec3 bring = vv_scale(wc, vf_mul(lm.kd, nl));
-    if (highlights) {
-      vfloat vr =
-          vf_fmadd(vf_add(nl, nl), vf_neg(vv_dot(d, f.n)), vv_dot(d, l));
-      vmask hl =
-          vm_and(vm_and(lit, vf_gt(lm.ks, vf_zero())), vf_gt(vr, vf_zero()));
-      if (vm_any(hl)) {
-        vfloat p = vm_pow(vf_max(vr, vf_set1(FLT_MIN)), lm.h, math);
-        bring = vv_madd(bring, vf_keep(hl, vf_mul(lm.ks, p)), w);
-      }
-    }
-    t->st->shadow_rays += (uint64_t)vm_count(lit);
-    uint64_t t2 = tick(t);
-    vvec3 sj = packet_transmission(ps, f.p, l, dist, lit, math, newton, t->st);
-    uint64_t t3 = tick(t);
-    t->stage_ticks[STAGE_TRAVERSE] += t3 - t2;
-    t1 += t3 - t2; /* not shading time */
-    vvec3 lc = vv_mul(sj, vv_get(li->color));
-    local = vv_madd(local, vf_keep(lit, vf_set1(1)), vv_mul(bring, lc));
-  }
+  vvec3 local = vv_mul(w, packet_lights(ps, &f, d, hits, c, lm.ambient, lm.kd,
+                                        lm.ks, lm.h, highlights, math, newton,
+                                        t->st, t->timing ? &shadow : NULL));
+  t->stage_ticks[STAGE_TRAVERSE] += shadow;
+  t1 += shadow;
   vvec3 brings = vv_select(hits, local, vv_select(misses, bg, zero));
 
   /* Secondary rays, one level deeper (SPEC §4; eq. 2.12, 2.13). */
