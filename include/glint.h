@@ -346,6 +346,115 @@ glint_status glint_trace_primary(const glint_scene *scene,
 /* Cores the renderer would use for threads = 0. */
 int glint_cpu_count(void);
 
+/* ------------------------------------------------------------------------ */
+/* Film: linear floating-point frame buffers                                */
+/* ------------------------------------------------------------------------ */
+
+/* Linear RGB as the renderer computes it, before any clamp or gamma: each
+ * pixel is the average of its samples, and may exceed 1 (a highlight). */
+typedef struct glint_film glint_film;
+
+glint_status glint_film_create(int width, int height, glint_film **film,
+                               glint_error *error);
+void glint_film_destroy(glint_film *film);
+int glint_film_width(const glint_film *film);
+int glint_film_height(const glint_film *film);
+/* width*height*3 floats, R G B, top row first. */
+float *glint_film_pixels(glint_film *film);
+const float *glint_film_pixels_const(const glint_film *film);
+
+/* The 8-bit conversion of SPEC §4: each channel clamped to [0, 1], raised to
+ * 1/gamma (gamma 1: linear), written as round(255 c). `image` must have the
+ * film's size; nothing is allocated. */
+glint_status glint_film_to_image(const glint_film *film, double gamma,
+                                 glint_image *image, glint_error *error);
+
+/* Writes the linear film itself, by extension: .pfm (Portable Float Map,
+ * 32-bit float RGB) or .exr (OpenEXR, when this build has it). Atomic, like
+ * glint_image_write. */
+glint_status glint_film_write(const glint_film *film, const char *path,
+                              glint_error *error);
+
+/* ------------------------------------------------------------------------ */
+/* Worlds and renderers: commit a scene once, render many frames            */
+/* ------------------------------------------------------------------------ */
+
+/* A world is a scene committed for rendering: its geometry and materials
+ * converted for the precisions and instruction sets in use, and its
+ * acceleration structure built. It is immutable and keeps its own copy of
+ * everything: destroying or editing the glint_scene afterwards does not
+ * affect it.
+ *
+ * Thread-safety and lifetimes:
+ *  - a world may be shared by any number of renderers on any threads;
+ *  - glint_world_destroy drops the caller's reference; each renderer holds
+ *    its own, so a world lives until its last renderer is destroyed;
+ *  - a renderer renders one frame at a time: calls on one renderer must not
+ *    overlap, while different renderers (of one world or several) may render
+ *    at the same time on different threads. */
+typedef struct glint_world glint_world;
+
+/* Converts the scene and builds its BVH (the cost of a render that does not
+ * depend on the camera). `stats`, when given, receives prepare_seconds,
+ * bvh_nodes, bvh_bytes, bvh_build_seconds and scene_bytes. */
+glint_status glint_world_commit(const glint_scene *scene, glint_world **world,
+                                glint_stats *stats, glint_error *error);
+void glint_world_destroy(glint_world *world);
+/* What the committed scene holds (its camera and resolution included). */
+void glint_world_get_info(const glint_world *world, glint_scene_info *info);
+
+/* A renderer owns a pool of worker threads, started once, and their scratch
+ * memory. It is created from a world and the settings that stay fixed for
+ * its life: backend, math, rcp_newton, accel and threads. Its other fields
+ * (size, region, depth, spp, progress) are the defaults of each frame. */
+typedef struct glint_renderer glint_renderer;
+
+glint_status glint_renderer_create(glint_world *world,
+                                   const glint_render_settings *settings,
+                                   glint_renderer **renderer,
+                                   glint_error *error);
+void glint_renderer_destroy(glint_renderer *renderer);
+
+/* One finished tile, handed over while the frame renders: pixels
+ * [x, x + width) x [y, y + height) of the frame (region coordinates are
+ * frame pixels), linear RGB, already stored in the film. `pixels` points at
+ * the tile's top-left pixel in the film; rows are `stride` floats apart. */
+typedef struct glint_tile {
+  int x, y, width, height;
+  const float *pixels;
+  size_t stride;
+} glint_tile;
+
+/* Called once per finished tile, from any worker thread but never by two at
+ * once (like glint_progress_fn). Return non-zero to cancel the frame. */
+typedef int (*glint_tile_fn)(void *user, const glint_tile *tile);
+
+/* What changes from frame to frame. */
+typedef struct glint_frame_settings {
+  const glint_camera *camera; /* NULL: the world's camera */
+  int width, height;          /* 0: the renderer's (or else the world's) */
+  /* A window of the width x height frame; region_width = 0: all of it. */
+  int region_x, region_y, region_width, region_height;
+  int max_depth; /* 0: the renderer's */
+  int spp;       /* 0: the renderer's */
+  glint_progress_fn progress; /* NULL: the renderer's */
+  void *progress_user;
+  glint_tile_fn tile; /* NULL: none */
+  void *tile_user;
+} glint_frame_settings;
+
+/* All zero: every value from the renderer, the world's camera. */
+void glint_frame_settings_default(glint_frame_settings *frame);
+
+/* Renders one frame into `film`, which must have the frame's (or the
+ * region's) size. Nothing is converted, built, allocated or started: the
+ * frame costs its rendering. A cancelled frame (GLINT_E_CANCELLED) leaves
+ * the film partly written. `frame` may be NULL; `stats` may be NULL. */
+glint_status glint_renderer_render(glint_renderer *renderer,
+                                   const glint_frame_settings *frame,
+                                   glint_film *film, glint_stats *stats,
+                                   glint_error *error);
+
 #ifdef __cplusplus
 }
 #endif

@@ -10,6 +10,11 @@ struct glint_image {
   uint8_t *rgb; /* width*height*3, top row first */
 };
 
+struct glint_film {
+  int width, height;
+  float *rgb; /* width*height*3, top row first, aligned */
+};
+
 /* Encoders write the whole image to an open stream; 0 on success. */
 int glint_png_encode(const glint_image *image, FILE *f);
 int glint_bmp_encode(const glint_image *image, FILE *f);

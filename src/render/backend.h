@@ -17,11 +17,11 @@ typedef struct glint_backend_ops {
   size_t (*scratch_bytes)(const void *prepared);
   /* Writes the tile's averaged, unclamped linear RGB into rgb (row-major,
    * tile width x tile height x 3) and adds its counts to stats. */
-  void (*render_tile)(const void *prepared, const glint_tile *tile,
+  void (*render_tile)(const void *prepared, const tile_rect *tile,
                       void *scratch, float *rgb, glint_stats *stats);
   /* The tile's primary rays' nearest hits only (glint_trace_primary):
    * returns how many hit. */
-  uint64_t (*primary_tile)(const void *prepared, const glint_tile *tile,
+  uint64_t (*primary_tile)(const void *prepared, const tile_rect *tile,
                            glint_stats *stats);
 } glint_backend_ops;
 

@@ -146,7 +146,7 @@ static void trace_generic(const beam_ctx *c, const vvec3 *o, const vvec3 *d,
 }
 
 static ALWAYS_INLINE void render_tile_body(const packet_scene *ps,
-                                           const glint_tile *tile, float *rgb,
+                                           const tile_rect *tile, float *rgb,
                                            glint_stats *st, int newton,
                                            trace_fn trace) {
   const scene_r *s = ps->s;
@@ -182,7 +182,7 @@ static ALWAYS_INLINE void render_tile_body(const packet_scene *ps,
     }
 }
 
-static void render_tile(const void *prepared, const glint_tile *tile,
+static void render_tile(const void *prepared, const tile_rect *tile,
                         void *scratch, float *rgb, glint_stats *st) {
   (void)scratch;
   const packet_scene *ps = prepared;
@@ -204,7 +204,7 @@ static glint_status prepare(const glint_scene *scene, const glint_frame *frame,
 static void release(void *prepared) { packet_scene_release(prepared); }
 
 /* Primary beams' nearest hits only, for glint_trace_primary. */
-static uint64_t primary_tile(const void *prepared, const glint_tile *tile,
+static uint64_t primary_tile(const void *prepared, const tile_rect *tile,
                              glint_stats *st) {
   const packet_scene *ps = prepared;
   const scene_r *s = ps->s;

@@ -19,9 +19,9 @@ typedef struct glint_frame {
   const float (*samples)[2]; /* spp offsets from the pixel centre, in pixels */
 } glint_frame;
 
-typedef struct glint_tile {
+typedef struct tile_rect {
   int x0, y0, x1, y1; /* pixels [x0, x1) x [y0, y1) */
-} glint_tile;
+} tile_rect;
 
 /* SPEC §5: the sample positions of a pixel, as offsets from its centre. One
  * sample is the centre; five are the thesis's centre and (±1/4, ±1/4);

@@ -47,7 +47,7 @@ static ALWAYS_INLINE primary_beams primary_beams_init(const camera *cam) {
 /* The pixel coordinates of the block at (bx, by) in *px, *py; returns the
  * lanes whose pixels lie inside the tile (a tile's edge may cut a block). */
 static ALWAYS_INLINE vmask primary_block(const primary_beams *pb,
-                                         const glint_tile *tile, int bx, int by,
+                                         const tile_rect *tile, int bx, int by,
                                          vfloat *px, vfloat *py) {
   *px = vf_add(vf_set1((float)bx), pb->lane_x);
   *py = vf_add(vf_set1((float)by), pb->lane_y);

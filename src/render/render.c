@@ -288,7 +288,7 @@ static void *worker_main(void *arg) {
     int t = atomic_fetch_add(&job->next_tile, 1);
     if (t >= job->tile_count)
       break;
-    glint_tile tile;
+    tile_rect tile;
     tile.x0 = job->x0 + (t % job->tiles_x) * GLINT_TILE_SIZE;
     tile.y0 = job->y0 + (t / job->tiles_x) * GLINT_TILE_SIZE;
     tile.x1 = tile.x0 + GLINT_TILE_SIZE < job->x1 ? tile.x0 + GLINT_TILE_SIZE

@@ -173,7 +173,7 @@ static glint_status prepare(const glint_scene *scene, const glint_frame *frame,
 
 static void release(void *prepared) { scalar_scene_release(prepared); }
 
-static void render_tile(const void *prepared, const glint_tile *tile,
+static void render_tile(const void *prepared, const tile_rect *tile,
                         void *scratch, float *rgb, glint_stats *st) {
   (void)scratch;
   const scene_r *s = prepared;
@@ -198,7 +198,7 @@ static void render_tile(const void *prepared, const glint_tile *tile,
                       (uint64_t)(tile->y1 - tile->y0) * (uint64_t)s->spp;
 }
 
-static uint64_t primary_tile(const void *prepared, const glint_tile *tile,
+static uint64_t primary_tile(const void *prepared, const tile_rect *tile,
                              glint_stats *st) {
   const scene_r *s = prepared;
   uint64_t hits = 0;

@@ -691,7 +691,7 @@ static ALWAYS_INLINE void drain(tracer *t, int floor, glint_math math,
  * at one sample position, made in registers from the camera (as the beams)
  * and traced at once; only their children enter the stream. */
 static ALWAYS_INLINE void
-render_tile_body(const stream_scene *ss, const glint_tile *tile, void *scratch,
+render_tile_body(const stream_scene *ss, const tile_rect *tile, void *scratch,
                  float *rgb, glint_stats *st, glint_math math, int newton) {
   const packet_scene *ps = ss->ps;
   const scene_r *s = ps->s;
@@ -758,7 +758,7 @@ render_tile_body(const stream_scene *ss, const glint_tile *tile, void *scratch,
         tile_seconds * (double)t.stage_ticks[k] / (double)sampled;
 }
 
-static void render_tile(const void *prepared, const glint_tile *tile,
+static void render_tile(const void *prepared, const tile_rect *tile,
                         void *scratch, float *rgb, glint_stats *st) {
   const stream_scene *ss = prepared;
   if (ss->ps->math == GLINT_MATH_MINIMAX && ss->ps->newton)
@@ -790,7 +790,7 @@ static void release(void *prepared) {
   free(ss);
 }
 
-static uint64_t primary_tile(const void *prepared, const glint_tile *tile,
+static uint64_t primary_tile(const void *prepared, const tile_rect *tile,
                              glint_stats *st) {
   const stream_scene *ss = prepared;
   /* The primary generation alone is the beam tracer's primary beams. */

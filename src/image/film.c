@@ -1,0 +1,77 @@
+/* Linear floating-point films and their 8-bit conversion (SPEC §4: only the
+ * average is clamped, then written as round(255 c)). */
+#include "image/image.h"
+
+#include "core/error.h"
+#include "core/memory.h"
+
+#include <math.h>
+#include <stdlib.h>
+
+glint_status glint_film_create(int w, int h, glint_film **out,
+                               glint_error *error) {
+  if (w < 1 || h < 1 || w > GLINT_MAX_DIMENSION || h > GLINT_MAX_DIMENSION)
+    return glint_fail(error, GLINT_E_ARGUMENT,
+                      "film size %dx%d is outside 1..%d", w, h,
+                      GLINT_MAX_DIMENSION);
+  glint_film *film = malloc(sizeof *film);
+  float *rgb = glint_aligned_calloc((size_t)w * (size_t)h * 3, sizeof(float));
+  if (!film || !rgb) {
+    free(film);
+    glint_aligned_free(rgb);
+    return glint_fail(error, GLINT_E_MEMORY, "out of memory for a %dx%d film",
+                      w, h);
+  }
+  film->width = w;
+  film->height = h;
+  film->rgb = rgb;
+  *out = film;
+  return GLINT_OK;
+}
+
+void glint_film_destroy(glint_film *film) {
+  if (film) {
+    glint_aligned_free(film->rgb);
+    free(film);
+  }
+}
+
+int glint_film_width(const glint_film *film) { return film->width; }
+int glint_film_height(const glint_film *film) { return film->height; }
+float *glint_film_pixels(glint_film *film) { return film->rgb; }
+const float *glint_film_pixels_const(const glint_film *film) {
+  return film->rgb;
+}
+
+/* Branch-free comparisons (fminf/fmaxf would be library calls), so the loop
+ * vectorises; a NaN fails c > 0 and becomes 0. */
+static inline uint8_t to_byte(float c) {
+  float v = c > 0.0f ? c : 0.0f;
+  v = v < 1.0f ? v : 1.0f;
+  return (uint8_t)(int)(255.0f * v + 0.5f);
+}
+
+glint_status glint_film_to_image(const glint_film *film, double gamma,
+                                 glint_image *image, glint_error *error) {
+  if (!(isfinite(gamma) && gamma > 0))
+    return glint_fail(error, GLINT_E_ARGUMENT, "gamma %g must be a number > 0",
+                      gamma);
+  if (image->width != film->width || image->height != film->height)
+    return glint_fail(error, GLINT_E_ARGUMENT,
+                      "a %dx%d film does not fit a %dx%d image", film->width,
+                      film->height, image->width, image->height);
+  size_t n = (size_t)film->width * (size_t)film->height * 3;
+  const float *src = film->rgb;
+  uint8_t *dst = image->rgb;
+  if (gamma == 1) {
+    for (size_t i = 0; i < n; i++)
+      dst[i] = to_byte(src[i]);
+  } else {
+    float inv = (float)(1.0 / gamma);
+    for (size_t i = 0; i < n; i++) {
+      float c = src[i] > 0 ? src[i] : 0.0f;
+      dst[i] = to_byte(c > 0 ? powf(c < 1 ? c : 1.0f, inv) : 0.0f);
+    }
+  }
+  return GLINT_OK;
+}
