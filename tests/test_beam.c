@@ -9,7 +9,7 @@
 #define GLINT_REAL_FLOAT
 #include "test_util.h"
 
-#include "render/backend.h"
+#include "test_views.h"
 #include "render/scalar_scene.h"
 #include "scene/scene.h"
 
@@ -48,28 +48,25 @@ static vec3 random_dir(unsigned long long *s) {
 
 static void nearest_hits_agree(void **state) {
   (void)state;
-  static const float samples[1][2] = {{0, 0}};
   for (size_t si = 0; si < 4; si++) {
     glint_scene *g;
     ASSERT_OK(glint_scene_builtin(scenes[si], &g, &e_));
-    glint_frame frame = {64,
-                         48,
-                         1,
-                         5,
-                         GLINT_MATH_MINIMAX,
-                         1,
-                         GLINT_ACCEL_NONE,
-                         glint_scene_epsilon(g),
-                         samples};
-    glint_stats st = {0};
-    scene_r *ref;
-    ASSERT_OK(glint_scalar_scene_prepare_float(g, &frame, &ref, &st, &e_));
+    glint_scene_info info;
+    glint_scene_get_info(g, &info);
+    vec3 from = v3((float)info.camera.from.x, (float)info.camera.from.y,
+                   (float)info.camera.from.z);
+    vec3 ahead =
+        v3_normalize(v3_sub(v3((float)info.camera.at.x, (float)info.camera.at.y,
+                               (float)info.camera.at.z),
+                            from));
+    test_view ref_view;
+    const scene_r *ref = test_view_open(g, DATA_SCALAR_FLOAT, 0, &ref_view);
     for (size_t k = 0; k < sizeof packets / sizeof *packets; k++) {
       if (!glint_backend_supported(packets[k].backend))
         continue;
-      const glint_backend_ops *ops = glint_backend_ops_of(packets[k].backend);
-      void *prep;
-      ASSERT_OK(ops->prepare(g, &frame, &prep, &st, &e_));
+      test_view packet_view;
+      void *prep = test_view_open(
+          g, glint_backend_ops_of(packets[k].backend)->data, 0, &packet_view);
       int w = packets[k].width, ties = 0, hits = 0;
       unsigned long long seed = 1234 + si;
       for (int base = 0; base < RAYS; base += w) {
@@ -78,8 +75,8 @@ static void nearest_hits_agree(void **state) {
         for (int i = 0; i < w; i++) {
           vec3 org, dir = random_dir(&seed);
           if (uniform(&seed) < 0.5) {
-            org = ref->cam.from; /* camera rays, forward-ish */
-            dir = v3_normalize(v3_madd(dir, 1.5f, ref->cam.d));
+            org = from; /* camera rays, forward-ish */
+            dir = v3_normalize(v3_madd(dir, 1.5f, ahead));
           } else {
             org = v3((float)(16 * uniform(&seed) - 8),
                      (float)(10 * uniform(&seed) + 0.01),
@@ -130,9 +127,9 @@ static void nearest_hits_agree(void **state) {
              glint_backend_name(packets[k].backend), RAYS, hits, ties);
       assert_true(hits > RAYS / 20); /* the rays do meet the scene */
       assert_true(ties <= RAYS / 1000);
-      ops->release(prep);
+      test_view_close(&packet_view);
     }
-    glint_scalar_scene_release_float(ref);
+    test_view_close(&ref_view);
     glint_scene_destroy(g);
   }
 }

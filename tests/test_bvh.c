@@ -7,7 +7,7 @@
 #define GLINT_REAL_FLOAT
 #include "test_util.h"
 
-#include "render/backend.h"
+#include "test_views.h"
 #include "render/scalar_scene.h"
 #include "scene/scene.h"
 #include "shared.h"
@@ -102,30 +102,17 @@ static void compare(const char *scene, const char *backend, int obj_a,
 
 static void nearest_hits_equal_brute_force(void **state) {
   const char *const *scenes = ((const scene_list *)*state)->names;
-  static const float samples[1][2] = {{0, 0}};
   for (size_t si = 0; scenes[si]; si++) {
     glint_scene *g = load(scenes[si]);
     glint_scene_info info;
     glint_scene_get_info(g, &info);
-    glint_frame bvh = {64,
-                       64,
-                       1,
-                       5,
-                       GLINT_MATH_MINIMAX,
-                       1,
-                       GLINT_ACCEL_BVH,
-                       glint_scene_epsilon(g),
-                       samples};
-    glint_frame none = bvh;
-    none.accel = GLINT_ACCEL_NONE;
-    glint_stats st = {0};
     int ties = 0;
     /* Scalar float and double. */
-    scene_r *fb, *fn;
-    ASSERT_OK(glint_scalar_scene_prepare_float(g, &bvh, &fb, &st, &e_));
-    ASSERT_OK(glint_scalar_scene_prepare_float(g, &none, &fn, &st, &e_));
-    assert_true(fb->bvh.node_count > 0);
-    assert_true(fn->bvh.node_count == 0);
+    test_view vb, vn;
+    const scene_r *fb = test_view_open(g, DATA_SCALAR_FLOAT, 1, &vb);
+    const scene_r *fn = test_view_open(g, DATA_SCALAR_FLOAT, 0, &vn);
+    assert_true(fb->bvh->node_count > 0);
+    assert_true(fn->bvh->node_count == 0);
     unsigned long long seed = 99 + si;
     for (int i = 0; i < RAYS; i++) {
       float o[3], d[3];
@@ -143,10 +130,10 @@ static void nearest_hits_equal_brute_force(void **state) {
     for (size_t k = 0; k < sizeof packets / sizeof *packets; k++) {
       if (!glint_backend_supported(packets[k].backend))
         continue;
-      const glint_backend_ops *ops = glint_backend_ops_of(packets[k].backend);
-      void *pb, *pn;
-      ASSERT_OK(ops->prepare(g, &bvh, &pb, &st, &e_));
-      ASSERT_OK(ops->prepare(g, &none, &pn, &st, &e_));
+      data_kind kind = glint_backend_ops_of(packets[k].backend)->data;
+      test_view pvb, pvn;
+      void *pb = test_view_open(g, kind, 1, &pvb);
+      void *pn = test_view_open(g, kind, 0, &pvn);
       int w = packets[k].width;
       for (int base = 0; base < RAYS; base += w) {
         float o[3 * 16], d[3 * 16], ta[16], tb[16];
@@ -165,14 +152,14 @@ static void nearest_hits_equal_brute_force(void **state) {
             compare(scenes[si], glint_backend_name(packets[k].backend), oa[i],
                     ta[i], ob[i], tb[i], &ties);
       }
-      ops->release(pb);
-      ops->release(pn);
+      test_view_close(&pvb);
+      test_view_close(&pvn);
     }
     printf("%-26s %zu triangles, %zu spheres, %zu cones: agree (%d ties)\n",
            scenes[si], info.triangles, info.spheres, info.cones, ties);
     assert_true(ties < RAYS / 500);
-    glint_scalar_scene_release_float(fb);
-    glint_scalar_scene_release_float(fn);
+    test_view_close(&vb);
+    test_view_close(&vn);
     glint_scene_destroy(g);
   }
 }

@@ -51,18 +51,8 @@ static inline uint8_t to_byte(float c) {
   return (uint8_t)(int)(255.0f * v + 0.5f);
 }
 
-glint_status glint_film_to_image(const glint_film *film, double gamma,
-                                 glint_image *image, glint_error *error) {
-  if (!(isfinite(gamma) && gamma > 0))
-    return glint_fail(error, GLINT_E_ARGUMENT, "gamma %g must be a number > 0",
-                      gamma);
-  if (image->width != film->width || image->height != film->height)
-    return glint_fail(error, GLINT_E_ARGUMENT,
-                      "a %dx%d film does not fit a %dx%d image", film->width,
-                      film->height, image->width, image->height);
-  size_t n = (size_t)film->width * (size_t)film->height * 3;
-  const float *src = film->rgb;
-  uint8_t *dst = image->rgb;
+void glint_film_span_to_bytes(const float *src, uint8_t *dst, size_t n,
+                              double gamma) {
   if (gamma == 1) {
     for (size_t i = 0; i < n; i++)
       dst[i] = to_byte(src[i]);
@@ -73,5 +63,19 @@ glint_status glint_film_to_image(const glint_film *film, double gamma,
       dst[i] = to_byte(c > 0 ? powf(c < 1 ? c : 1.0f, inv) : 0.0f);
     }
   }
+}
+
+glint_status glint_film_to_image(const glint_film *film, double gamma,
+                                 glint_image *image, glint_error *error) {
+  if (!(isfinite(gamma) && gamma > 0))
+    return glint_fail(error, GLINT_E_ARGUMENT, "gamma %g must be a number > 0",
+                      gamma);
+  if (image->width != film->width || image->height != film->height)
+    return glint_fail(error, GLINT_E_ARGUMENT,
+                      "a %dx%d film does not fit a %dx%d image", film->width,
+                      film->height, image->width, image->height);
+  glint_film_span_to_bytes(film->rgb, image->rgb,
+                           (size_t)film->width * (size_t)film->height * 3,
+                           gamma);
   return GLINT_OK;
 }

@@ -15,6 +15,12 @@ struct glint_film {
   float *rgb; /* width*height*3, top row first, aligned */
 };
 
+/* SPEC §4's 8-bit conversion of n linear values: clamp to [0, 1], then
+ * c^(1/gamma), then round(255 c). Used for whole films and, while a frame
+ * renders, for each finished tile. */
+void glint_film_span_to_bytes(const float *src, uint8_t *dst, size_t n,
+                              double gamma);
+
 /* Encoders write the whole image to an open stream; 0 on success. */
 int glint_png_encode(const glint_image *image, FILE *f);
 int glint_bmp_encode(const glint_image *image, FILE *f);

@@ -10,6 +10,7 @@
 #if defined(GLINT_REAL_DOUBLE)
 typedef double real;
 #define REAL_SUFFIX double
+#define REAL_IS_DOUBLE 1
 #define r_sqrt sqrt
 #define r_pow pow
 #define r_exp exp
@@ -21,6 +22,7 @@ typedef double real;
 #elif defined(GLINT_REAL_FLOAT)
 typedef float real;
 #define REAL_SUFFIX float
+#define REAL_IS_DOUBLE 0
 #define r_sqrt sqrtf
 #define r_pow powf
 #define r_exp expf

@@ -1,29 +1,65 @@
-/* The interface every tracer implements. A backend prepares its own copy of
- * the scene (precision, layout, acceleration structure) once, then renders
- * tiles from any number of threads; per-thread state lives in `scratch`. */
+/* The interface every tracer implements, in two halves.
+ *
+ * Conversion (per world): a scene is converted once into the layout a family
+ * of backends reads (scalar float, scalar double, or the packet scene of one
+ * instruction set, shared by its beam and stream backends). The world owns
+ * these and never changes them.
+ *
+ * Rendering (per renderer): a renderer binds converted data to the
+ * acceleration structure it uses (a view: a small private header over the
+ * world's arrays) and renders tiles of frames from any number of threads;
+ * per-thread state lives in `scratch`. */
 #ifndef GLINT_RENDER_BACKEND_H
 #define GLINT_RENDER_BACKEND_H
 
+#include "accel/bvh.h"
 #include "render/frame.h"
 
 #include <stddef.h>
 
-typedef struct glint_backend_ops {
-  glint_status (*prepare)(const glint_scene *scene, const glint_frame *frame,
-                          void **prepared, glint_stats *stats,
+/* The converted layouts, one per family of backends. */
+typedef enum data_kind {
+  DATA_SCALAR_FLOAT = 0,
+  DATA_SCALAR_DOUBLE,
+  DATA_PACKET_SSE,
+  DATA_PACKET_AVX2,
+  DATA_PACKET_AVX512,
+  DATA_KIND_COUNT
+} data_kind;
+
+typedef struct data_ops {
+  /* Converts the scene; eps is the world's smallest hit distance. */
+  glint_status (*convert)(const glint_scene *scene, double eps, void **data,
                           glint_error *error);
-  void (*release)(void *prepared);
-  /* Per-thread working memory, allocated by the driver (aligned, zeroed). */
-  size_t (*scratch_bytes)(const void *prepared);
+  void (*release)(void *data);
+  size_t (*bytes)(const void *data);
+  /* A view of the data that traverses `bvh` (node_count 0: brute force). */
+  glint_status (*bind)(const void *data, const glint_bvh *bvh, void **view,
+                       glint_error *error);
+  void (*unbind)(void *view);
+} data_ops;
+
+typedef struct glint_backend_ops {
+  data_kind data;
+  /* Per-thread working memory for frames up to max_depth, allocated by the
+   * renderer (aligned, zeroed); NULL: none. */
+  size_t (*scratch_bytes)(int max_depth);
   /* Writes the tile's averaged, unclamped linear RGB into rgb (row-major,
    * tile width x tile height x 3) and adds its counts to stats. */
-  void (*render_tile)(const void *prepared, const tile_rect *tile,
-                      void *scratch, float *rgb, glint_stats *stats);
+  void (*render_tile)(const void *view, const frame_params *frame,
+                      const tile_rect *tile, void *scratch, float *rgb,
+                      glint_stats *stats);
   /* The tile's primary rays' nearest hits only (glint_trace_primary):
    * returns how many hit. */
-  uint64_t (*primary_tile)(const void *prepared, const tile_rect *tile,
-                           glint_stats *stats);
+  uint64_t (*primary_tile)(const void *view, const frame_params *frame,
+                           const tile_rect *tile, glint_stats *stats);
 } glint_backend_ops;
+
+extern const data_ops glint_scalar_data_float;
+extern const data_ops glint_scalar_data_double;
+extern const data_ops glint_packet_data_sse;
+extern const data_ops glint_packet_data_avx2;
+extern const data_ops glint_packet_data_avx512;
 
 extern const glint_backend_ops glint_scalar_ops_float;
 extern const glint_backend_ops glint_scalar_ops_double;
@@ -35,18 +71,20 @@ extern const glint_backend_ops glint_stream_ops_avx2;
 extern const glint_backend_ops glint_stream_ops_avx512;
 
 /* Test hooks: the packet nearest hit of one beam of W rays (origins and
- * directions as x[W] y[W] z[W]), per ISA, on a prepared beam backend. */
-void glint_beam_nearest_hit_sse(const void *prepared, const float *o,
+ * directions as x[W] y[W] z[W]), per ISA, on a bound packet view. */
+void glint_beam_nearest_hit_sse(const void *view, const float *o,
                                 const float *d, int active_bits, float *t,
                                 int *object);
-void glint_beam_nearest_hit_avx2(const void *prepared, const float *o,
+void glint_beam_nearest_hit_avx2(const void *view, const float *o,
                                  const float *d, int active_bits, float *t,
                                  int *object);
-void glint_beam_nearest_hit_avx512(const void *prepared, const float *o,
+void glint_beam_nearest_hit_avx512(const void *view, const float *o,
                                    const float *d, int active_bits, float *t,
                                    int *object);
 
-/* The ops of a concrete backend (NULL if not built in). */
+/* The ops of a concrete backend, and of a converted layout (NULL if not
+ * built in). */
 const glint_backend_ops *glint_backend_ops_of(glint_backend backend);
+const data_ops *glint_data_ops_of(data_kind kind);
 
 #endif

@@ -18,6 +18,7 @@ typedef struct beam_ctx {
   const packet_scene *ps;
   glint_math math;
   int newton;
+  int max_depth;
   glint_stats *st;
 } beam_ctx;
 
@@ -37,7 +38,7 @@ finish_sub_beam(const beam_ctx *c, vvec3 d, const packet_hit *h,
   const object_r *ob = &s->objects[object];
   const material_r *mat = &s->materials[ob->material];
   const pmaterial *pm = &ps->materials[ob->material];
-  if (level < s->max_depth && (mat->kr > 0 || mat->kt > 0)) {
+  if (level < c->max_depth && (mat->kr > 0 || mat->kt > 0)) {
     vvec3 reflected, refracted;
     vfloat kr;
     vmask refract, tir;
@@ -146,26 +147,28 @@ static void trace_generic(const beam_ctx *c, const vvec3 *o, const vvec3 *d,
 }
 
 static ALWAYS_INLINE void render_tile_body(const packet_scene *ps,
+                                           const frame_params *frame,
                                            const tile_rect *tile, float *rgb,
                                            glint_stats *st, int newton,
                                            trace_fn trace) {
-  const scene_r *s = ps->s;
-  beam_ctx c = {ps, ps->math, ps->newton, st};
-  primary_beams pb = primary_beams_init(&s->cam);
-  vfloat inv_spp = vf_set1(1.0f / (float)s->spp);
+  beam_ctx c = {ps, frame->math, frame->rcp_newton, frame->max_depth, st};
+  camera cam;
+  camera_from_basis(&cam, &frame->camera);
+  primary_beams pb = primary_beams_init(&cam);
+  vfloat inv_spp = vf_set1(1.0f / (float)frame->spp);
   int tw = tile->x1 - tile->x0;
   for (int by = tile->y0; by < tile->y1; by += BH)
     for (int bx = tile->x0; bx < tile->x1; bx += BW) {
       vfloat px, py;
       vmask valid = primary_block(&pb, tile, bx, by, &px, &py);
       vvec3 sum = {vf_zero(), vf_zero(), vf_zero()};
-      for (int k = 0; k < s->spp; k++) {
-        vvec3 dir = primary_dir(&pb, px, py, s->samples[k], newton);
+      for (int k = 0; k < frame->spp; k++) {
+        vvec3 dir = primary_dir(&pb, px, py, frame->samples[k], newton);
         vvec3 color;
         trace(&c, &pb.from, &dir, valid, 1, &color);
         sum = vv_add(sum, color);
       }
-      st->primary_rays += (uint64_t)vm_count(valid) * (uint64_t)s->spp;
+      st->primary_rays += (uint64_t)vm_count(valid) * (uint64_t)frame->spp;
       SIMD_ALIGN float r[W], g[W], bl[W];
       vf_store(r, vf_mul(sum.x, inv_spp));
       vf_store(g, vf_mul(sum.y, inv_spp));
@@ -182,59 +185,52 @@ static ALWAYS_INLINE void render_tile_body(const packet_scene *ps,
     }
 }
 
-static void render_tile(const void *prepared, const tile_rect *tile,
-                        void *scratch, float *rgb, glint_stats *st) {
+static void render_tile(const void *view, const frame_params *frame,
+                        const tile_rect *tile, void *scratch, float *rgb,
+                        glint_stats *st) {
   (void)scratch;
-  const packet_scene *ps = prepared;
-  if (ps->math == GLINT_MATH_MINIMAX && ps->newton)
-    render_tile_body(ps, tile, rgb, st, 1, trace_default);
+  const packet_scene *ps = view;
+  if (frame->math == GLINT_MATH_MINIMAX && frame->rcp_newton)
+    render_tile_body(ps, frame, tile, rgb, st, 1, trace_default);
   else
-    render_tile_body(ps, tile, rgb, st, ps->newton, trace_generic);
+    render_tile_body(ps, frame, tile, rgb, st, frame->rcp_newton,
+                     trace_generic);
 }
-
-static glint_status prepare(const glint_scene *scene, const glint_frame *frame,
-                            void **prepared, glint_stats *stats,
-                            glint_error *error) {
-  packet_scene *ps;
-  glint_status st = packet_scene_prepare(scene, frame, &ps, stats, error);
-  *prepared = ps;
-  return st;
-}
-
-static void release(void *prepared) { packet_scene_release(prepared); }
 
 /* Primary beams' nearest hits only, for glint_trace_primary. */
-static uint64_t primary_tile(const void *prepared, const tile_rect *tile,
-                             glint_stats *st) {
-  const packet_scene *ps = prepared;
-  const scene_r *s = ps->s;
-  primary_beams pb = primary_beams_init(&s->cam);
+static uint64_t primary_tile(const void *view, const frame_params *frame,
+                             const tile_rect *tile, glint_stats *st) {
+  const packet_scene *ps = view;
+  camera cam;
+  camera_from_basis(&cam, &frame->camera);
+  primary_beams pb = primary_beams_init(&cam);
   uint64_t hits = 0;
   for (int by = tile->y0; by < tile->y1; by += BH)
     for (int bx = tile->x0; bx < tile->x1; bx += BW) {
       vfloat px, py;
       vmask valid = primary_block(&pb, tile, bx, by, &px, &py);
-      for (int k = 0; k < s->spp; k++) {
-        vvec3 dir = primary_dir(&pb, px, py, s->samples[k], 1);
+      for (int k = 0; k < frame->spp; k++) {
+        vvec3 dir = primary_dir(&pb, px, py, frame->samples[k], 1);
         packet_hit h;
         packet_nearest(ps, pb.from, dir, valid, 1, &h, st);
         hits +=
             (uint64_t)vm_count(vm_andnot(valid, vi_eq(h.object, vi_set1(-1))));
       }
-      st->primary_rays += (uint64_t)vm_count(valid) * (uint64_t)s->spp;
+      st->primary_rays += (uint64_t)vm_count(valid) * (uint64_t)frame->spp;
     }
   return hits;
 }
 
-const glint_backend_ops ISA_NAME(glint_beam_ops) = {prepare, release, NULL,
+/* The beams need no scratch: their state lives on the stack. */
+const glint_backend_ops ISA_NAME(glint_beam_ops) = {ISA_DATA_KIND, NULL,
                                                     render_tile, primary_tile};
 
 /* For the tests: the packet nearest hit of W rays (SoA arrays of W floats),
  * with the default maths. Writes t and object per lane (-1: no hit). */
-void ISA_NAME(glint_beam_nearest_hit)(const void *prepared, const float *o,
+void ISA_NAME(glint_beam_nearest_hit)(const void *view, const float *o,
                                       const float *d, int active_bits, float *t,
                                       int *object) {
-  const packet_scene *ps = prepared;
+  const packet_scene *ps = view;
   glint_stats st = {0};
   vvec3 vo = {vf_loadu(o), vf_loadu(o + W), vf_loadu(o + 2 * W)};
   vvec3 vd = {vf_loadu(d), vf_loadu(d + W), vf_loadu(d + 2 * W)};

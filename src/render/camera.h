@@ -5,6 +5,7 @@
 
 #include "glint.h"
 #include "math/vec3.h"
+#include "render/frame.h"
 
 typedef struct camera {
   vec3 from, d, r, u; /* eye, view direction, right, up (orthonormal) */
@@ -13,28 +14,23 @@ typedef struct camera {
 } camera;
 
 /* The basis is computed in double whatever the precision, so float and
- * double renders aim their rays identically. */
+ * double renders aim their rays identically; this rounds it once. */
+static inline void camera_from_basis(camera *c, const camera_basis *b) {
+  c->from = v3((real)b->from[0], (real)b->from[1], (real)b->from[2]);
+  c->d = v3((real)b->dir[0], (real)b->dir[1], (real)b->dir[2]);
+  c->r = v3((real)b->right[0], (real)b->right[1], (real)b->right[2]);
+  c->u = v3((real)b->up[0], (real)b->up[1], (real)b->up[2]);
+  c->tan_x = (real)b->tan_x;
+  c->tan_y = (real)b->tan_y;
+  c->width = (real)b->width;
+  c->height = (real)b->height;
+}
+
 static inline void camera_init(camera *c, const glint_camera *g, int width,
                                int height) {
-  double dx = g->at.x - g->from.x, dy = g->at.y - g->from.y,
-         dz = g->at.z - g->from.z;
-  double dl = sqrt(dx * dx + dy * dy + dz * dz);
-  dx /= dl, dy /= dl, dz /= dl;
-  /* r = normalize(d x up), u = r x d */
-  double rx = dy * g->up.z - dz * g->up.y, ry = dz * g->up.x - dx * g->up.z,
-         rz = dx * g->up.y - dy * g->up.x;
-  double rl = sqrt(rx * rx + ry * ry + rz * rz);
-  rx /= rl, ry /= rl, rz /= rl;
-  double ux = ry * dz - rz * dy, uy = rz * dx - rx * dz, uz = rx * dy - ry * dx;
-  double t = tan(g->fov_x_degrees * 3.14159265358979323846 / 360.0);
-  c->from = v3((real)g->from.x, (real)g->from.y, (real)g->from.z);
-  c->d = v3((real)dx, (real)dy, (real)dz);
-  c->r = v3((real)rx, (real)ry, (real)rz);
-  c->u = v3((real)ux, (real)uy, (real)uz);
-  c->tan_x = (real)t;
-  c->tan_y = (real)(t * height / width);
-  c->width = (real)width;
-  c->height = (real)height;
+  camera_basis b;
+  camera_basis_init(&b, g, width, height);
+  camera_from_basis(c, &b);
 }
 
 /* The unit direction through image point (px, py), in pixels from the

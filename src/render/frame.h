@@ -1,5 +1,7 @@
-/* What every backend needs to know about the frame being rendered: the
- * user's settings, validated and resolved. */
+/* What a frame asks of a backend: the camera, size, samples, depth and
+ * maths of one frame, validated and resolved by the renderer. Everything a
+ * backend needs that may change from frame to frame is here; everything that
+ * does not (geometry, materials, the BVH) is in the committed world. */
 #ifndef GLINT_RENDER_FRAME_H
 #define GLINT_RENDER_FRAME_H
 
@@ -10,14 +12,24 @@
  * for load balancing. */
 #define GLINT_TILE_SIZE 16
 
-typedef struct glint_frame {
-  int width, height, spp, max_depth;
+/* The pinhole camera of SPEC §2 as an orthonormal basis, computed once per
+ * frame in double whatever the precision (see render/camera.h). */
+typedef struct camera_basis {
+  double from[3], dir[3], right[3], up[3];
+  double tan_x, tan_y; /* half extents of the image plane at distance 1 */
+  int width, height;
+} camera_basis;
+
+void camera_basis_init(camera_basis *basis, const glint_camera *camera,
+                       int width, int height);
+
+typedef struct frame_params {
+  camera_basis camera;
+  int spp, max_depth;
   glint_math math;
   int rcp_newton;
-  glint_accel accel;
-  double epsilon;            /* SPEC §3: smallest t of a hit */
   const float (*samples)[2]; /* spp offsets from the pixel centre, in pixels */
-} glint_frame;
+} frame_params;
 
 typedef struct tile_rect {
   int x0, y0, x1, y1; /* pixels [x0, x1) x [y0, y1) */

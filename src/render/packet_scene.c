@@ -3,6 +3,7 @@
 
 #include "core/error.h"
 #include "core/memory.h"
+#include "render/backend.h"
 #include "scene/scene.h"
 
 #include <stdlib.h>
@@ -13,14 +14,12 @@ static void put3(vscalar *dst, vec3 v) {
   dst[2] = vs_make(v.z);
 }
 
-glint_status packet_scene_prepare(const glint_scene *scene,
-                                  const glint_frame *frame, packet_scene **out,
-                                  glint_stats *stats, glint_error *error) {
+glint_status packet_scene_prepare(const glint_scene *scene, double eps,
+                                  packet_scene **out, glint_error *error) {
   packet_scene *ps = glint_aligned_calloc(1, sizeof *ps);
   if (!ps)
     return glint_fail(error, GLINT_E_MEMORY, "out of memory");
-  glint_status st =
-      glint_scalar_scene_prepare_float(scene, frame, &ps->s, stats, error);
+  glint_status st = glint_scalar_scene_prepare_float(scene, eps, &ps->s, error);
   if (st) {
     glint_aligned_free(ps);
     return st;
@@ -94,14 +93,6 @@ glint_status packet_scene_prepare(const glint_scene *scene,
   }
   ps->eps = vs_make(s->eps);
   put3(ps->background, s->background);
-  ps->math = frame->math;
-  ps->newton = frame->rcp_newton;
-  stats->scene_bytes += s->sphere_count * sizeof *ps->spheres +
-                        s->plane_count * sizeof *ps->planes +
-                        s->triangle_count * sizeof *ps->triangles +
-                        s->cone_count * sizeof *ps->cones +
-                        materials * sizeof *ps->materials +
-                        s->light_count * sizeof *ps->lights;
   *out = ps;
   return GLINT_OK;
 }
@@ -118,3 +109,52 @@ void packet_scene_release(packet_scene *ps) {
   glint_aligned_free(ps->lights);
   glint_aligned_free(ps);
 }
+
+/* ---- the world's conversion and a renderer's view (render/backend.h) ---- */
+
+static glint_status convert(const glint_scene *g, double eps, void **data,
+                            glint_error *error) {
+  packet_scene *ps = NULL;
+  glint_status st = packet_scene_prepare(g, eps, &ps, error);
+  *data = ps;
+  return st;
+}
+
+static void release(void *data) { packet_scene_release(data); }
+
+static size_t bytes(const void *data) {
+  const packet_scene *ps = data;
+  const scene_r *s = ps->s;
+  return glint_scalar_scene_bytes_float(s) + sizeof *ps +
+         s->sphere_count * sizeof *ps->spheres +
+         s->plane_count * sizeof *ps->planes +
+         s->triangle_count * sizeof *ps->triangles +
+         s->cone_count * sizeof *ps->cones +
+         s->material_count * sizeof *ps->materials +
+         s->light_count * sizeof *ps->lights;
+}
+
+/* A view: private copies of the two headers, the arrays shared. */
+typedef struct packet_view {
+  packet_scene ps;
+  scene_r s;
+} packet_view;
+
+static glint_status bind(const void *data, const glint_bvh *bvh, void **view,
+                         glint_error *error) {
+  packet_view *v = glint_aligned_calloc(1, sizeof *v);
+  if (!v)
+    return glint_fail(error, GLINT_E_MEMORY, "out of memory");
+  const packet_scene *ps = data;
+  v->ps = *ps;
+  v->s = *ps->s;
+  v->s.bvh = bvh;
+  v->ps.s = &v->s;
+  *view = &v->ps;
+  return GLINT_OK;
+}
+
+static void unbind(void *view) { glint_aligned_free(view); }
+
+const data_ops ISA_NAME(glint_packet_data) = {convert, release, bytes, bind,
+                                              unbind};

@@ -2,7 +2,7 @@
  * broadcasts across its lanes (primitive fields, material coefficients,
  * light positions) stored as a vscalar, the form the ISA broadcasts fastest
  * (pre-splat on SSE, a plain float on AVX2 and AVX-512; see simd/simd.h).
- * Built once per render from the float scalar scene, which it keeps for
+ * Built once per world from the float scalar scene, which it keeps for
  * everything read as scalars (object table, flags) or gathered per lane
  * (triangle normals). Compiled once per ISA. */
 #ifndef GLINT_RENDER_PACKET_SCENE_H
@@ -11,6 +11,7 @@
 #ifndef GLINT_REAL_FLOAT
 #define GLINT_REAL_FLOAT
 #endif
+#include "render/backend.h"
 #include "render/frame.h"
 #include "render/scalar_scene.h"
 #include "simd/simd.h"
@@ -60,16 +61,22 @@ typedef struct packet_scene {
   pmaterial *materials;
   plight *lights;
   vscalar eps, background[3];
-  glint_math math;
-  int newton;
 } packet_scene;
+
+/* The converted layout this ISA's backends share (render/backend.h). */
+#if defined(GLINT_ISA_SSE)
+#define ISA_DATA_KIND DATA_PACKET_SSE
+#elif defined(GLINT_ISA_AVX2)
+#define ISA_DATA_KIND DATA_PACKET_AVX2
+#else
+#define ISA_DATA_KIND DATA_PACKET_AVX512
+#endif
 
 #define packet_scene_prepare ISA_NAME(glint_packet_scene_prepare)
 #define packet_scene_release ISA_NAME(glint_packet_scene_release)
 
-glint_status packet_scene_prepare(const glint_scene *scene,
-                                  const glint_frame *frame, packet_scene **out,
-                                  glint_stats *stats, glint_error *error);
+glint_status packet_scene_prepare(const glint_scene *scene, double eps,
+                                  packet_scene **out, glint_error *error);
 void packet_scene_release(packet_scene *ps);
 
 #endif

@@ -2,6 +2,8 @@
  * precision (see math/real.h). */
 #include "render/scalar_scene.h"
 
+#include "render/backend.h"
+
 #include "core/error.h"
 #include "core/memory.h"
 #include "geometry/intersect.h"
@@ -23,9 +25,11 @@ static void planar_axes(glint_vec3 n, int *u, int *v) {
     *u = 0, *v = 1;
 }
 
-glint_status scalar_scene_prepare(const glint_scene *g,
-                                  const glint_frame *frame, scene_r **out,
-                                  glint_stats *stats, glint_error *error) {
+/* The view of a world converted without a BVH, and of --accel none. */
+static const glint_bvh no_bvh;
+
+glint_status scalar_scene_prepare(const glint_scene *g, double eps,
+                                  scene_r **out, glint_error *error) {
   scene_r *s = calloc(1, sizeof *s);
   if (!s)
     return glint_fail(error, GLINT_E_MEMORY, "out of memory");
@@ -33,6 +37,9 @@ glint_status scalar_scene_prepare(const glint_scene *g,
   s->plane_count = g->plane_count;
   s->triangle_count = g->triangle_count;
   s->light_count = g->light_count;
+  s->normal_count = g->tri_normal_count;
+  s->object_count = g->object_count;
+  s->material_count = g->material_count;
   s->spheres = glint_aligned_calloc(g->sphere_count, sizeof *s->spheres);
   s->planes = glint_aligned_calloc(g->plane_count, sizeof *s->planes);
   s->triangles = glint_aligned_calloc(g->triangle_count, sizeof *s->triangles);
@@ -127,36 +134,23 @@ glint_status scalar_scene_prepare(const glint_scene *g,
     s->lights[i] =
         (light_r){from_d(g->lights[i].position), from_d(g->lights[i].color)};
 
-  camera_init(&s->cam, &g->camera, frame->width, frame->height);
   s->background = from_d(g->background);
   s->ambient = from_d(g->ambient);
-  s->eps = (real)frame->epsilon;
-  s->width = frame->width;
-  s->height = frame->height;
-  s->spp = frame->spp;
-  s->max_depth = frame->max_depth;
-  s->samples = frame->samples;
-  if (frame->accel == GLINT_ACCEL_BVH) {
-    glint_status st = glint_bvh_build(g, &s->bvh, error);
-    if (st) {
-      scalar_scene_release(s);
-      return st;
-    }
-    stats->bvh_nodes = s->bvh.node_count;
-    stats->bvh_bytes = glint_bvh_bytes(&s->bvh);
-    stats->bvh_build_seconds = s->bvh.build_seconds;
-  }
-  stats->scene_bytes = sizeof *s + g->sphere_count * sizeof *s->spheres +
-                       g->plane_count * sizeof *s->planes +
-                       g->triangle_count * sizeof *s->triangles +
-                       g->cone_count * sizeof *s->cones +
-                       glint_bvh_bytes(&s->bvh) +
-                       g->tri_normal_count * sizeof *s->normals +
-                       g->object_count * sizeof *s->objects +
-                       g->material_count * sizeof *s->materials +
-                       g->light_count * sizeof *s->lights;
+  s->eps = (real)eps;
+  s->bvh = &no_bvh;
   *out = s;
   return GLINT_OK;
+}
+
+size_t scalar_scene_bytes(const scene_r *s) {
+  return sizeof *s + s->sphere_count * sizeof *s->spheres +
+         s->plane_count * sizeof *s->planes +
+         s->triangle_count * sizeof *s->triangles +
+         s->cone_count * sizeof *s->cones +
+         s->normal_count * sizeof *s->normals +
+         s->object_count * sizeof *s->objects +
+         s->material_count * sizeof *s->materials +
+         s->light_count * sizeof *s->lights;
 }
 
 void scalar_scene_release(scene_r *s) {
@@ -166,7 +160,6 @@ void scalar_scene_release(scene_r *s) {
   glint_aligned_free(s->planes);
   glint_aligned_free(s->triangles);
   glint_aligned_free(s->cones);
-  glint_bvh_free(&s->bvh);
   glint_aligned_free(s->normals);
   glint_aligned_free(s->objects);
   glint_aligned_free(s->materials);
@@ -263,7 +256,7 @@ int scalar_nearest_hit(const scene_r *s, vec3 o, vec3 d, real tmax,
       hit->prim = (uint32_t)i;
       found = 1;
     }
-  if (s->bvh.node_count == 0) { /* the thesis's brute force (§4.3) */
+  if (s->bvh->node_count == 0) { /* the thesis's brute force (§4.3) */
     for (size_t i = 0; i < s->sphere_count; i++)
       hit_prim(s, GLINT_SHAPE_SPHERE, (uint32_t)i, o, d, &tmax, hit, &found);
     for (size_t i = 0; i < s->triangle_count; i++)
@@ -275,10 +268,10 @@ int scalar_nearest_hit(const scene_r *s, vec3 o, vec3 d, real tmax,
   /* Front to back: at an inner node both children's boxes are tested and
    * the nearer is visited first; the farther waits on the stack with its
    * entry distance, and is skipped if a hit has come closer since. */
-  const glint_bvh_node *nodes = s->bvh.nodes;
+  const glint_bvh_node *nodes = s->bvh->nodes;
   if (nodes[0].count) { /* a single leaf: its box test would only cost */
     for (uint32_t k = 0; k < nodes[0].count; k++) {
-      uint32_t ref = s->bvh.refs[k];
+      uint32_t ref = s->bvh->refs[k];
       hit_prim(s, GLINT_REF_SHAPE(ref), GLINT_REF_INDEX(ref), o, d, &tmax, hit,
                &found);
     }
@@ -315,7 +308,7 @@ int scalar_nearest_hit(const scene_r *s, vec3 o, vec3 d, real tmax,
       }
     } else {
       for (uint32_t k = 0; k < n->count; k++) {
-        uint32_t ref = s->bvh.refs[n->offset + k];
+        uint32_t ref = s->bvh->refs[n->offset + k];
         hit_prim(s, GLINT_REF_SHAPE(ref), GLINT_REF_INDEX(ref), o, d, &tmax,
                  hit, &found);
       }
@@ -405,7 +398,7 @@ vec3 scalar_transmission(const scene_r *s, vec3 o, vec3 d, real dist) {
         !cross_surface(s, &acc, p->object, t, v3_dot(p->n, d) < 0))
       return black;
   }
-  if (s->bvh.node_count == 0) {
+  if (s->bvh->node_count == 0) {
     for (size_t i = 0; i < s->sphere_count; i++)
       if (!cross_prim(s, &acc, GLINT_SHAPE_SPHERE, (uint32_t)i, o, d, dist))
         return black;
@@ -418,7 +411,7 @@ vec3 scalar_transmission(const scene_r *s, vec3 o, vec3 d, real dist) {
   } else {
     /* Every node the segment passes through, in any order; the first opaque
      * crossing ends the search. */
-    const glint_bvh_node *nodes = s->bvh.nodes;
+    const glint_bvh_node *nodes = s->bvh->nodes;
     vec3 inv = safe_inverse(d);
     uint32_t stack[GLINT_BVH_MAX_DEPTH];
     int sp = 0;
@@ -433,7 +426,7 @@ vec3 scalar_transmission(const scene_r *s, vec3 o, vec3 d, real dist) {
         stack[sp++] = n->offset;
       } else {
         for (uint32_t k = 0; k < n->count; k++) {
-          uint32_t ref = s->bvh.refs[n->offset + k];
+          uint32_t ref = s->bvh->refs[n->offset + k];
           if (!cross_prim(s, &acc, GLINT_REF_SHAPE(ref), GLINT_REF_INDEX(ref),
                           o, d, dist))
             return black;
@@ -447,3 +440,33 @@ vec3 scalar_transmission(const scene_r *s, vec3 o, vec3 d, real dist) {
                            r_exp(r_fmin(acc.exponent.y, 0)),
                            r_exp(r_fmin(acc.exponent.z, 0))));
 }
+
+/* ---- the world's conversion and a renderer's view (render/backend.h) ---- */
+
+static glint_status convert(const glint_scene *g, double eps, void **data,
+                            glint_error *error) {
+  scene_r *s = NULL;
+  glint_status st = scalar_scene_prepare(g, eps, &s, error);
+  *data = s;
+  return st;
+}
+
+static void release(void *data) { scalar_scene_release(data); }
+
+static size_t bytes(const void *data) { return scalar_scene_bytes(data); }
+
+static glint_status bind(const void *data, const glint_bvh *bvh, void **view,
+                         glint_error *error) {
+  scene_r *v = malloc(sizeof *v);
+  if (!v)
+    return glint_fail(error, GLINT_E_MEMORY, "out of memory");
+  *v = *(const scene_r *)data;
+  v->bvh = bvh;
+  *view = v;
+  return GLINT_OK;
+}
+
+static void unbind(void *view) { free(view); }
+
+const data_ops REAL_NAME(glint_scalar_data) = {convert, release, bytes, bind,
+                                               unbind};

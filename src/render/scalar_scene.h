@@ -6,7 +6,6 @@
 
 #include "glint.h"
 #include "math/vec3.h"
-#include "render/camera.h"
 #include "accel/bvh.h"
 #include "render/frame.h"
 
@@ -60,7 +59,6 @@ typedef struct light_r {
 } light_r;
 
 typedef struct scene_r {
-  camera cam;
   sphere_r *spheres;
   plane_r *planes;
   triangle_r *triangles;
@@ -70,11 +68,12 @@ typedef struct scene_r {
   material_r *materials;
   light_r *lights;
   size_t sphere_count, plane_count, triangle_count, cone_count, light_count;
-  glint_bvh bvh; /* node_count 0: every primitive is tested (--accel none) */
+  size_t normal_count, object_count, material_count;
+  /* The world's BVH, bound per renderer (render/backend.h); node_count 0:
+   * every primitive is tested (--accel none). */
+  const glint_bvh *bvh;
   vec3 background, ambient;
   real eps;
-  int width, height, spp, max_depth;
-  const float (*samples)[2];
 } scene_r;
 
 /* What the nearest-hit query returns. */
@@ -88,13 +87,16 @@ typedef struct hit_r {
 
 #define scalar_scene_prepare REAL_NAME(glint_scalar_scene_prepare)
 #define scalar_scene_release REAL_NAME(glint_scalar_scene_release)
+#define scalar_scene_bytes REAL_NAME(glint_scalar_scene_bytes)
 #define scalar_nearest_hit REAL_NAME(glint_scalar_nearest_hit)
 #define scalar_transmission REAL_NAME(glint_scalar_transmission)
 
-glint_status scalar_scene_prepare(const glint_scene *scene,
-                                  const glint_frame *frame, scene_r **out,
-                                  glint_stats *stats, glint_error *error);
+/* Converts the scene (no BVH: s->bvh is an empty one until bound). */
+glint_status scalar_scene_prepare(const glint_scene *scene, double eps,
+                                  scene_r **out, glint_error *error);
 void scalar_scene_release(scene_r *s);
+/* The converted arrays' size. */
+size_t scalar_scene_bytes(const scene_r *s);
 
 /* Nearest hit along o + t d, eps < t < tmax. */
 int scalar_nearest_hit(const scene_r *s, vec3 o, vec3 d, real tmax, hit_r *hit);

@@ -4,6 +4,7 @@
  * reference every faster backend is checked against. */
 #include "render/backend.h"
 #include "render/scalar_scene.h"
+#include "render/camera.h"
 
 #include "geometry/intersect.h"
 #include "math/optics.h"
@@ -94,7 +95,7 @@ static inline surface surface_at(const scene_r *s, const hit_r *h, vec3 o,
   return f;
 }
 
-static vec3 trace(const scene_r *s, vec3 o, vec3 d, int level,
+static vec3 trace(const scene_r *s, int max_depth, vec3 o, vec3 d, int level,
                   glint_stats *st) {
   hit_r h;
   if (!scalar_nearest_hit(s, o, d, REAL_MAX, &h))
@@ -133,7 +134,7 @@ static vec3 trace(const scene_r *s, vec3 o, vec3 d, int level,
   vec3 color = v3_add(v3_mul(c, diffuse), highlight);
 
   /* Secondary rays, one level deeper; beyond the limit they are black. */
-  if (level < s->max_depth) {
+  if (level < max_depth) {
     real kr = m->kr;
     if (m->kt > 0) {
       real eta = f.front ? 1 / m->ior : m->ior;
@@ -141,7 +142,8 @@ static vec3 trace(const scene_r *s, vec3 o, vec3 d, int level,
       if (refract_dir(d, f.n, eta, &t)) {
         st->secondary_rays++;
         st->refracted_rays++;
-        color = v3_madd(color, m->kt, trace(s, f.p, t, level + 1, st));
+        color =
+            v3_madd(color, m->kt, trace(s, max_depth, f.p, t, level + 1, st));
       } else {
         /* Total internal reflection: the reflected ray takes kt as well. */
         st->total_internal_reflections++;
@@ -152,7 +154,8 @@ static vec3 trace(const scene_r *s, vec3 o, vec3 d, int level,
       st->secondary_rays++;
       st->reflected_rays++;
       color =
-          v3_madd(color, kr, trace(s, f.p, reflect_dir(d, f.n), level + 1, st));
+          v3_madd(color, kr,
+                  trace(s, max_depth, f.p, reflect_dir(d, f.n), level + 1, st));
     }
   }
 
@@ -162,30 +165,22 @@ static vec3 trace(const scene_r *s, vec3 o, vec3 d, int level,
   return color;
 }
 
-static glint_status prepare(const glint_scene *scene, const glint_frame *frame,
-                            void **prepared, glint_stats *stats,
-                            glint_error *error) {
-  scene_r *s;
-  glint_status st = scalar_scene_prepare(scene, frame, &s, stats, error);
-  *prepared = s;
-  return st;
-}
-
-static void release(void *prepared) { scalar_scene_release(prepared); }
-
-static void render_tile(const void *prepared, const tile_rect *tile,
-                        void *scratch, float *rgb, glint_stats *st) {
+static void render_tile(const void *view, const frame_params *frame,
+                        const tile_rect *tile, void *scratch, float *rgb,
+                        glint_stats *st) {
   (void)scratch;
-  const scene_r *s = prepared;
-  real inv_spp = (real)1 / (real)s->spp;
+  const scene_r *s = view;
+  camera cam;
+  camera_from_basis(&cam, &frame->camera);
+  real inv_spp = (real)1 / (real)frame->spp;
   for (int y = tile->y0; y < tile->y1; y++)
     for (int x = tile->x0; x < tile->x1; x++) {
       vec3 sum = v3(0, 0, 0);
-      for (int k = 0; k < s->spp; k++) {
-        real px = (real)x + (real)0.5 + (real)s->samples[k][0];
-        real py = (real)y + (real)0.5 + (real)s->samples[k][1];
-        vec3 d = camera_dir(&s->cam, px, py);
-        sum = v3_add(sum, trace(s, s->cam.from, d, 1, st));
+      for (int k = 0; k < frame->spp; k++) {
+        real px = (real)x + (real)0.5 + (real)frame->samples[k][0];
+        real py = (real)y + (real)0.5 + (real)frame->samples[k][1];
+        vec3 d = camera_dir(&cam, px, py);
+        sum = v3_add(sum, trace(s, frame->max_depth, cam.from, d, 1, st));
       }
       float *out =
           rgb +
@@ -195,26 +190,29 @@ static void render_tile(const void *prepared, const tile_rect *tile,
       out[2] = (float)(sum.z * inv_spp);
     }
   st->primary_rays += (uint64_t)(tile->x1 - tile->x0) *
-                      (uint64_t)(tile->y1 - tile->y0) * (uint64_t)s->spp;
+                      (uint64_t)(tile->y1 - tile->y0) * (uint64_t)frame->spp;
 }
 
-static uint64_t primary_tile(const void *prepared, const tile_rect *tile,
-                             glint_stats *st) {
-  const scene_r *s = prepared;
+static uint64_t primary_tile(const void *view, const frame_params *frame,
+                             const tile_rect *tile, glint_stats *st) {
+  const scene_r *s = view;
+  camera cam;
+  camera_from_basis(&cam, &frame->camera);
   uint64_t hits = 0;
   for (int y = tile->y0; y < tile->y1; y++)
     for (int x = tile->x0; x < tile->x1; x++)
-      for (int k = 0; k < s->spp; k++) {
-        real px = (real)x + (real)0.5 + (real)s->samples[k][0];
-        real py = (real)y + (real)0.5 + (real)s->samples[k][1];
+      for (int k = 0; k < frame->spp; k++) {
+        real px = (real)x + (real)0.5 + (real)frame->samples[k][0];
+        real py = (real)y + (real)0.5 + (real)frame->samples[k][1];
         hit_r h;
         hits += (uint64_t)scalar_nearest_hit(
-            s, s->cam.from, camera_dir(&s->cam, px, py), REAL_MAX, &h);
+            s, cam.from, camera_dir(&cam, px, py), REAL_MAX, &h);
       }
   st->primary_rays += (uint64_t)(tile->x1 - tile->x0) *
-                      (uint64_t)(tile->y1 - tile->y0) * (uint64_t)s->spp;
+                      (uint64_t)(tile->y1 - tile->y0) * (uint64_t)frame->spp;
   return hits;
 }
 
 const glint_backend_ops REAL_NAME(glint_scalar_ops) = {
-    prepare, release, NULL, render_tile, primary_tile};
+    REAL_IS_DOUBLE ? DATA_SCALAR_DOUBLE : DATA_SCALAR_FLOAT, NULL, render_tile,
+    primary_tile};

@@ -69,11 +69,6 @@ typedef struct stream_scratch {
 enum { TRANSMITTED = 0, REFLECTED = 1 };
 #define STREAM(sc, level, kind) (&(sc)->levels[2 * (level) + (kind)])
 
-typedef struct stream_scene {
-  packet_scene *ps;
-  int levels;
-} stream_scene;
-
 /* ---- memory ------------------------------------------------------------ */
 
 #define RAY_FLOATS 9
@@ -93,10 +88,9 @@ static size_t accum_bytes(void) {
          (size_t)LOG_CAPACITY * 4 * sizeof(float) + 2 * 64;
 }
 
-static size_t scratch_bytes(const void *prepared) {
-  const stream_scene *ss = prepared;
+static size_t scratch_bytes(int levels) {
   return sizeof(stream_scratch) + 64 +
-         (size_t)ss->levels * 2 * (sizeof(ray_stream) + level_bytes()) +
+         (size_t)levels * 2 * (sizeof(ray_stream) + level_bytes()) +
          accum_bytes() + 64 * 32;
 }
 
@@ -143,11 +137,11 @@ enum { STAGE_GENERATE, STAGE_TRAVERSE, STAGE_SHADE, STAGE_COMPACT };
 #define TIMED_EVERY 32
 
 typedef struct tracer {
-  const stream_scene *ss;
   const packet_scene *ps;
   const scene_r *s;
   stream_scratch *sc;
   glint_stats *st;
+  int max_depth;
   int tile_w;
   int timing; /* this packet is timed */
   uint64_t packets, timed;
@@ -411,7 +405,7 @@ static ALWAYS_INLINE int room(const tracer *t, int level) {
 /* Whether any level from `level` down holds rays (chains of full packets
  * can leave a level empty and fill the ones below it). */
 static ALWAYS_INLINE int pending(const tracer *t, int level) {
-  for (; level < t->s->max_depth; level++)
+  for (; level < t->max_depth; level++)
     if (STREAM(t->sc, level, TRANSMITTED)->count > 0 ||
         STREAM(t->sc, level, REFLECTED)->count > 0)
       return 1;
@@ -435,7 +429,7 @@ static ALWAYS_INLINE void emit_child(tracer *t, int level, int kind, vmask m,
                                      vvec3 o, vvec3 d, vvec3 w, vint pixel,
                                      packet_child *next) {
   if (!next->taken && vm_count(m) == W &&
-      (level + 2 >= t->s->max_depth || room(t, level + 2))) {
+      (level + 2 >= t->max_depth || room(t, level + 2))) {
     next->o = o;
     next->d = d;
     next->w = w;
@@ -495,7 +489,7 @@ static ALWAYS_INLINE vvec3 shade_packet(tracer *t, int level, vmask active,
     t1 += shadow;
     vvec3 brings =
         vv_select(hits, vv_mul(w, local), vv_select(misses, bg, zero));
-    if (level + 1 < s->max_depth && (mat->kr > 0 || mat->kt > 0)) {
+    if (level + 1 < t->max_depth && (mat->kr > 0 || mat->kt > 0)) {
       vvec3 reflected, refracted;
       vfloat kr;
       vmask refract, tir;
@@ -549,7 +543,7 @@ static ALWAYS_INLINE vvec3 shade_packet(tracer *t, int level, vmask active,
   vvec3 brings = vv_select(hits, local, vv_select(misses, bg, zero));
 
   /* Secondary rays, one level deeper (SPEC §4; eq. 2.12, 2.13). */
-  if (level + 1 < s->max_depth) {
+  if (level + 1 < t->max_depth) {
     vfloat cosi = vf_neg(vv_dot(d, f.n));
     vvec3 reflected = vv_madd(d, vf_add(cosi, cosi), f.n);
     vfloat kr = lm.kr;
@@ -624,9 +618,8 @@ shade_chain_deeper(tracer *t, int level, vmask active, vvec3 o, vvec3 d,
  * no recursion. */
 static ALWAYS_INLINE void drain(tracer *t, int floor, glint_math math,
                                 int newton) {
-  const scene_r *s = t->s;
   glint_stats *st = t->st;
-  int levels = s->max_depth, level = floor;
+  int levels = t->max_depth, level = floor;
   for (;;) {
     /* The level's transmitted rays first, then its reflected ones. */
     ray_stream *r = STREAM(t->sc, level, TRANSMITTED);
@@ -690,15 +683,17 @@ static ALWAYS_INLINE void drain(tracer *t, int floor, glint_math math,
 /* Primary rays need no buffer: each packet is a BW x BH block of the screen
  * at one sample position, made in registers from the camera (as the beams)
  * and traced at once; only their children enter the stream. */
-static ALWAYS_INLINE void
-render_tile_body(const stream_scene *ss, const tile_rect *tile, void *scratch,
-                 float *rgb, glint_stats *st, glint_math math, int newton) {
-  const packet_scene *ps = ss->ps;
+static ALWAYS_INLINE void render_tile_body(const packet_scene *ps,
+                                           const frame_params *frame,
+                                           const tile_rect *tile, void *scratch,
+                                           float *rgb, glint_stats *st,
+                                           glint_math math, int newton) {
   const scene_r *s = ps->s;
-  int levels = s->max_depth;
-  tracer t = {
-      ss, ps, s,           carve(scratch, levels), st, tile->x1 - tile->x0, 0,
-      0,  0,  {0, 0, 0, 0}};
+  int levels = frame->max_depth;
+  tracer t = {ps,          s,      carve(scratch, levels),
+              st,          levels, tile->x1 - tile->x0,
+              0,           0,      0,
+              {0, 0, 0, 0}};
   int tw = tile->x1 - tile->x0;
   int npix = tw * (tile->y1 - tile->y0);
   double tile_start = glint_now();
@@ -707,7 +702,9 @@ render_tile_body(const stream_scene *ss, const tile_rect *tile, void *scratch,
   for (int l = 0; l < 2 * levels; l++)
     t.sc->levels[l].count = t.sc->levels[l].cursor = 0;
 
-  primary_beams pb = primary_beams_init(&s->cam);
+  camera cam;
+  camera_from_basis(&cam, &frame->camera);
+  primary_beams pb = primary_beams_init(&cam);
   vvec3 one = {vf_set1(1), vf_set1(1), vf_set1(1)};
   /* Block by block, its samples innermost: their contributions are summed
    * in registers and written once per block. */
@@ -720,13 +717,13 @@ render_tile_body(const stream_scene *ss, const tile_rect *tile, void *scratch,
           vf_to_vi(vf_sub(px, vf_set1((float)tile->x0))));
       int n = vm_count(valid);
       vvec3 sum = {vf_zero(), vf_zero(), vf_zero()};
-      for (int k = 0; k < s->spp; k++) {
+      for (int k = 0; k < frame->spp; k++) {
         if (levels > 1 && !room(&t, 1))
           drain(&t, 1, math, newton);
         t.timing = t.packets++ % TIMED_EVERY == 0;
         t.timed += (uint64_t)t.timing;
         uint64_t t0 = tick(&t);
-        vvec3 dir = primary_dir(&pb, px, py, s->samples[k], newton);
+        vvec3 dir = primary_dir(&pb, px, py, frame->samples[k], newton);
         t.stage_ticks[STAGE_GENERATE] += tick(&t) - t0;
         st->primary_rays += (uint64_t)n;
         st->gen_rays[0] += (uint64_t)n;
@@ -743,7 +740,7 @@ render_tile_body(const stream_scene *ss, const tile_rect *tile, void *scratch,
     drain(&t, 1, math, newton);
 
   fold_log(t.sc);
-  float inv_spp = 1.0f / (float)s->spp;
+  float inv_spp = 1.0f / (float)frame->spp;
   for (int i = 0; i < npix; i++)
     for (int k = 0; k < 3; k++)
       rgb[3 * i + k] = t.sc->accum[4 * i + k] * inv_spp;
@@ -758,44 +755,22 @@ render_tile_body(const stream_scene *ss, const tile_rect *tile, void *scratch,
         tile_seconds * (double)t.stage_ticks[k] / (double)sampled;
 }
 
-static void render_tile(const void *prepared, const tile_rect *tile,
-                        void *scratch, float *rgb, glint_stats *st) {
-  const stream_scene *ss = prepared;
-  if (ss->ps->math == GLINT_MATH_MINIMAX && ss->ps->newton)
-    render_tile_body(ss, tile, scratch, rgb, st, GLINT_MATH_MINIMAX, 1);
+static void render_tile(const void *view, const frame_params *frame,
+                        const tile_rect *tile, void *scratch, float *rgb,
+                        glint_stats *st) {
+  const packet_scene *ps = view;
+  if (frame->math == GLINT_MATH_MINIMAX && frame->rcp_newton)
+    render_tile_body(ps, frame, tile, scratch, rgb, st, GLINT_MATH_MINIMAX, 1);
   else
-    render_tile_body(ss, tile, scratch, rgb, st, ss->ps->math, ss->ps->newton);
+    render_tile_body(ps, frame, tile, scratch, rgb, st, frame->math,
+                     frame->rcp_newton);
 }
 
-static glint_status prepare(const glint_scene *scene, const glint_frame *frame,
-                            void **prepared, glint_stats *stats,
-                            glint_error *error) {
-  stream_scene *ss = calloc(1, sizeof *ss);
-  if (!ss)
-    return glint_fail(error, GLINT_E_MEMORY, "out of memory");
-  glint_status st = packet_scene_prepare(scene, frame, &ss->ps, stats, error);
-  if (st) {
-    free(ss);
-    return st;
-  }
-  ss->levels = frame->max_depth;
-  stats->stream_bytes_per_thread = scratch_bytes(ss);
-  *prepared = ss;
-  return GLINT_OK;
-}
-
-static void release(void *prepared) {
-  stream_scene *ss = prepared;
-  packet_scene_release(ss->ps);
-  free(ss);
-}
-
-static uint64_t primary_tile(const void *prepared, const tile_rect *tile,
-                             glint_stats *st) {
-  const stream_scene *ss = prepared;
+static uint64_t primary_tile(const void *view, const frame_params *frame,
+                             const tile_rect *tile, glint_stats *st) {
   /* The primary generation alone is the beam tracer's primary beams. */
-  return ISA_NAME(glint_beam_ops).primary_tile(ss->ps, tile, st);
+  return ISA_NAME(glint_beam_ops).primary_tile(view, frame, tile, st);
 }
 
 const glint_backend_ops ISA_NAME(glint_stream_ops) = {
-    prepare, release, scratch_bytes, render_tile, primary_tile};
+    ISA_DATA_KIND, scratch_bytes, render_tile, primary_tile};

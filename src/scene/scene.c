@@ -68,8 +68,7 @@ static glint_status oom(glint_error *error) {
   return glint_fail(error, GLINT_E_MEMORY, "out of memory building the scene");
 }
 
-glint_status glint_scene_set_camera(glint_scene *s, const glint_camera *c,
-                                    glint_error *error) {
+glint_status glint_camera_check(const glint_camera *c, glint_error *error) {
   if (!glint_vec3_finite(c->from) || !glint_vec3_finite(c->at) ||
       !glint_vec3_finite(c->up) || !isfinite(c->fov_x_degrees))
     return glint_fail(error, GLINT_E_ARGUMENT,
@@ -88,6 +87,14 @@ glint_status glint_scene_set_camera(glint_scene *s, const glint_camera *c,
     return glint_fail(error, GLINT_E_ARGUMENT,
                       "camera: 'up' is zero or parallel to the view "
                       "direction");
+  return GLINT_OK;
+}
+
+glint_status glint_scene_set_camera(glint_scene *s, const glint_camera *c,
+                                    glint_error *error) {
+  glint_status st = glint_camera_check(c, error);
+  if (st)
+    return st;
   s->camera = *c;
   return GLINT_OK;
 }

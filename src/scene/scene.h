@@ -97,6 +97,14 @@ glint_status glint_nff_load(const char *path, glint_scene **out,
 glint_status glint_json_load(const char *path, glint_scene **out,
                              glint_error *error);
 
+/* Checks a camera as glint_scene_set_camera does (finite, 0 < fov < 180,
+ * from != at, up not parallel to the view). */
+glint_status glint_camera_check(const glint_camera *camera, glint_error *error);
+
+/* A deep copy (scene/copy.c). */
+glint_status glint_scene_copy(const glint_scene *scene, glint_scene **copy,
+                              glint_error *error);
+
 /* The smallest t a hit may have (SPEC §3): 1e-4 times the scene's scale, the
  * largest coordinate magnitude among the camera and the bounded primitives. */
 double glint_scene_epsilon(const glint_scene *scene);

@@ -1,0 +1,28 @@
+/* The camera basis of SPEC §2 (thesis eq. 2.1 with the aspect ratio folded
+ * in), computed in double once per frame. */
+#include "render/frame.h"
+
+#include <math.h>
+
+void camera_basis_init(camera_basis *c, const glint_camera *g, int width,
+                       int height) {
+  double dx = g->at.x - g->from.x, dy = g->at.y - g->from.y,
+         dz = g->at.z - g->from.z;
+  double dl = sqrt(dx * dx + dy * dy + dz * dz);
+  dx /= dl, dy /= dl, dz /= dl;
+  /* r = normalize(d x up), u = r x d */
+  double rx = dy * g->up.z - dz * g->up.y, ry = dz * g->up.x - dx * g->up.z,
+         rz = dx * g->up.y - dy * g->up.x;
+  double rl = sqrt(rx * rx + ry * ry + rz * rz);
+  rx /= rl, ry /= rl, rz /= rl;
+  double ux = ry * dz - rz * dy, uy = rz * dx - rx * dz, uz = rx * dy - ry * dx;
+  double t = tan(g->fov_x_degrees * 3.14159265358979323846 / 360.0);
+  *c = (camera_basis){{g->from.x, g->from.y, g->from.z},
+                      {dx, dy, dz},
+                      {rx, ry, rz},
+                      {ux, uy, uz},
+                      t,
+                      t * height / width,
+                      width,
+                      height};
+}

@@ -1,0 +1,474 @@
+/* Renderers: a world bound to one backend, a pool of worker threads and
+ * their scratch memory, rendering frames. Everything a frame needs is made
+ * when the renderer is created (or, for a deeper frame than any before, when
+ * that frame starts), so a frame that only moves the camera costs its
+ * rendering alone.
+ *
+ * Tiles are claimed from an atomic counter, so threads balance dynamically;
+ * every pixel depends only on its own rays, so a frame is bit-identical for
+ * every thread count. */
+#include "render/renderer.h"
+
+#include "core/error.h"
+#include "core/memory.h"
+#include "core/timer.h"
+#include "image/image.h"
+#include "render/backend.h"
+#include "render/thread_pool.h"
+#include "render/world.h"
+#include "scene/scene.h"
+
+#include <math.h>
+#include <pthread.h>
+#include <stdatomic.h>
+#include <stdlib.h>
+#include <string.h>
+#if defined(__SSE__)
+#include <xmmintrin.h>
+#endif
+
+/* One worker's own memory, a cache line apart from the next worker's. */
+typedef struct render_worker {
+  _Alignas(GLINT_ALIGN) glint_stats stats;
+  uint64_t hits;
+  float *rgb;    /* one tile of linear RGB */
+  void *scratch; /* the backend's, for frames up to scratch_depth */
+} render_worker;
+
+/* The frame being rendered, shared by the workers. */
+typedef struct frame_job {
+  frame_params params;
+  int x0, y0, x1, y1; /* the region rendered, in frame pixels */
+  int tiles_x, tile_count;
+  frame_output *out;
+  glint_progress_fn progress;
+  void *progress_user;
+  glint_tile_fn tile;
+  void *tile_user;
+  atomic_int next_tile;
+  atomic_int cancelled;
+  pthread_mutex_t report_lock; /* callbacks never run two at once */
+  int tiles_done;
+} frame_job;
+
+struct glint_renderer {
+  glint_world *world;
+  glint_render_settings settings; /* the defaults of each frame */
+  glint_backend backend;
+  const glint_backend_ops *ops;
+  const data_ops *layout;
+  glint_bvh no_bvh; /* what --accel none traverses: nothing */
+  void *view;
+  thread_pool *pool;
+  int workers;
+  render_worker *worker;
+  int scratch_depth; /* the deepest frame the scratch holds */
+  float (*samples)[2];
+  int samples_spp; /* the count `samples` holds offsets for */
+  frame_job job;
+};
+
+/* ---- validation ---------------------------------------------------------- */
+
+/* What every frame is checked against: the size, depth, samples and region
+ * that glint_render_settings and glint_frame_settings share. */
+static glint_status frame_check(int w, int h, int depth, int spp, int rx,
+                                int ry, int rw, int rh, glint_error *e) {
+  if (w < 1 || w > GLINT_MAX_DIMENSION)
+    return glint_fail(e, GLINT_E_ARGUMENT, "width %d is outside 1..%d", w,
+                      GLINT_MAX_DIMENSION);
+  if (h < 1 || h > GLINT_MAX_DIMENSION)
+    return glint_fail(e, GLINT_E_ARGUMENT, "height %d is outside 1..%d", h,
+                      GLINT_MAX_DIMENSION);
+  if (depth < 1 || depth > GLINT_MAX_DEPTH)
+    return glint_fail(e, GLINT_E_ARGUMENT, "depth %d is outside 1..%d", depth,
+                      GLINT_MAX_DEPTH);
+  if (spp < 1 || spp > GLINT_MAX_SPP)
+    return glint_fail(e, GLINT_E_ARGUMENT,
+                      "samples per pixel %d is outside 1..%d", spp,
+                      GLINT_MAX_SPP);
+  if ((rw != 0 || rh != 0) &&
+      (rw < 1 || rh < 1 || rx < 0 || ry < 0 || rx > w - rw || ry > h - rh))
+    return glint_fail(e, GLINT_E_ARGUMENT,
+                      "region %d,%d %dx%d is not inside the %dx%d image", rx,
+                      ry, rw, rh, w, h);
+  return GLINT_OK;
+}
+
+glint_status render_settings_check(const glint_render_settings *s,
+                                   int scene_width, int scene_height,
+                                   glint_error *e) {
+  glint_status st = frame_check(s->width ? s->width : scene_width,
+                                s->height ? s->height : scene_height,
+                                s->max_depth, s->spp, s->region_x, s->region_y,
+                                s->region_width, s->region_height, e);
+  if (st)
+    return st;
+  if (s->threads < 0 || s->threads > GLINT_MAX_THREADS)
+    return glint_fail(e, GLINT_E_ARGUMENT, "threads %d is outside 0..%d",
+                      s->threads, GLINT_MAX_THREADS);
+  if (!(isfinite(s->gamma) && s->gamma > 0))
+    return glint_fail(e, GLINT_E_ARGUMENT, "gamma %g must be a number > 0",
+                      s->gamma);
+  if ((unsigned)s->math >= GLINT_MATH_COUNT)
+    return glint_fail(e, GLINT_E_ARGUMENT, "unknown math variant %d",
+                      (int)s->math);
+  if ((unsigned)s->accel > GLINT_ACCEL_NONE)
+    return glint_fail(e, GLINT_E_ARGUMENT, "unknown acceleration %d",
+                      (int)s->accel);
+  if ((unsigned)s->backend >= GLINT_BACKEND_COUNT)
+    return glint_fail(e, GLINT_E_ARGUMENT, "unknown backend %d",
+                      (int)s->backend);
+  return GLINT_OK;
+}
+
+/* ---- creation ------------------------------------------------------------ */
+
+/* Scratch for frames up to `depth` on every worker (the stream backends'
+ * buffers grow with the depth); the beams need none. */
+static glint_status grow_scratch(glint_renderer *r, int depth,
+                                 glint_error *error) {
+  if (!r->ops->scratch_bytes || depth <= r->scratch_depth)
+    return GLINT_OK;
+  size_t bytes = r->ops->scratch_bytes(depth);
+  for (int i = 0; i < r->workers; i++) {
+    glint_aligned_free(r->worker[i].scratch);
+    r->worker[i].scratch = glint_aligned_calloc(1, bytes);
+    if (!r->worker[i].scratch) {
+      r->scratch_depth = 0;
+      return glint_fail(error, GLINT_E_MEMORY,
+                        "out of memory for %d threads' ray streams",
+                        r->workers);
+    }
+  }
+  r->scratch_depth = depth;
+  return GLINT_OK;
+}
+
+glint_status glint_renderer_create(glint_world *world,
+                                   const glint_render_settings *settings,
+                                   glint_renderer **out, glint_error *error) {
+  if (!world)
+    return glint_fail(error, GLINT_E_ARGUMENT, "no world to render");
+  glint_render_settings defaults;
+  if (!settings) {
+    glint_render_settings_default(&defaults);
+    settings = &defaults;
+  }
+  glint_status st = render_settings_check(settings, world->scene->width,
+                                          world->scene->height, error);
+  if (st)
+    return st;
+  glint_backend backend = glint_backend_resolve(settings->backend);
+  if (!glint_backend_supported(backend))
+    return glint_fail(error, GLINT_E_UNSUPPORTED,
+                      "backend '%s' is not supported by this CPU or build",
+                      glint_backend_name(backend));
+
+  glint_renderer *r = calloc(1, sizeof *r);
+  if (!r)
+    return glint_fail(error, GLINT_E_MEMORY, "out of memory");
+  world_retain(world);
+  r->world = world;
+  r->settings = *settings;
+  r->backend = backend;
+  r->ops = glint_backend_ops_of(backend);
+  r->layout = glint_data_ops_of(r->ops->data);
+  pthread_mutex_init(&r->job.report_lock, NULL);
+
+  const void *data = NULL;
+  const glint_bvh *bvh = &r->no_bvh;
+  if ((st = world_data(world, r->ops->data, &data, error)) ||
+      (settings->accel == GLINT_ACCEL_BVH &&
+       (st = world_bvh(world, &bvh, error))) ||
+      (st = r->layout->bind(data, bvh, &r->view, error))) {
+    glint_renderer_destroy(r);
+    return st;
+  }
+
+  int threads = settings->threads ? settings->threads : glint_cpu_count();
+  if ((st = thread_pool_create(threads, &r->pool, error))) {
+    glint_renderer_destroy(r);
+    return st;
+  }
+  r->workers = thread_pool_size(r->pool);
+  r->worker = glint_aligned_calloc((size_t)r->workers, sizeof *r->worker);
+  r->samples = malloc(sizeof *r->samples * GLINT_MAX_SPP);
+  int ok = r->worker && r->samples;
+  for (int i = 0; ok && i < r->workers; i++) {
+    r->worker[i].rgb = glint_aligned_calloc(
+        (size_t)GLINT_TILE_SIZE * GLINT_TILE_SIZE * 3, sizeof(float));
+    ok = r->worker[i].rgb != NULL;
+  }
+  if (!ok) {
+    glint_renderer_destroy(r);
+    return glint_fail(error, GLINT_E_MEMORY,
+                      "out of memory for %d threads' buffers", threads);
+  }
+  if ((st = grow_scratch(r, settings->max_depth, error))) {
+    glint_renderer_destroy(r);
+    return st;
+  }
+  *out = r;
+  return GLINT_OK;
+}
+
+void glint_renderer_destroy(glint_renderer *r) {
+  if (!r)
+    return;
+  thread_pool_destroy(r->pool);
+  for (int i = 0; r->worker && i < r->workers; i++) {
+    glint_aligned_free(r->worker[i].rgb);
+    glint_aligned_free(r->worker[i].scratch);
+  }
+  glint_aligned_free(r->worker);
+  free(r->samples);
+  if (r->view)
+    r->layout->unbind(r->view);
+  pthread_mutex_destroy(&r->job.report_lock);
+  world_release(r->world);
+  free(r);
+}
+
+void glint_frame_settings_default(glint_frame_settings *frame) {
+  memset(frame, 0, sizeof *frame);
+}
+
+/* ---- the workers --------------------------------------------------------- */
+
+/* Tiny intermediate values (a highlight's power far from its peak, Beer's law
+ * over a long path) are denormal numbers, whose arithmetic costs a microcode
+ * assist of ~100 cycles on x86. Like most renderers, glint flushes them to
+ * zero while it renders (FTZ and DAZ in MXCSR): they are far below one 8-bit
+ * level. Each worker restores its thread's mode after the frame. */
+static unsigned denormals_off(void) {
+#if defined(__SSE__)
+  unsigned saved = _mm_getcsr();
+  _mm_setcsr(saved | 0x8040); /* FTZ (bit 15) | DAZ (bit 6) */
+  return saved;
+#else
+  return 0;
+#endif
+}
+
+static void denormals_restore(unsigned saved) {
+#if defined(__SSE__)
+  _mm_setcsr(saved);
+#else
+  (void)saved;
+#endif
+}
+
+/* Copies a finished tile into the film and the 8-bit image. */
+static void store_tile(const frame_job *job, const tile_rect *t,
+                       const float *rgb) {
+  size_t tw = (size_t)(t->x1 - t->x0);
+  for (int y = t->y0; y < t->y1; y++) {
+    const float *src = rgb + (size_t)(y - t->y0) * tw * 3;
+    size_t row = (size_t)(y - job->y0), col = (size_t)(t->x0 - job->x0);
+    if (job->out->film) {
+      glint_film *f = job->out->film;
+      memcpy(f->rgb + (row * (size_t)f->width + col) * 3, src,
+             tw * 3 * sizeof *src);
+    }
+    if (job->out->image) {
+      glint_image *im = job->out->image;
+      glint_film_span_to_bytes(src,
+                               im->rgb + (row * (size_t)im->width + col) * 3,
+                               tw * 3, job->out->gamma);
+    }
+  }
+}
+
+/* Hands the tile to the caller's callbacks, one at a time. */
+static void report_tile(frame_job *job, const tile_rect *t) {
+  if (!job->progress && !job->tile)
+    return;
+  pthread_mutex_lock(&job->report_lock);
+  job->tiles_done++;
+  if (!atomic_load(&job->cancelled)) {
+    int cancel = 0;
+    if (job->tile) {
+      glint_film *f = job->out->film;
+      glint_tile tile = {t->x0,         t->y0, t->x1 - t->x0,
+                         t->y1 - t->y0, NULL,  (size_t)f->width * 3};
+      tile.pixels = f->rgb + ((size_t)(t->y0 - job->y0) * (size_t)f->width +
+                              (size_t)(t->x0 - job->x0)) *
+                                 3;
+      cancel = job->tile(job->tile_user, &tile);
+    }
+    if (!cancel && job->progress)
+      cancel = job->progress(job->progress_user,
+                             (double)job->tiles_done / job->tile_count);
+    if (cancel)
+      atomic_store(&job->cancelled, 1);
+  }
+  pthread_mutex_unlock(&job->report_lock);
+}
+
+static void work(void *arg, int index) {
+  glint_renderer *r = arg;
+  frame_job *job = &r->job;
+  render_worker *w = &r->worker[index];
+  unsigned csr = denormals_off();
+  while (!atomic_load(&job->cancelled)) {
+    int i = atomic_fetch_add(&job->next_tile, 1);
+    if (i >= job->tile_count)
+      break;
+    tile_rect t;
+    t.x0 = job->x0 + (i % job->tiles_x) * GLINT_TILE_SIZE;
+    t.y0 = job->y0 + (i / job->tiles_x) * GLINT_TILE_SIZE;
+    t.x1 = t.x0 + GLINT_TILE_SIZE < job->x1 ? t.x0 + GLINT_TILE_SIZE : job->x1;
+    t.y1 = t.y0 + GLINT_TILE_SIZE < job->y1 ? t.y0 + GLINT_TILE_SIZE : job->y1;
+    if (job->out->primary_only) {
+      w->hits += r->ops->primary_tile(r->view, &job->params, &t, &w->stats);
+      continue;
+    }
+    r->ops->render_tile(r->view, &job->params, &t, w->scratch, w->rgb,
+                        &w->stats);
+    store_tile(job, &t, w->rgb);
+    report_tile(job, &t);
+  }
+  denormals_restore(csr);
+}
+
+static void stats_add(glint_stats *a, const glint_stats *b) {
+  a->primary_rays += b->primary_rays;
+  a->secondary_rays += b->secondary_rays;
+  a->shadow_rays += b->shadow_rays;
+  a->reflected_rays += b->reflected_rays;
+  a->refracted_rays += b->refracted_rays;
+  a->total_internal_reflections += b->total_internal_reflections;
+  a->beams += b->beams;
+  a->sub_beams += b->sub_beams;
+  a->packet_tests += b->packet_tests;
+  a->active_lanes += b->active_lanes;
+  if (b->generations > a->generations)
+    a->generations = b->generations;
+  for (int g = 0; g < GLINT_STATS_MAX_GENERATIONS; g++) {
+    a->gen_rays[g] += b->gen_rays[g];
+    a->gen_packets[g] += b->gen_packets[g];
+    a->gen_active_lanes[g] += b->gen_active_lanes[g];
+  }
+  for (int i = 0; i < 4; i++)
+    a->stage_seconds[i] += b->stage_seconds[i];
+}
+
+/* ---- frames -------------------------------------------------------------- */
+
+static int pick(int frame_value, int renderer_value) {
+  return frame_value ? frame_value : renderer_value;
+}
+
+glint_status renderer_render(glint_renderer *r,
+                             const glint_frame_settings *frame,
+                             frame_output *out, glint_stats *stats_out,
+                             glint_error *error) {
+  glint_frame_settings none;
+  if (!frame) {
+    glint_frame_settings_default(&none);
+    frame = &none;
+  }
+  const glint_render_settings *s = &r->settings;
+  const glint_scene *scene = r->world->scene;
+  int width = pick(frame->width, pick(s->width, scene->width));
+  int height = pick(frame->height, pick(s->height, scene->height));
+  int depth = pick(frame->max_depth, s->max_depth);
+  int spp = pick(frame->spp, s->spp);
+  int own_region = frame->region_width || frame->region_height;
+  int rx = own_region ? frame->region_x : s->region_x;
+  int ry = own_region ? frame->region_y : s->region_y;
+  int rw = own_region ? frame->region_width : s->region_width;
+  int rh = own_region ? frame->region_height : s->region_height;
+  glint_status st =
+      frame_check(width, height, depth, spp, rx, ry, rw, rh, error);
+  if (st)
+    return st;
+  if (!rw)
+    rx = 0, ry = 0, rw = width, rh = height;
+  const glint_camera *camera = frame->camera ? frame->camera : &scene->camera;
+  if (frame->camera && (st = glint_camera_check(camera, error)))
+    return st;
+  if (out->film && (out->film->width != rw || out->film->height != rh))
+    return glint_fail(error, GLINT_E_ARGUMENT,
+                      "a %dx%d film cannot hold a %dx%d frame",
+                      out->film->width, out->film->height, rw, rh);
+  if (frame->tile && !out->film)
+    return glint_fail(error, GLINT_E_ARGUMENT,
+                      "a tile callback needs a film to hand out");
+  if (!out->primary_only && (st = grow_scratch(r, depth, error)))
+    return st;
+  if (spp != r->samples_spp) {
+    glint_sample_offsets(spp, r->samples);
+    r->samples_spp = spp;
+  }
+
+  frame_job *job = &r->job;
+  camera_basis_init(&job->params.camera, camera, width, height);
+  job->params.spp = spp;
+  job->params.max_depth = depth;
+  job->params.math = s->math;
+  job->params.rcp_newton = s->rcp_newton;
+  job->params.samples = (const float(*)[2])r->samples;
+  job->x0 = rx;
+  job->y0 = ry;
+  job->x1 = rx + rw;
+  job->y1 = ry + rh;
+  job->tiles_x = (rw + GLINT_TILE_SIZE - 1) / GLINT_TILE_SIZE;
+  job->tile_count =
+      job->tiles_x * ((rh + GLINT_TILE_SIZE - 1) / GLINT_TILE_SIZE);
+  job->out = out;
+  job->progress = frame->progress ? frame->progress : s->progress;
+  job->progress_user =
+      frame->progress ? frame->progress_user : s->progress_user;
+  job->tile = frame->tile;
+  job->tile_user = frame->tile_user;
+  atomic_store(&job->next_tile, 0);
+  atomic_store(&job->cancelled, 0);
+  job->tiles_done = 0;
+
+  int workers = r->workers < job->tile_count ? r->workers : job->tile_count;
+  for (int i = 0; i < workers; i++) {
+    memset(&r->worker[i].stats, 0, sizeof r->worker[i].stats);
+    r->worker[i].hits = 0;
+  }
+  double t0 = glint_now();
+  thread_pool_run(r->pool, workers, work, r);
+  double seconds = glint_now() - t0;
+
+  glint_stats stats;
+  memset(&stats, 0, sizeof stats);
+  out->hits = 0;
+  for (int i = 0; i < workers; i++) {
+    stats_add(&stats, &r->worker[i].stats);
+    out->hits += r->worker[i].hits;
+  }
+  if (atomic_load(&job->cancelled))
+    return glint_fail(error, GLINT_E_CANCELLED, "render cancelled");
+  if (stats_out) {
+    world_stats(r->world, &stats);
+    stats.prepare_seconds = 0; /* a frame prepares nothing */
+    stats.backend = r->backend;
+    stats.width = width;
+    stats.height = height;
+    stats.spp = spp;
+    stats.max_depth = depth;
+    stats.threads = workers;
+    stats.render_seconds = seconds;
+    stats.stream_bytes_per_thread =
+        r->ops->scratch_bytes ? r->ops->scratch_bytes(depth) : 0;
+    *stats_out = stats;
+  }
+  return GLINT_OK;
+}
+
+glint_status glint_renderer_render(glint_renderer *r,
+                                   const glint_frame_settings *frame,
+                                   glint_film *film, glint_stats *stats,
+                                   glint_error *error) {
+  if (!r || !film)
+    return glint_fail(error, GLINT_E_ARGUMENT,
+                      r ? "no film to render into" : "no renderer");
+  frame_output out = {film, NULL, 1, 0, 0};
+  return renderer_render(r, frame, &out, stats, error);
+}

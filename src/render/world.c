@@ -1,0 +1,122 @@
+/* Committing a scene: see render/world.h. */
+#include "render/world.h"
+
+#include "core/error.h"
+#include "core/timer.h"
+#include "scene/scene.h"
+
+#include <stdlib.h>
+
+glint_status world_create(const glint_scene *scene, glint_world **out,
+                          glint_error *error) {
+  if (!scene)
+    return glint_fail(error, GLINT_E_ARGUMENT, "no scene to commit");
+  glint_world *w = calloc(1, sizeof *w);
+  if (!w)
+    return glint_fail(error, GLINT_E_MEMORY, "out of memory");
+  glint_status st = glint_scene_copy(scene, &w->scene, error);
+  if (st) {
+    free(w);
+    return st;
+  }
+  atomic_init(&w->refs, 1);
+  w->epsilon = glint_scene_epsilon(w->scene);
+  pthread_mutex_init(&w->lock, NULL);
+  *out = w;
+  return GLINT_OK;
+}
+
+void world_retain(glint_world *w) { atomic_fetch_add(&w->refs, 1); }
+
+void world_release(glint_world *w) {
+  if (!w || atomic_fetch_sub(&w->refs, 1) != 1)
+    return;
+  for (int k = 0; k < DATA_KIND_COUNT; k++)
+    if (w->data[k])
+      glint_data_ops_of((data_kind)k)->release(w->data[k]);
+  if (w->bvh_built)
+    glint_bvh_free(&w->bvh);
+  pthread_mutex_destroy(&w->lock);
+  glint_scene_destroy(w->scene);
+  free(w);
+}
+
+glint_status world_bvh(glint_world *w, const glint_bvh **bvh,
+                       glint_error *error) {
+  glint_status st = GLINT_OK;
+  pthread_mutex_lock(&w->lock);
+  if (!w->bvh_built) {
+    double t0 = glint_now();
+    st = glint_bvh_build(w->scene, &w->bvh, error);
+    w->bvh_built = st == GLINT_OK;
+    w->prepare_seconds += glint_now() - t0;
+  }
+  pthread_mutex_unlock(&w->lock);
+  *bvh = &w->bvh;
+  return st;
+}
+
+glint_status world_data(glint_world *w, data_kind kind, const void **data,
+                        glint_error *error) {
+  const data_ops *ops = glint_data_ops_of(kind);
+  if (!ops)
+    return glint_fail(error, GLINT_E_UNSUPPORTED,
+                      "this build has no converter for layout %d", (int)kind);
+  glint_status st = GLINT_OK;
+  pthread_mutex_lock(&w->lock);
+  if (!w->data[kind]) {
+    double t0 = glint_now();
+    st = ops->convert(w->scene, w->epsilon, &w->data[kind], error);
+    w->prepare_seconds += glint_now() - t0;
+  }
+  pthread_mutex_unlock(&w->lock);
+  *data = w->data[kind];
+  return st;
+}
+
+void world_stats(glint_world *w, glint_stats *stats) {
+  pthread_mutex_lock(&w->lock);
+  stats->prepare_seconds = w->prepare_seconds;
+  stats->bvh_nodes = w->bvh_built ? w->bvh.node_count : 0;
+  stats->bvh_bytes = w->bvh_built ? glint_bvh_bytes(&w->bvh) : 0;
+  stats->bvh_build_seconds = w->bvh_built ? w->bvh.build_seconds : 0;
+  stats->scene_bytes = stats->bvh_bytes;
+  for (int k = 0; k < DATA_KIND_COUNT; k++)
+    if (w->data[k])
+      stats->scene_bytes += glint_data_ops_of((data_kind)k)->bytes(w->data[k]);
+  pthread_mutex_unlock(&w->lock);
+}
+
+/* ---- the public API ----------------------------------------------------- */
+
+glint_status glint_world_commit(const glint_scene *scene, glint_world **out,
+                                glint_stats *stats, glint_error *error) {
+  glint_world *w = NULL;
+  glint_status st = world_create(scene, &w, error);
+  if (st)
+    return st;
+  const glint_bvh *bvh;
+  if ((st = world_bvh(w, &bvh, error))) {
+    world_release(w);
+    return st;
+  }
+  /* The layout of the default backend now; the others on first use by a
+   * renderer that needs them. */
+  const glint_backend_ops *ops =
+      glint_backend_ops_of(glint_backend_resolve(GLINT_BACKEND_AUTO));
+  const void *data;
+  if ((st = world_data(w, ops->data, &data, error))) {
+    world_release(w);
+    return st;
+  }
+  if (stats)
+    world_stats(w, stats);
+  *out = w;
+  return GLINT_OK;
+}
+
+void glint_world_destroy(glint_world *w) { world_release(w); }
+
+void glint_world_get_info(const glint_world *w, glint_scene_info *info) {
+  glint_scene_get_info(w->scene, info);
+}

@@ -1,0 +1,42 @@
+/* The committed world (include/glint.h, "Worlds and renderers"): a private
+ * copy of the scene, its BVH, and the scene converted for each family of
+ * backends in use. Conversions are made on first use by a renderer, under
+ * the world's lock, and never change afterwards, so renderers on any threads
+ * read them without locking. */
+#ifndef GLINT_RENDER_WORLD_H
+#define GLINT_RENDER_WORLD_H
+
+#include "accel/bvh.h"
+#include "render/backend.h"
+
+#include <pthread.h>
+#include <stdatomic.h>
+
+struct glint_world {
+  atomic_int refs; /* the caller's reference and one per renderer */
+  glint_scene *scene;
+  double epsilon; /* SPEC §3, fixed at commit */
+  pthread_mutex_t lock;
+  int bvh_built;
+  glint_bvh bvh;
+  void *data[DATA_KIND_COUNT];
+  double prepare_seconds; /* conversions and BVH build so far */
+};
+
+/* Commits without building anything yet (glint_render builds only what its
+ * backend and accel use). */
+glint_status world_create(const glint_scene *scene, glint_world **world,
+                          glint_error *error);
+void world_retain(glint_world *world);
+void world_release(glint_world *world);
+
+/* The BVH, built on first use. */
+glint_status world_bvh(glint_world *world, const glint_bvh **bvh,
+                       glint_error *error);
+/* The scene converted for one family of backends, on first use. */
+glint_status world_data(glint_world *world, data_kind kind, const void **data,
+                        glint_error *error);
+/* What has been built so far: BVH and data sizes and times. */
+void world_stats(glint_world *world, glint_stats *stats);
+
+#endif

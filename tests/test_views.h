@@ -1,0 +1,37 @@
+/* Tests of internals read a committed world's converted layouts directly:
+ * a view of one layout, with or without the world's BVH. */
+#ifndef GLINT_TEST_VIEWS_H
+#define GLINT_TEST_VIEWS_H
+
+#include "test_util.h"
+
+#include "render/backend.h"
+#include "render/world.h"
+
+typedef struct test_view {
+  glint_world *world;
+  const data_ops *layout;
+  void *view;
+} test_view;
+
+static const glint_bvh test_no_bvh;
+
+static void *test_view_open(const glint_scene *scene, data_kind kind,
+                            int with_bvh, test_view *tv) {
+  ASSERT_OK(world_create(scene, &tv->world, &e_));
+  const void *data;
+  ASSERT_OK(world_data(tv->world, kind, &data, &e_));
+  const glint_bvh *bvh = &test_no_bvh;
+  if (with_bvh)
+    ASSERT_OK(world_bvh(tv->world, &bvh, &e_));
+  tv->layout = glint_data_ops_of(kind);
+  ASSERT_OK(tv->layout->bind(data, bvh, &tv->view, &e_));
+  return tv->view;
+}
+
+static void test_view_close(test_view *tv) {
+  tv->layout->unbind(tv->view);
+  world_release(tv->world);
+}
+
+#endif
