@@ -34,6 +34,11 @@ int bench_scenes(char **names, int nscenes, const int *depths, int ndepths,
 int bench_spd(const char *dir, const glint_render_settings *base,
               const bench_column *cols, int ncols, int runs, FILE *csv);
 
+/* glint bench --frames N: N frames of one scene with the camera moving,
+ * through one renderer and through N glint_render calls. */
+int bench_frames(const char *scene, const glint_render_settings *base,
+                 int frames);
+
 /* glint bench --meshes DIR */
 int bench_meshes(const char *dir, const glint_render_settings *base,
                  const glint_backend *backends, int nbackends, int runs);

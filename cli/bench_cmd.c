@@ -50,6 +50,11 @@ static void bench_usage(FILE *f) {
       "                     mount-s6, rings-s4, teapot-s4, tetra-s6, tree-s4)\n"
       "                     at 512x512, 1 spp, depth 5, against Tachyon when\n"
       "                     it is installed\n"
+      "      --frames N     instead: N frames of the first scene with the\n"
+      "                     camera orbiting, through one renderer and\n"
+      "                     through N glint_render calls: the cost of a\n"
+      "                     frame beyond its rendering (first depth,\n"
+      "                     thread count and backend of the lists)\n"
       "      --meshes DIR   instead: primary-ray throughput on DIR/bunny.obj\n"
       "                     and DIR/dragon_vrip_res2.ply.gz (1024x1024, one\n"
       "                     thread), with Embree 3 on the same rays when\n"
@@ -199,7 +204,7 @@ int cmd_bench(int argc, char **argv) {
   char *backend_list = NULL, *thread_list = default_threads;
   const char *csv_path = NULL, *plot_dir = NULL, *spd_dir = NULL,
              *mesh_dir = NULL;
-  int runs = 3;
+  int runs = 3, frames = 0;
   glint_render_settings rs;
   glint_render_settings_default(&rs);
   rs.width = rs.height = 0; /* 0: not given */
@@ -241,6 +246,9 @@ int cmd_bench(int argc, char **argv) {
         return EXIT_USAGE;
     } else if (arg_is(&c, NULL, "--meshes")) {
       if (!(mesh_dir = arg_value(&c, "--meshes")))
+        return EXIT_USAGE;
+    } else if (arg_is(&c, NULL, "--frames")) {
+      if (parse_int("--frames", arg_value(&c, "--frames"), 1, 100000, &frames))
         return EXIT_USAGE;
     } else {
       cli_error("unknown option '%s' (see glint bench --help)", a);
@@ -308,6 +316,14 @@ int cmd_bench(int argc, char **argv) {
 
   if (mesh_dir) {
     return bench_meshes(mesh_dir, &rs, backends, nbackends, runs);
+  }
+  if (frames) {
+    char *first_scene[1];
+    split_list(scene_list, first_scene, 1);
+    rs.max_depth = depths[0];
+    rs.threads = threads[0];
+    rs.backend = backend_list ? backends[0] : GLINT_BACKEND_AUTO;
+    return bench_frames(first_scene[0], &rs, frames);
   }
 
   FILE *csv = NULL;

@@ -1,0 +1,338 @@
+/* Worlds, renderers and films (include/glint.h, "Worlds and renderers"),
+ * through the public API alone:
+ *  - a frame through a renderer is the image glint_render makes, for every
+ *    backend this CPU has, and for a moved camera, a region, other depths
+ *    and sample counts;
+ *  - a committed world does not change when its scene is edited or
+ *    destroyed, and outlives glint_world_destroy while a renderer holds it;
+ *  - the tile callback hands over every pixel exactly once, with the film's
+ *    final values, and cancels the frame when it asks to;
+ *  - two renderers of one world render at the same time on two threads;
+ *  - each bad argument is refused with a message. */
+#include "test_util.h"
+
+#include <math.h>
+#include <pthread.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+
+#define W 96
+#define H 72
+
+static glint_scene *whitted(void) {
+  glint_scene *s;
+  ASSERT_OK(glint_scene_builtin("whitted", &s, &e_));
+  return s;
+}
+
+static glint_render_settings settings_for(glint_backend b) {
+  glint_render_settings rs;
+  glint_render_settings_default(&rs);
+  rs.width = W;
+  rs.height = H;
+  rs.backend = b;
+  rs.threads = 2;
+  return rs;
+}
+
+/* The film converted as glint_render converts it (gamma 1). */
+static void assert_film_is_image(const glint_film *film, glint_image *image) {
+  glint_image *converted;
+  ASSERT_OK(glint_image_create(glint_film_width(film), glint_film_height(film),
+                               &converted, &e_));
+  ASSERT_OK(glint_film_to_image(film, 1, converted, &e_));
+  assert_int_equal(glint_image_width(converted), glint_image_width(image));
+  assert_int_equal(glint_image_height(converted), glint_image_height(image));
+  size_t n = (size_t)glint_image_width(image) * glint_image_height(image) * 3;
+  assert_memory_equal(glint_image_pixels(converted), glint_image_pixels(image),
+                      n);
+  glint_image_destroy(converted);
+}
+
+/* A camera orbiting the scene's own, a little further each frame. */
+static glint_camera orbit(const glint_camera *c, int frame) {
+  glint_camera moved = *c;
+  double a = 0.05 * frame, dx = c->from.x - c->at.x, dz = c->from.z - c->at.z;
+  moved.from.x = c->at.x + dx * cos(a) - dz * sin(a);
+  moved.from.z = c->at.z + dx * sin(a) + dz * cos(a);
+  return moved;
+}
+
+static void frames_equal_glint_render(void **state) {
+  (void)state;
+  glint_scene *scene = whitted();
+  glint_scene_info info;
+  glint_scene_get_info(scene, &info);
+  for (int b = GLINT_BACKEND_SCALAR_FLOAT; b < GLINT_BACKEND_COUNT; b++) {
+    if (b == GLINT_BACKEND_STREAM || !glint_backend_supported(b))
+      continue;
+    glint_render_settings rs = settings_for(b);
+    glint_world *world;
+    glint_renderer *renderer;
+    glint_film *film;
+    ASSERT_OK(glint_world_commit(scene, &world, NULL, &e_));
+    ASSERT_OK(glint_renderer_create(world, &rs, &renderer, &e_));
+    ASSERT_OK(glint_film_create(W, H, &film, &e_));
+    /* Frames with the camera moving, the depth and samples changing. */
+    for (int f = 0; f < 4; f++) {
+      glint_camera cam = orbit(&info.camera, f);
+      glint_frame_settings fs;
+      glint_frame_settings_default(&fs);
+      fs.camera = &cam;
+      fs.max_depth = 1 + 3 * f;
+      fs.spp = f % 2 ? 1 : 5;
+      ASSERT_OK(glint_renderer_render(renderer, &fs, film, NULL, &e_));
+      glint_scene *moved = whitted();
+      ASSERT_OK(glint_scene_set_camera(moved, &cam, &e_));
+      glint_render_settings one = rs;
+      one.max_depth = fs.max_depth;
+      one.spp = fs.spp;
+      glint_image *image;
+      ASSERT_OK(glint_render(moved, &one, &image, NULL, &e_));
+      assert_film_is_image(film, image);
+      glint_image_destroy(image);
+      glint_scene_destroy(moved);
+    }
+    /* A region of the frame: the same pixels, cropped. (In 8 bits: the
+     * beams group a region's pixels into packets differently from the
+     * whole frame's, which may change a float's last bit.) */
+    glint_film *part;
+    ASSERT_OK(glint_film_create(20, 10, &part, &e_));
+    glint_frame_settings fs;
+    glint_frame_settings_default(&fs);
+    fs.region_x = 33, fs.region_y = 17, fs.region_width = 20,
+    fs.region_height = 10;
+    ASSERT_OK(glint_renderer_render(renderer, &fs, part, NULL, &e_));
+    rs.region_x = 33, rs.region_y = 17, rs.region_width = 20,
+    rs.region_height = 10;
+    glint_image *cropped;
+    ASSERT_OK(glint_render(scene, &rs, &cropped, NULL, &e_));
+    assert_film_is_image(part, cropped);
+    glint_image_destroy(cropped);
+    glint_film_destroy(part);
+    glint_film_destroy(film);
+    glint_renderer_destroy(renderer);
+    glint_world_destroy(world);
+  }
+  glint_scene_destroy(scene);
+}
+
+/* Editing or destroying the scene after the commit changes nothing; the
+ * world outlives glint_world_destroy while its renderer holds it. */
+static void worlds_are_independent_of_their_scene(void **state) {
+  (void)state;
+  glint_scene *scene = whitted();
+  glint_render_settings rs = settings_for(GLINT_BACKEND_AUTO);
+  glint_image *before;
+  ASSERT_OK(glint_render(scene, &rs, &before, NULL, &e_));
+  glint_world *world;
+  glint_stats stats;
+  ASSERT_OK(glint_world_commit(scene, &world, &stats, &e_));
+  assert_true(stats.scene_bytes > 0);
+  glint_renderer *renderer;
+  ASSERT_OK(glint_renderer_create(world, &rs, &renderer, &e_));
+  glint_world_destroy(world);
+  ASSERT_OK(glint_scene_set_background(scene, (glint_vec3){1, 0, 1}, &e_));
+  ASSERT_OK(glint_scene_add_light(scene, (glint_vec3){0, 5, 0},
+                                  (glint_vec3){1, 1, 1}, &e_));
+  glint_scene_destroy(scene);
+  glint_film *film;
+  ASSERT_OK(glint_film_create(W, H, &film, &e_));
+  ASSERT_OK(glint_renderer_render(renderer, NULL, film, &stats, &e_));
+  assert_film_is_image(film, before);
+  assert_int_equal(stats.width, W);
+  assert_int_equal(stats.primary_rays, (uint64_t)W * H * 5);
+  assert_true(stats.prepare_seconds == 0);
+  glint_film_destroy(film);
+  glint_image_destroy(before);
+  glint_renderer_destroy(renderer);
+}
+
+typedef struct tile_log {
+  glint_film *film;
+  int *covered; /* per pixel: how many tiles held it */
+  float *copy;  /* the pixels as the callback saw them */
+  int tiles, cancel_after;
+} tile_log;
+
+static int on_tile(void *user, const glint_tile *t) {
+  tile_log *log = user;
+  for (int y = 0; y < t->height; y++)
+    for (int x = 0; x < t->width; x++) {
+      size_t i = (size_t)(t->y + y) * W + (size_t)(t->x + x);
+      log->covered[i]++;
+      memcpy(log->copy + i * 3, t->pixels + (size_t)y * t->stride + x * 3,
+             3 * sizeof(float));
+    }
+  log->tiles++;
+  return log->cancel_after && log->tiles >= log->cancel_after;
+}
+
+static void tiles_cover_the_frame_once(void **state) {
+  (void)state;
+  glint_scene *scene = whitted();
+  glint_world *world;
+  glint_renderer *renderer;
+  ASSERT_OK(glint_world_commit(scene, &world, NULL, &e_));
+  glint_scene_destroy(scene);
+  glint_render_settings rs = settings_for(GLINT_BACKEND_AUTO);
+  ASSERT_OK(glint_renderer_create(world, &rs, &renderer, &e_));
+  glint_world_destroy(world);
+  tile_log log = {0};
+  ASSERT_OK(glint_film_create(W, H, &log.film, &e_));
+  log.covered = calloc(W * H, sizeof *log.covered);
+  log.copy = calloc(W * H * 3, sizeof *log.copy);
+  glint_frame_settings fs;
+  glint_frame_settings_default(&fs);
+  fs.tile = on_tile;
+  fs.tile_user = &log;
+  ASSERT_OK(glint_renderer_render(renderer, &fs, log.film, NULL, &e_));
+  for (int i = 0; i < W * H; i++)
+    assert_int_equal(log.covered[i], 1);
+  assert_memory_equal(log.copy, glint_film_pixels(log.film),
+                      W * H * 3 * sizeof(float));
+  assert_int_equal(log.tiles, 6 * 5); /* 16x16 tiles */
+
+  /* Cancelling from the callback. */
+  memset(log.covered, 0, W * H * sizeof *log.covered);
+  log.tiles = 0;
+  log.cancel_after = 3;
+  glint_error e;
+  assert_int_equal(glint_renderer_render(renderer, &fs, log.film, NULL, &e),
+                   GLINT_E_CANCELLED);
+  assert_int_equal(log.tiles, 3);
+  /* ...and the renderer renders the next frame whole. */
+  log.cancel_after = 0;
+  log.tiles = 0;
+  ASSERT_OK(glint_renderer_render(renderer, &fs, log.film, NULL, &e_));
+  assert_int_equal(log.tiles, 30);
+  free(log.covered);
+  free(log.copy);
+  glint_film_destroy(log.film);
+  glint_renderer_destroy(renderer);
+}
+
+typedef struct parallel_job {
+  glint_world *world;
+  glint_film *film;
+  glint_status status;
+} parallel_job;
+
+static void *render_on_thread(void *arg) {
+  parallel_job *job = arg;
+  glint_render_settings rs = settings_for(GLINT_BACKEND_AUTO);
+  glint_renderer *renderer;
+  glint_error e;
+  job->status = glint_renderer_create(job->world, &rs, &renderer, &e);
+  for (int f = 0; job->status == GLINT_OK && f < 3; f++)
+    job->status = glint_renderer_render(renderer, NULL, job->film, NULL, &e);
+  glint_renderer_destroy(renderer);
+  return NULL;
+}
+
+static void renderers_share_a_world(void **state) {
+  (void)state;
+  glint_scene *scene = whitted();
+  glint_world *world;
+  ASSERT_OK(glint_world_commit(scene, &world, NULL, &e_));
+  parallel_job jobs[2];
+  pthread_t threads[2];
+  for (int i = 0; i < 2; i++) {
+    jobs[i].world = world;
+    ASSERT_OK(glint_film_create(W, H, &jobs[i].film, &e_));
+    assert_int_equal(
+        pthread_create(&threads[i], NULL, render_on_thread, &jobs[i]), 0);
+  }
+  for (int i = 0; i < 2; i++) {
+    pthread_join(threads[i], NULL);
+    assert_int_equal(jobs[i].status, GLINT_OK);
+  }
+  assert_memory_equal(glint_film_pixels(jobs[0].film),
+                      glint_film_pixels(jobs[1].film),
+                      W * H * 3 * sizeof(float));
+  glint_render_settings rs = settings_for(GLINT_BACKEND_AUTO);
+  glint_image *image;
+  ASSERT_OK(glint_render(scene, &rs, &image, NULL, &e_));
+  assert_film_is_image(jobs[0].film, image);
+  glint_image_destroy(image);
+  for (int i = 0; i < 2; i++)
+    glint_film_destroy(jobs[i].film);
+  glint_world_destroy(world);
+  glint_scene_destroy(scene);
+}
+
+static void expect_error(glint_status got, glint_status want,
+                         const glint_error *e, const char *words) {
+  assert_int_equal(got, want);
+  if (!strstr(e->message, words))
+    fail_msg("message '%s' does not say '%s'", e->message, words);
+}
+
+static void bad_arguments_are_refused(void **state) {
+  (void)state;
+  glint_scene *scene = whitted();
+  glint_world *world;
+  glint_renderer *renderer;
+  glint_film *film, *small;
+  glint_error e;
+  expect_error(glint_world_commit(NULL, &world, NULL, &e), GLINT_E_ARGUMENT, &e,
+               "no scene");
+  ASSERT_OK(glint_world_commit(scene, &world, NULL, &e_));
+  glint_render_settings rs = settings_for(GLINT_BACKEND_AUTO);
+  rs.max_depth = 0;
+  expect_error(glint_renderer_create(world, &rs, &renderer, &e),
+               GLINT_E_ARGUMENT, &e, "depth 0");
+  rs = settings_for(GLINT_BACKEND_AUTO);
+  expect_error(glint_renderer_create(NULL, &rs, &renderer, &e),
+               GLINT_E_ARGUMENT, &e, "no world");
+  ASSERT_OK(glint_renderer_create(world, &rs, &renderer, &e_));
+  ASSERT_OK(glint_film_create(W, H, &film, &e_));
+  ASSERT_OK(glint_film_create(W / 2, H, &small, &e_));
+  expect_error(glint_renderer_render(renderer, NULL, small, NULL, &e),
+               GLINT_E_ARGUMENT, &e, "film");
+  expect_error(glint_renderer_render(renderer, NULL, NULL, NULL, &e),
+               GLINT_E_ARGUMENT, &e, "film");
+  glint_frame_settings fs;
+  glint_frame_settings_default(&fs);
+  fs.spp = GLINT_MAX_SPP + 1;
+  expect_error(glint_renderer_render(renderer, &fs, film, NULL, &e),
+               GLINT_E_ARGUMENT, &e, "samples per pixel");
+  glint_frame_settings_default(&fs);
+  fs.region_x = W - 4, fs.region_width = 8, fs.region_height = 8;
+  expect_error(glint_renderer_render(renderer, &fs, film, NULL, &e),
+               GLINT_E_ARGUMENT, &e, "region");
+  glint_scene_info info;
+  glint_scene_get_info(scene, &info);
+  glint_camera cam = info.camera;
+  cam.up = (glint_vec3){cam.at.x - cam.from.x, cam.at.y - cam.from.y,
+                        cam.at.z - cam.from.z};
+  glint_frame_settings_default(&fs);
+  fs.camera = &cam;
+  expect_error(glint_renderer_render(renderer, &fs, film, NULL, &e),
+               GLINT_E_ARGUMENT, &e, "parallel");
+  cam = info.camera;
+  cam.fov_x_degrees = 0.0 / 0.0;
+  expect_error(glint_renderer_render(renderer, &fs, film, NULL, &e),
+               GLINT_E_ARGUMENT, &e, "finite");
+  expect_error(glint_film_create(0, 5, &small, &e), GLINT_E_ARGUMENT, &e,
+               "film size");
+  /* After all that, a good frame still renders. */
+  ASSERT_OK(glint_renderer_render(renderer, NULL, film, NULL, &e_));
+  glint_film_destroy(film);
+  glint_film_destroy(small);
+  glint_renderer_destroy(renderer);
+  glint_world_destroy(world);
+  glint_scene_destroy(scene);
+}
+
+int main(void) {
+  const struct CMUnitTest tests[] = {
+      cmocka_unit_test(frames_equal_glint_render),
+      cmocka_unit_test(worlds_are_independent_of_their_scene),
+      cmocka_unit_test(tiles_cover_the_frame_once),
+      cmocka_unit_test(renderers_share_a_world),
+      cmocka_unit_test(bad_arguments_are_refused),
+  };
+  return cmocka_run_group_tests(tests, NULL, NULL);
+}
