@@ -11,7 +11,7 @@
  * reading --math and --no-newton at run time, for the experiments of the
  * thesis's §5.4. */
 #include "render/backend.h"
-#include "render/packet.h"
+#include "render/packet_shading.h"
 #include "render/primary.h"
 
 typedef struct beam_ctx {

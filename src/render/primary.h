@@ -7,7 +7,7 @@
 
 #include "render/camera.h"
 #include "render/frame.h"
-#include "render/packet.h"
+#include "render/packet_shading.h"
 
 /* Block shapes: 2x2 for SSE, 4x2 for AVX2, 4x4 for AVX-512 (issue 3). */
 #if GLINT_SIMD_WIDTH == 4

@@ -6,6 +6,7 @@
 
 #include "core/error.h"
 #include "core/memory.h"
+#include "accel/traverse.h"
 #include "geometry/intersect.h"
 #include "scene/scene.h"
 
@@ -215,34 +216,18 @@ static inline void hit_prim(const scene_r *s, uint32_t shape, uint32_t i,
   }
 }
 
-/* The ray's reciprocal direction for slab tests; a zero component becomes
- * a huge one of the same sign, so 0 * inf never makes a NaN. */
-static inline vec3 safe_inverse(vec3 d) {
-  const real tiny = (real)1e-30;
-  real x = r_fabs(d.x) < tiny ? (d.x < 0 ? -tiny : tiny) : d.x;
-  real y = r_fabs(d.y) < tiny ? (d.y < 0 ? -tiny : tiny) : d.y;
-  real z = r_fabs(d.z) < tiny ? (d.z < 0 ? -tiny : tiny) : d.z;
-  return v3(1 / x, 1 / y, 1 / z);
-}
+/* What a closest-hit walk's leaves need. */
+typedef struct nearest_query {
+  const scene_r *s;
+  vec3 o, d;
+  hit_r *hit;
+  int *found;
+} nearest_query;
 
-/* The slab test (Kay and Kajiya 1986): the entry distance into the node's
- * box, or infinity when the ray misses it within (tmin, tmax). (Not
- * REAL_MAX: a ray without a hit yet has tmax = REAL_MAX, and every missed
- * box would pass entry <= tmax.) The far distance is widened by a few ulps
- * so rounding cannot cull a hit on the box's surface. */
-static inline real box_entry(const glint_bvh_node *n, vec3 o, vec3 inv,
-                             real tmin, real tmax) {
-  real t0x = ((real)n->lo[0] - o.x) * inv.x,
-       t1x = ((real)n->hi[0] - o.x) * inv.x;
-  real t0y = ((real)n->lo[1] - o.y) * inv.y,
-       t1y = ((real)n->hi[1] - o.y) * inv.y;
-  real t0z = ((real)n->lo[2] - o.z) * inv.z,
-       t1z = ((real)n->hi[2] - o.z) * inv.z;
-  real near = r_max(r_max(r_min(t0x, t1x), r_min(t0y, t1y)),
-                    r_max(r_min(t0z, t1z), tmin));
-  real far = r_min(r_min(r_max(t0x, t1x), r_max(t0y, t1y)),
-                   r_min(r_max(t0z, t1z), tmax));
-  return near <= far * (real)1.0000005 ? near : (real)INFINITY;
+static inline void nearest_leaf(void *ctx, uint32_t ref, real *tmax) {
+  nearest_query *q = ctx;
+  hit_prim(q->s, GLINT_REF_SHAPE(ref), GLINT_REF_INDEX(ref), q->o, q->d, tmax,
+           q->hit, q->found);
 }
 
 int scalar_nearest_hit(const scene_r *s, vec3 o, vec3 d, real tmax,
@@ -265,61 +250,9 @@ int scalar_nearest_hit(const scene_r *s, vec3 o, vec3 d, real tmax,
       hit_prim(s, GLINT_SHAPE_CONE, (uint32_t)i, o, d, &tmax, hit, &found);
     return found;
   }
-  /* Front to back: at an inner node both children's boxes are tested and
-   * the nearer is visited first; the farther waits on the stack with its
-   * entry distance, and is skipped if a hit has come closer since. */
-  const glint_bvh_node *nodes = s->bvh->nodes;
-  if (nodes[0].count) { /* a single leaf: its box test would only cost */
-    for (uint32_t k = 0; k < nodes[0].count; k++) {
-      uint32_t ref = s->bvh->refs[k];
-      hit_prim(s, GLINT_REF_SHAPE(ref), GLINT_REF_INDEX(ref), o, d, &tmax, hit,
-               &found);
-    }
-    return found;
-  }
-  vec3 inv = safe_inverse(d);
-  struct {
-    uint32_t node;
-    real entry;
-  } stack[GLINT_BVH_MAX_DEPTH];
-  int sp = 0;
-  uint32_t node = 0;
-  if (box_entry(&nodes[0], o, inv, s->eps, tmax) > tmax)
-    return found;
-  for (;;) {
-    const glint_bvh_node *n = &nodes[node];
-    if (n->count == 0) {
-      uint32_t a = n->offset, b = n->offset + 1;
-      real ta = box_entry(&nodes[a], o, inv, s->eps, tmax);
-      real tb = box_entry(&nodes[b], o, inv, s->eps, tmax);
-      if (ta > tb) {
-        real tt = ta;
-        ta = tb, tb = tt;
-        uint32_t nn = a;
-        a = b, b = nn;
-      }
-      if (ta <= tmax) {
-        if (tb <= tmax) {
-          stack[sp].node = b;
-          stack[sp++].entry = tb;
-        }
-        node = a;
-        continue;
-      }
-    } else {
-      for (uint32_t k = 0; k < n->count; k++) {
-        uint32_t ref = s->bvh->refs[n->offset + k];
-        hit_prim(s, GLINT_REF_SHAPE(ref), GLINT_REF_INDEX(ref), o, d, &tmax,
-                 hit, &found);
-      }
-    }
-    do {
-      if (sp == 0)
-        return found;
-      --sp;
-    } while (stack[sp].entry > tmax);
-    node = stack[sp].node;
-  }
+  nearest_query q = {s, o, d, hit, &found};
+  bvh_closest(s->bvh, o, d, s->eps, &tmax, nearest_leaf, &q);
+  return found;
 }
 
 /* ---- shadow rays ------------------------------------------------------- */
@@ -388,6 +321,20 @@ static inline int cross_prim(const scene_r *s, shadow_acc *acc, uint32_t shape,
   }
 }
 
+/* What a segment walk's leaves need. */
+typedef struct segment_query {
+  const scene_r *s;
+  shadow_acc *acc;
+  vec3 o, d;
+  real dist;
+} segment_query;
+
+static inline int segment_leaf(void *ctx, uint32_t ref) {
+  segment_query *q = ctx;
+  return cross_prim(q->s, q->acc, GLINT_REF_SHAPE(ref), GLINT_REF_INDEX(ref),
+                    q->o, q->d, q->dist);
+}
+
 vec3 scalar_transmission(const scene_r *s, vec3 o, vec3 d, real dist) {
   shadow_acc acc = {v3(1, 1, 1), v3(0, 0, 0)};
   const vec3 black = v3(0, 0, 0);
@@ -409,30 +356,9 @@ vec3 scalar_transmission(const scene_r *s, vec3 o, vec3 d, real dist) {
       if (!cross_prim(s, &acc, GLINT_SHAPE_CONE, (uint32_t)i, o, d, dist))
         return black;
   } else {
-    /* Every node the segment passes through, in any order; the first opaque
-     * crossing ends the search. */
-    const glint_bvh_node *nodes = s->bvh->nodes;
-    vec3 inv = safe_inverse(d);
-    uint32_t stack[GLINT_BVH_MAX_DEPTH];
-    int sp = 0;
-    stack[sp++] = 0;
-    while (sp > 0) {
-      const glint_bvh_node *n = &nodes[stack[--sp]];
-      /* (a root that is a single leaf needs no box test) */
-      if (n != nodes && box_entry(n, o, inv, s->eps, dist) > dist)
-        continue;
-      if (n->count == 0) {
-        stack[sp++] = n->offset + 1;
-        stack[sp++] = n->offset;
-      } else {
-        for (uint32_t k = 0; k < n->count; k++) {
-          uint32_t ref = s->bvh->refs[n->offset + k];
-          if (!cross_prim(s, &acc, GLINT_REF_SHAPE(ref), GLINT_REF_INDEX(ref),
-                          o, d, dist))
-            return black;
-        }
-      }
-    }
+    segment_query q = {s, &acc, o, d, dist};
+    if (!bvh_segment(s->bvh, o, d, s->eps, dist, segment_leaf, &q))
+      return black;
   }
   if (acc.exponent.x == 0 && acc.exponent.y == 0 && acc.exponent.z == 0)
     return acc.kt;

@@ -34,7 +34,7 @@
  *
  * Compiled once per ISA, like the beam tracer. */
 #include "render/backend.h"
-#include "render/packet.h"
+#include "render/packet_shading.h"
 #include "render/primary.h"
 
 #include "core/error.h"

@@ -1,0 +1,144 @@
+/* BVH traversal for W rays at a time: the slab test of a packet against a
+ * node's box and the two walks every packet backend uses, written once:
+ * closest hit (front to back, boxes behind the lanes' hits skipped) and
+ * segment (every leaf a shadow packet's segments pass through, until every
+ * lane is blocked). The caller's leaf function tests a leaf's primitives. */
+#ifndef GLINT_ACCEL_PACKET_TRAVERSE_H
+#define GLINT_ACCEL_PACKET_TRAVERSE_H
+
+#include "accel/bvh.h"
+#include "simd/vvec3.h"
+
+#include "glint.h"
+
+/* Packet statistics: `tests` tests of `lanes` active lanes each. */
+static ALWAYS_INLINE void count_tests(glint_stats *st, size_t tests,
+                                      int lanes) {
+  st->packet_tests += tests;
+  st->active_lanes += (uint64_t)tests * (uint64_t)lanes;
+}
+
+/* What the slab tests of a packet need: 1/D (a zero component made tiny,
+ * so 0 * inf never makes a NaN) and -O/D. */
+typedef struct packet_inv {
+  vvec3 inv, neg_o_inv;
+  int neg[3]; /* the packet's direction sign per axis (first active lane) */
+} packet_inv;
+
+static ALWAYS_INLINE vfloat vf_nonzero(vfloat a) {
+  vfloat tiny = vf_set1(1e-30f);
+  vfloat signed_tiny = vi_as_vf(
+      vi_or(vf_bits(tiny), vi_and(vf_bits(a), vi_set1((int)0x80000000u))));
+  return vf_select(vf_lt(vf_abs(a), tiny), signed_tiny, a);
+}
+
+static ALWAYS_INLINE packet_inv packet_inverse(vvec3 o, vvec3 d, vmask active,
+                                               int newton) {
+  packet_inv r;
+  r.inv.x = vf_rcp(vf_nonzero(d.x), newton);
+  r.inv.y = vf_rcp(vf_nonzero(d.y), newton);
+  r.inv.z = vf_rcp(vf_nonzero(d.z), newton);
+  r.neg_o_inv = vv_neg(vv_mul(o, r.inv));
+  SIMD_ALIGN float dx[W], dy[W], dz[W];
+  vf_store(dx, d.x);
+  vf_store(dy, d.y);
+  vf_store(dz, d.z);
+  int lane = vm_any(active) ? vm_first(active) : 0;
+  r.neg[0] = dx[lane] < 0;
+  r.neg[1] = dy[lane] < 0;
+  r.neg[2] = dz[lane] < 0;
+  return r;
+}
+
+/* The slab test for all lanes of `active` against a node's box within
+ * (tmin, tmax). The far distance is widened by a few ulps so rounding in
+ * the reciprocal cannot cull a hit on the box's surface. */
+static ALWAYS_INLINE vmask packet_box(const glint_bvh_node *n,
+                                      const packet_inv *r, vfloat tmin,
+                                      vfloat tmax, vmask active) {
+  vfloat lx, ly, lz, hx, hy, hz, unused0, unused1;
+  vf_splat4(&n->lo[0], &lx, &ly, &lz, &hx);
+  vf_splat4(&n->hi[1], &hy, &hz, &unused0, &unused1);
+  vfloat t0x = vf_fmadd(lx, r->inv.x, r->neg_o_inv.x);
+  vfloat t1x = vf_fmadd(hx, r->inv.x, r->neg_o_inv.x);
+  vfloat t0y = vf_fmadd(ly, r->inv.y, r->neg_o_inv.y);
+  vfloat t1y = vf_fmadd(hy, r->inv.y, r->neg_o_inv.y);
+  vfloat t0z = vf_fmadd(lz, r->inv.z, r->neg_o_inv.z);
+  vfloat t1z = vf_fmadd(hz, r->inv.z, r->neg_o_inv.z);
+  vfloat near = vf_max(vf_max(vf_min(t0x, t1x), vf_min(t0y, t1y)),
+                       vf_max(vf_min(t0z, t1z), tmin));
+  vfloat far = vf_min(vf_min(vf_max(t0x, t1x), vf_max(t0y, t1y)),
+                      vf_min(vf_max(t0z, t1z), tmax));
+  return vm_and(active, vf_le(near, vf_mul(far, vf_set1(1.0000005f))));
+}
+
+/* Tests a leaf's primitive `ref` for the lanes of m (closest hit: narrowing
+ * the lanes' nearest distances that the walk reads through tmax). */
+typedef void (*packet_leaf_fn)(void *ctx, uint32_t ref, vmask m);
+
+/* The closest-hit walk, depth first: the child the packet's direction meets
+ * first is pushed last. A node's box is tested when it is popped, against
+ * the lanes' nearest hits so far (*tmax, which the leaf function narrows),
+ * so boxes behind a hit are skipped. */
+static ALWAYS_INLINE void packet_bvh_closest(const glint_bvh *bvh, vvec3 o,
+                                             vvec3 d, vmask active, vfloat tmin,
+                                             const vfloat *tmax, int newton,
+                                             glint_stats *st,
+                                             packet_leaf_fn leaf, void *ctx) {
+  int lanes = vm_count(active);
+  packet_inv r = packet_inverse(o, d, active, newton);
+  uint32_t stack[GLINT_BVH_MAX_DEPTH];
+  int sp = 0;
+  stack[sp++] = 0;
+  while (sp > 0) {
+    const glint_bvh_node *n = &bvh->nodes[stack[--sp]];
+    vmask m = packet_box(n, &r, tmin, *tmax, active);
+    count_tests(st, 1, lanes);
+    if (vm_none(m))
+      continue;
+    if (n->count == 0) {
+      int far = !r.neg[n->axis];
+      stack[sp++] = n->offset + (uint32_t)far;
+      stack[sp++] = n->offset + (uint32_t)!far;
+    } else {
+      count_tests(st, n->count, vm_count(m));
+      for (uint32_t k = 0; k < n->count; k++)
+        leaf(ctx, bvh->refs[n->offset + k], m);
+    }
+  }
+}
+
+/* The segment walk of shadow rays: every leaf the lanes' segments (tmin,
+ * tmax) pass through, in any order, until no lane is *alive. While a leaf's
+ * primitives are tested, *alive holds only the lanes inside its box; the
+ * leaf function clears the lanes it blocks. */
+static ALWAYS_INLINE void packet_bvh_segment(const glint_bvh *bvh, vvec3 o,
+                                             vvec3 d, vfloat tmin, vfloat tmax,
+                                             vmask *alive, int newton,
+                                             glint_stats *st,
+                                             packet_leaf_fn leaf, void *ctx) {
+  packet_inv r = packet_inverse(o, d, *alive, newton);
+  uint32_t stack[GLINT_BVH_MAX_DEPTH];
+  int sp = 0;
+  stack[sp++] = 0;
+  while (sp > 0 && vm_any(*alive)) {
+    const glint_bvh_node *n = &bvh->nodes[stack[--sp]];
+    vmask m = packet_box(n, &r, tmin, tmax, *alive);
+    count_tests(st, 1, vm_count(*alive));
+    if (vm_none(m))
+      continue;
+    if (n->count == 0) {
+      stack[sp++] = n->offset + 1;
+      stack[sp++] = n->offset;
+    } else {
+      vmask outside = vm_andnot(*alive, m); /* lanes not in this box */
+      *alive = m;
+      count_tests(st, n->count, vm_count(m));
+      for (uint32_t k = 0; k < n->count && vm_any(*alive); k++)
+        leaf(ctx, bvh->refs[n->offset + k], *alive);
+      *alive = vm_or(*alive, outside);
+    }
+  }
+}
+
+#endif

@@ -1,0 +1,187 @@
+/* Ray-primitive intersection for W rays at a time (thesis §4.1, listing
+ * 4.4): the packet forms of geometry/intersect.h's tests, against the
+ * packet scene's records (render/packet_scene.h). Each updates the lanes'
+ * nearest hits. */
+#ifndef GLINT_GEOMETRY_PACKET_INTERSECT_H
+#define GLINT_GEOMETRY_PACKET_INTERSECT_H
+
+#include "render/packet_scene.h"
+#include "scene/scene.h"
+#include "simd/vvec3.h"
+
+#include <float.h>
+
+typedef struct packet_hit {
+  vfloat t, u, v;
+  vint object; /* -1: no hit */
+  vint prim;
+  vmask inside; /* spheres: the ray started inside */
+} packet_hit;
+
+static ALWAYS_INLINE void packet_hit_init(packet_hit *h) {
+  h->t = vf_set1(FLT_MAX);
+  h->u = h->v = vf_zero();
+  h->object = vi_set1(-1);
+  h->prim = vi_set1(0);
+  h->inside = vm_false();
+}
+
+/* Algorithm 2.1 for all lanes against one sphere: updates the hits that are
+ * nearer than those found so far. */
+/* Spheres and planes record only the object: each is one primitive, so the
+ * object names it. */
+static ALWAYS_INLINE void packet_sphere(const psphere *sp, vvec3 o, vvec3 d,
+                                        vmask active, vfloat eps,
+                                        packet_hit *h) {
+  vvec3 v = vv_sub(vv_get(sp->center), o);
+  vfloat proj = vv_dot(v, d);
+  vvec3 perp = vv_madd(v, vf_neg(proj), d);
+  vfloat dist2 = vv_dot(perp, perp);
+  vfloat r2 = vs_get(&sp->r2);
+  vmask m = vm_and(active, vf_le(dist2, r2));
+  if (vm_none(m))
+    return; /* the thesis's early rejection, for the whole packet */
+  vfloat half = vf_sqrt(vf_sub(r2, dist2));
+  vfloat l1 = vf_sub(proj, half), l2 = vf_add(proj, half);
+  vmask outside = vf_gt(l1, eps);
+  vfloat t = vf_select(outside, l1, l2);
+  vmask win = vm_and(vm_and(m, vf_gt(l2, eps)), vf_lt(t, h->t));
+  h->t = vf_select(win, t, h->t);
+  h->object = vi_select(win, vi_set1(sp->object), h->object);
+  h->inside = vm_select(win, vm_andnot(vm_true(), outside), h->inside);
+}
+
+/* Eq. 2.5, the division by rcp (eq. 3.1). */
+static ALWAYS_INLINE void packet_plane(const pplane *pl, vvec3 o, vvec3 d,
+                                       vmask active, vfloat eps, int newton,
+                                       packet_hit *h) {
+  vvec3 n = vv_get(pl->n);
+  vfloat denom = vv_dot(n, d);
+  vfloat t = vf_mul(vf_neg(vf_add(vv_dot(n, o), vs_get(&pl->d))),
+                    vf_rcp(denom, newton));
+  vmask win = vm_and(vm_and(active, vf_neq(denom, vf_zero())),
+                     vm_and(vf_gt(t, eps), vf_lt(t, h->t)));
+  h->t = vf_select(win, t, h->t);
+  h->object = vi_select(win, vi_set1(pl->object), h->object);
+}
+
+/* Möller–Trumbore (eq. 2.6–2.8) refactored around the triangle's stored
+ * normal N = e1 x e2, as Embree's packet intersector does: with s = O - A
+ * and R = s x D, det = -D·N, u det = e2·R, v det = -e1·R, t det = s·N. One
+ * cross product per ray instead of two. The division is deferred: u, v and
+ * t are compared as multiples of |det| (its sign folded in), so lanes that
+ * miss never pay for the reciprocal. Returns the lanes that cross the
+ * triangle within (eps, tmax), with their t, u, v. */
+static ALWAYS_INLINE vmask packet_triangle_cross(const ptriangle *tr, vvec3 o,
+                                                 vvec3 d, vmask active,
+                                                 vfloat eps, vfloat tmax,
+                                                 int newton, vfloat *t,
+                                                 vfloat *u, vfloat *v) {
+  vvec3 n = vv_get(tr->n);
+  vfloat det = vf_neg(vv_dot(d, n));
+  vfloat sign = vi_as_vf(vi_and(vf_bits(det), vi_set1((int)0x80000000u)));
+  vfloat adet = vf_abs(det);
+  vvec3 s = vv_sub(o, vv_get(tr->a));
+  vvec3 r = vv_cross(s, d);
+  /* x ^ sign(det) multiplies x by the sign of det, exactly */
+  vfloat us =
+      vi_as_vf(vi_xor(vf_bits(vv_dot(vv_get(tr->e2), r)), vf_bits(sign)));
+  vmask m = vm_and(vm_and(active, vf_gt(adet, vf_zero())),
+                   vm_and(vf_ge(us, vf_zero()), vf_le(us, adet)));
+  if (vm_none(m))
+    return m;
+  vfloat vs = vi_as_vf(
+      vi_xor(vf_bits(vf_neg(vv_dot(vv_get(tr->e1), r))), vf_bits(sign)));
+  m = vm_and(m, vm_and(vf_ge(vs, vf_zero()), vf_le(vf_add(us, vs), adet)));
+  if (vm_none(m))
+    return m;
+  vfloat ts = vi_as_vf(vi_xor(vf_bits(vv_dot(s, n)), vf_bits(sign)));
+  m = vm_and(
+      m, vm_and(vf_gt(ts, vf_mul(eps, adet)), vf_lt(ts, vf_mul(tmax, adet))));
+  if (vm_none(m))
+    return m;
+  vfloat inv = vf_rcp(adet, newton);
+  *t = vf_mul(ts, inv);
+  *u = vf_mul(us, inv);
+  *v = vf_mul(vs, inv);
+  /* The reciprocal's last bit can push t to the limits it was tested
+   * against as a multiple of det: test again. */
+  return vm_and(m, vm_and(vf_gt(*t, eps), vf_lt(*t, tmax)));
+}
+
+static ALWAYS_INLINE void packet_triangle(const ptriangle *tr, uint32_t index,
+                                          vvec3 o, vvec3 d, vmask active,
+                                          vfloat eps, int newton,
+                                          packet_hit *h) {
+  vfloat t, u, v;
+  vmask win =
+      packet_triangle_cross(tr, o, d, active, eps, h->t, newton, &t, &u, &v);
+  if (vm_none(win))
+    return;
+  h->t = vf_select(win, t, h->t);
+  h->u = vf_select(win, u, h->u);
+  h->v = vf_select(win, v, h->v);
+  h->object = vi_select(win, vi_set1(tr->object), h->object);
+  h->prim = vi_select(win, vi_set1((int)index), h->prim);
+}
+
+/* The cone quadratic of cone_roots (geometry/intersect.h) for all lanes:
+ * the lanes with a first and a second crossing within (eps, tmax) and the
+ * height window, nearest first in *t0. */
+static ALWAYS_INLINE void packet_cone_roots(const pcone *c, vvec3 o, vvec3 d,
+                                            vmask active, vfloat eps,
+                                            vfloat tmax, vfloat *t0, vmask *m0,
+                                            vfloat *t1, vmask *m1) {
+  vvec3 axis = vv_get(c->axis);
+  vvec3 w = vv_sub(o, vv_get(c->base));
+  vfloat k = vs_get(&c->k), rb = vs_get(&c->rb), height = vs_get(&c->height);
+  vfloat wa = vv_dot(w, axis), da = vv_dot(d, axis);
+  vfloat rw = vf_fmadd(k, wa, rb);
+  vfloat qa = vf_fnmadd(vf_fmadd(k, k, vf_set1(1)), vf_mul(da, da), vf_set1(1));
+  vfloat qb = vf_mul(vf_set1(2), vf_fnmadd(vf_mul(k, da), rw,
+                                           vf_fnmadd(wa, da, vv_dot(w, d))));
+  vfloat qc = vf_fnmadd(rw, rw, vf_fnmadd(wa, wa, vv_dot(w, w)));
+  vfloat disc = vf_fnmadd(vf_mul(vf_set1(4), qa), qc, vf_mul(qb, qb));
+  vmask m = vm_and(active, vf_ge(disc, vf_zero()));
+  *m0 = *m1 = vm_false();
+  if (vm_none(m))
+    return;
+  vfloat sq = vf_sqrt(vf_max(disc, vf_zero()));
+  /* The stable pair: q = -(b + sign(b) sq) / 2, roots q/a and c/q, the
+   * divisions by rcp (eq. 3.1). Along a line of the surface (a ~ 0) the
+   * one root is -c/b. */
+  vfloat q = vf_mul(vf_set1(-0.5f), vf_select(vf_lt(qb, vf_zero()),
+                                              vf_sub(qb, sq), vf_add(qb, sq)));
+  vmask linear = vf_lt(vf_abs(qa), vf_set1(1e-12f));
+  vfloat ra = vf_mul(q, vf_rcp(qa, 1)), rc = vf_mul(qc, vf_rcp(q, 1));
+  vfloat a0 = vf_min(ra, rc), a1 = vf_max(ra, rc);
+  if (vm_any(vm_and(m, linear))) {
+    vfloat lin = vf_div(vf_neg(qc), qb);
+    a0 = vf_select(linear, lin, a0);
+    a1 = vf_select(linear, lin, a1);
+  }
+  vfloat h0 = vf_fmadd(a0, da, wa), h1 = vf_fmadd(a1, da, wa);
+  vmask v0 = vm_and(vm_and(m, vm_and(vf_gt(a0, eps), vf_lt(a0, tmax))),
+                    vm_and(vf_ge(h0, vf_zero()), vf_le(h0, height)));
+  vmask v1 = vm_and(
+      vm_and(vm_andnot(m, linear), vm_and(vf_gt(a1, eps), vf_lt(a1, tmax))),
+      vm_and(vf_ge(h1, vf_zero()), vf_le(h1, height)));
+  /* Nearest first. */
+  *t0 = vf_select(v0, a0, a1);
+  *m0 = vm_or(v0, v1);
+  *t1 = a1;
+  *m1 = vm_and(v0, v1);
+}
+
+static ALWAYS_INLINE void packet_cone(const pcone *c, vvec3 o, vvec3 d,
+                                      vmask active, vfloat eps, packet_hit *h) {
+  vfloat t0, t1;
+  vmask m0, m1;
+  packet_cone_roots(c, o, d, active, eps, h->t, &t0, &m0, &t1, &m1);
+  if (vm_none(m0))
+    return;
+  h->t = vf_select(m0, t0, h->t);
+  h->object = vi_select(m0, vi_set1(c->object), h->object);
+}
+
+#endif

@@ -1,0 +1,239 @@
+/* What W rays at once find in the packet scene: their nearest hits, and
+ * the transmission of shadow rays toward a light (SPEC §4); the packet
+ * forms of scalar_nearest_hit and scalar_transmission
+ * (render/scalar_scene.c). The BVH walks are accel/packet_traverse.h's. */
+#ifndef GLINT_RENDER_PACKET_RAYS_H
+#define GLINT_RENDER_PACKET_RAYS_H
+
+#include "accel/packet_traverse.h"
+#include "geometry/packet_intersect.h"
+#include "render/packet_scene.h"
+#include "scene/scene.h"
+#include "simd/vmath.h"
+
+/* One referenced primitive against the lanes of m. */
+static ALWAYS_INLINE void packet_prim(const packet_scene *ps, uint32_t ref,
+                                      vvec3 o, vvec3 d, vmask m, vfloat eps,
+                                      int newton, packet_hit *h) {
+  uint32_t i = GLINT_REF_INDEX(ref);
+  switch (GLINT_REF_SHAPE(ref)) {
+  case GLINT_SHAPE_SPHERE:
+    packet_sphere(&ps->spheres[i], o, d, m, eps, h);
+    break;
+  case GLINT_SHAPE_TRIANGLE:
+    packet_triangle(&ps->triangles[i], i, o, d, m, eps, newton, h);
+    break;
+  default: packet_cone(&ps->cones[i], o, d, m, eps, h); break;
+  }
+}
+
+/* What a closest-hit walk's leaves need. */
+typedef struct nearest_query {
+  const packet_scene *ps;
+  vvec3 o, d;
+  vfloat eps;
+  int newton;
+  packet_hit *h;
+} nearest_query;
+
+static ALWAYS_INLINE void nearest_leaf(void *ctx, uint32_t ref, vmask m) {
+  nearest_query *q = ctx;
+  packet_prim(q->ps, ref, q->o, q->d, m, q->eps, q->newton, q->h);
+}
+
+/* The lanes' nearest hits: the planes (unbounded, outside the BVH), then
+ * the BVH's primitives, or every primitive when there is no BVH (the
+ * thesis's brute force, §4.3). */
+static ALWAYS_INLINE void packet_nearest(const packet_scene *ps, vvec3 o,
+                                         vvec3 d, vmask active, int newton,
+                                         packet_hit *h, glint_stats *st) {
+  const scene_r *s = ps->s;
+  packet_hit_init(h);
+  vfloat eps = vs_get(&ps->eps);
+  int lanes = vm_count(active);
+  count_tests(st, s->plane_count, lanes);
+  for (size_t i = 0; i < s->plane_count; i++)
+    packet_plane(&ps->planes[i], o, d, active, eps, newton, h);
+  const glint_bvh *bvh = s->bvh;
+  if (bvh->node_count == 0) {
+    count_tests(st, s->sphere_count + s->triangle_count + s->cone_count, lanes);
+    for (size_t i = 0; i < s->sphere_count; i++)
+      packet_sphere(&ps->spheres[i], o, d, active, eps, h);
+    for (size_t i = 0; i < s->triangle_count; i++)
+      packet_triangle(&ps->triangles[i], (uint32_t)i, o, d, active, eps, newton,
+                      h);
+    for (size_t i = 0; i < s->cone_count; i++)
+      packet_cone(&ps->cones[i], o, d, active, eps, h);
+    return;
+  }
+  nearest_query q = {ps, o, d, eps, newton, h};
+  packet_bvh_closest(bvh, o, d, active, eps, &h->t, newton, st, nearest_leaf,
+                     &q);
+}
+
+/* ---- shadow rays ------------------------------------------------------ */
+
+/* SPEC §4's transmission toward a light, for W shadow rays at once (the
+ * scalar_transmission of scalar_scene.c, lane-parallel): each opaque crossing
+ * kills its lane; each transparent one multiplies by kt and adds to the Beer
+ * exponent (+a t entering, -a t leaving). */
+typedef struct shadow_state {
+  vvec3 kt, exponent;
+  vmask alive;
+  int absorbed; /* bit c: channel c met an absorbing surface */
+} shadow_state;
+
+static ALWAYS_INLINE void shadow_cross(const packet_scene *ps, int object,
+                                       vmask crossing, vfloat t, vmask entering,
+                                       shadow_state *sh) {
+  if (vm_none(crossing))
+    return;
+  uint32_t mi = ps->s->objects[object].material;
+  const material_r *m = &ps->s->materials[mi];
+  if (m->kt == 0) {
+    sh->alive = vm_andnot(sh->alive, crossing);
+    return;
+  }
+  const pmaterial *pm = &ps->materials[mi];
+  vfloat k = vf_select(crossing, vs_get(&pm->kt), vf_set1(1));
+  sh->kt = vv_scale(sh->kt, k);
+  if (m->absorbs) {
+    vfloat signed_t = vf_select(entering, t, vf_neg(t));
+    vfloat st = vf_keep(crossing, signed_t);
+    sh->exponent = vv_madd(sh->exponent, st, vv_get(pm->absorb));
+    sh->absorbed |=
+        (m->absorb.x != 0) | (m->absorb.y != 0) << 1 | (m->absorb.z != 0) << 2;
+  }
+}
+
+/* Every crossing of one primitive by the shadow lanes within (eps, dist). */
+static ALWAYS_INLINE void packet_cross_prim(const packet_scene *ps,
+                                            uint32_t shape, uint32_t i, vvec3 o,
+                                            vvec3 d, vfloat dist, vfloat eps,
+                                            int newton, shadow_state *sh) {
+  switch (shape) {
+  case GLINT_SHAPE_SPHERE: {
+    const psphere *sp = &ps->spheres[i];
+    vvec3 v = vv_sub(vv_get(sp->center), o);
+    vfloat proj = vv_dot(v, d);
+    vvec3 perp = vv_madd(v, vf_neg(proj), d);
+    vfloat dist2 = vv_dot(perp, perp);
+    vfloat r2 = vs_get(&sp->r2);
+    vmask m = vm_and(sh->alive, vf_le(dist2, r2));
+    if (vm_none(m))
+      return;
+    vfloat half = vf_sqrt(vf_sub(r2, dist2));
+    vfloat l1 = vf_sub(proj, half), l2 = vf_add(proj, half);
+    vmask c1 = vm_and(m, vm_and(vf_gt(l1, eps), vf_lt(l1, dist)));
+    vmask c2 = vm_and(m, vm_and(vf_gt(l2, eps), vf_lt(l2, dist)));
+    shadow_cross(ps, sp->object, c1, l1, vm_true(), sh);
+    shadow_cross(ps, sp->object, c2, l2, vm_false(), sh);
+    break;
+  }
+  case GLINT_SHAPE_TRIANGLE: {
+    const ptriangle *tr = &ps->triangles[i];
+    vfloat t, u, v;
+    vmask c = packet_triangle_cross(tr, o, d, sh->alive, eps, dist, newton, &t,
+                                    &u, &v);
+    /* Entering: against the normal, which the unnormalised one shares. */
+    shadow_cross(ps, tr->object, c, t,
+                 vf_lt(vv_dot(vv_get(tr->n), d), vf_zero()), sh);
+    break;
+  }
+  default: {
+    const pcone *c = &ps->cones[i];
+    vfloat t0, t1;
+    vmask m0, m1;
+    packet_cone_roots(c, o, d, sh->alive, eps, dist, &t0, &m0, &t1, &m1);
+    if (vm_none(m0))
+      break;
+    if (ps->s->materials[ps->s->objects[c->object].material].kt == 0) {
+      /* opaque: no need to know which side is entered */
+      shadow_cross(ps, c->object, m0, t0, vm_true(), sh);
+      break;
+    }
+    for (int k = 0; k < 2 && vm_any(k ? m1 : m0); k++) {
+      vfloat t = k ? t1 : t0;
+      vvec3 q = vv_sub(vv_madd(o, t, d), vv_get(c->base));
+      vvec3 axis = vv_get(c->axis);
+      vfloat hq = vv_dot(q, axis);
+      vfloat kk = vs_get(&c->k);
+      vvec3 n = vv_madd(
+          q, vf_neg(vf_fmadd(kk, vf_fmadd(kk, hq, vs_get(&c->rb)), hq)), axis);
+      shadow_cross(ps, c->object, k ? m1 : m0, t,
+                   vf_lt(vv_dot(n, d), vf_zero()), sh);
+    }
+    break;
+  }
+  }
+}
+
+/* What a segment walk's leaves need. */
+typedef struct segment_query {
+  const packet_scene *ps;
+  vvec3 o, d;
+  vfloat dist, eps;
+  int newton;
+  shadow_state *sh;
+} segment_query;
+
+static ALWAYS_INLINE void segment_leaf(void *ctx, uint32_t ref, vmask alive) {
+  (void)alive; /* the walk keeps it in q->sh->alive */
+  segment_query *q = ctx;
+  packet_cross_prim(q->ps, GLINT_REF_SHAPE(ref), GLINT_REF_INDEX(ref), q->o,
+                    q->d, q->dist, q->eps, q->newton, q->sh);
+}
+
+static ALWAYS_INLINE vvec3 packet_transmission(const packet_scene *ps, vvec3 o,
+                                               vvec3 d, vfloat dist,
+                                               vmask active, glint_math math,
+                                               int newton, glint_stats *st) {
+  const scene_r *s = ps->s;
+  shadow_state sh = {{vf_set1(1), vf_set1(1), vf_set1(1)},
+                     {vf_zero(), vf_zero(), vf_zero()},
+                     active,
+                     0};
+  vfloat eps = vs_get(&ps->eps);
+  int lanes = vm_count(active);
+  count_tests(st, s->plane_count, lanes);
+  for (size_t i = 0; i < s->plane_count && vm_any(sh.alive); i++) {
+    const pplane *pl = &ps->planes[i];
+    vvec3 n = vv_get(pl->n);
+    vfloat denom = vv_dot(n, d);
+    vfloat t = vf_mul(vf_neg(vf_add(vv_dot(n, o), vs_get(&pl->d))),
+                      vf_rcp(denom, newton));
+    vmask c = vm_and(vm_and(sh.alive, vf_neq(denom, vf_zero())),
+                     vm_and(vf_gt(t, eps), vf_lt(t, dist)));
+    shadow_cross(ps, pl->object, c, t, vf_lt(denom, vf_zero()), &sh);
+  }
+  const glint_bvh *bvh = s->bvh;
+  if (bvh->node_count == 0) {
+    count_tests(st, s->sphere_count + s->triangle_count + s->cone_count, lanes);
+    for (size_t i = 0; i < s->sphere_count && vm_any(sh.alive); i++)
+      packet_cross_prim(ps, GLINT_SHAPE_SPHERE, (uint32_t)i, o, d, dist, eps,
+                        newton, &sh);
+    for (size_t i = 0; i < s->triangle_count && vm_any(sh.alive); i++)
+      packet_cross_prim(ps, GLINT_SHAPE_TRIANGLE, (uint32_t)i, o, d, dist, eps,
+                        newton, &sh);
+    for (size_t i = 0; i < s->cone_count && vm_any(sh.alive); i++)
+      packet_cross_prim(ps, GLINT_SHAPE_CONE, (uint32_t)i, o, d, dist, eps,
+                        newton, &sh);
+  } else if (vm_any(sh.alive)) {
+    segment_query q = {ps, o, d, dist, eps, newton, &sh};
+    packet_bvh_segment(bvh, o, d, eps, dist, &sh.alive, newton, st,
+                       segment_leaf, &q);
+  }
+  vvec3 z = {vf_zero(), vf_zero(), vf_zero()};
+  if (vm_none(sh.alive))
+    return z;
+  vvec3 r = sh.kt;
+  if (sh.absorbed & 1)
+    r.x = vf_mul(r.x, vm_exp(vf_min(sh.exponent.x, vf_zero()), math));
+  if (sh.absorbed & 2)
+    r.y = vf_mul(r.y, vm_exp(vf_min(sh.exponent.y, vf_zero()), math));
+  if (sh.absorbed & 4)
+    r.z = vf_mul(r.z, vm_exp(vf_min(sh.exponent.z, vf_zero()), math));
+  return vv_select(sh.alive, r, z);
+}
+
+#endif
