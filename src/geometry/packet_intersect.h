@@ -184,4 +184,23 @@ static ALWAYS_INLINE void packet_cone(const pcone *c, vvec3 o, vvec3 d,
   h->object = vi_select(m0, vi_set1(c->object), h->object);
 }
 
+/* ---- surface normals ---------------------------------------------------- */
+
+/* A sphere's outward unit normal at p. Normalised, not scaled by 1/r: see
+ * surface_at in render/scalar_tracer.c. */
+static ALWAYS_INLINE vvec3 packet_sphere_normal(vvec3 center, vvec3 p,
+                                                int newton) {
+  return vv_normalize(vv_sub(p, center), newton);
+}
+
+/* A cone's outward normal at p, not normalised:
+ * q - h a - k (rb + k h) a with q = p - base, h = q.a (cone_normal in
+ * geometry/intersect.h). */
+static ALWAYS_INLINE vvec3 packet_cone_normal(vvec3 base, vvec3 axis,
+                                              vfloat rb, vfloat k, vvec3 p) {
+  vvec3 q = vv_sub(p, base);
+  vfloat hq = vv_dot(q, axis);
+  return vv_madd(q, vf_neg(vf_fmadd(k, vf_fmadd(k, hq, rb), hq)), axis);
+}
+
 #endif

@@ -35,14 +35,12 @@ finish_sub_beam(const beam_ctx *c, vvec3 d, const packet_hit *h,
                 vvec3 color, vvec3 *out, glint_math math, trace_fn trace) {
   const packet_scene *ps = c->ps;
   const scene_r *s = ps->s;
-  const object_r *ob = &s->objects[object];
-  const material_r *mat = &s->materials[ob->material];
-  const pmaterial *pm = &ps->materials[ob->material];
-  if (level < c->max_depth && (mat->kr > 0 || mat->kt > 0)) {
+  lane_material lm = lane_material_uniform(ps, s->objects[object].material);
+  if (level < c->max_depth && (lm.m->kr > 0 || lm.m->kt > 0)) {
     vvec3 reflected, refracted;
     vfloat kr;
     vmask refract, tir;
-    packet_secondary(mat, pm, f, d, sub, &reflected, &kr, &refracted, &refract,
+    packet_secondary(&lm, f, d, sub, &reflected, &kr, &refracted, &refract,
                      &tir);
     c->st->total_internal_reflections += (uint64_t)vm_count(tir);
     if (vm_any(refract)) {
@@ -50,7 +48,7 @@ finish_sub_beam(const beam_ctx *c, vvec3 d, const packet_hit *h,
       c->st->secondary_rays += (uint64_t)vm_count(refract);
       c->st->refracted_rays += (uint64_t)vm_count(refract);
       trace(c, &f->p, &refracted, refract, level + 1, &ct);
-      vfloat kt = vf_keep(refract, vs_get(&pm->kt));
+      vfloat kt = vf_keep(refract, LANE_SCALAR(&lm, kt));
       color = vv_madd(color, kt, ct);
     }
     vmask reflect = vm_and(sub, vf_gt(kr, vf_zero()));
@@ -62,7 +60,7 @@ finish_sub_beam(const beam_ctx *c, vvec3 d, const packet_hit *h,
       color = vv_madd(color, vf_keep(reflect, kr), cr);
     }
   }
-  color = packet_beer(mat, pm, f, h->t, sub, color, math);
+  color = packet_beer(&lm, f, h->t, sub, color, math);
   *out = vv_select(sub, color, *out);
 }
 
@@ -108,18 +106,18 @@ static ALWAYS_INLINE void trace_beam_body(const beam_ctx *c, vvec3 o, vvec3 d,
     todo = vm_andnot(todo, sub);
     c->st->sub_beams++;
     const object_r *ob = &s->objects[object];
-    const material_r *mat = &s->materials[ob->material];
-    const pmaterial *pm = &ps->materials[ob->material];
-    packet_surface fk = packet_surface_at(ps, ob, &h, o, d, newton);
+    lane_material lm = lane_material_uniform(ps, ob->material);
+    lane_object lo = lane_object_uniform(ob);
+    packet_surface fk = packet_surface_object(ps, ob, &h, o, d, newton);
     f.p = vv_select(sub, fk.p, f.p);
     f.n = vv_select(sub, fk.n, f.n);
     f.front = vm_select(sub, fk.front, f.front);
-    base = vv_select(sub, packet_color(mat, pm, ob, fk.p), base);
-    ambient = vv_select(sub, vv_get(pm->ambient), ambient);
-    kd = vf_select(sub, vs_get(&pm->kd), kd);
-    if (mat->ks > 0) {
-      ks = vf_select(sub, vs_get(&pm->ks), ks);
-      hexp = vf_select(sub, vs_get(&pm->h), hexp);
+    base = vv_select(sub, packet_color(&lm, &lo, fk.p, sub), base);
+    ambient = vv_select(sub, LANE_VEC3(&lm, ambient), ambient);
+    kd = vf_select(sub, LANE_SCALAR(&lm, kd), kd);
+    if (lm.m->ks > 0) {
+      ks = vf_select(sub, LANE_SCALAR(&lm, ks), ks);
+      hexp = vf_select(sub, LANE_SCALAR(&lm, h), hexp);
       any_highlight = 1;
     }
     sub_object[nsub] = object;

@@ -14,32 +14,142 @@
 #include <stddef.h>
 #include <x86intrin.h>
 
-/* ---- surfaces and local shading -------------------------------------- */
+/* ---- per-lane materials and objects ----------------------------------- */
 
-/* Where the lanes of a sub-beam met one object, with the normal facing the
- * ray. */
+#define FLOATS_OF(type) ((int)(sizeof(type) / sizeof(float)))
+#define FLOAT_OFFSET(type, field) ((int)(offsetof(type, field) / sizeof(float)))
+
+static ALWAYS_INLINE vfloat gather_f(const void *base, vint index, int stride,
+                                     int offset) {
+  return vf_gather((const float *)base,
+                   vi_add(vi_mul_const(index, stride), vi_set1(offset)));
+}
+
+static ALWAYS_INLINE vint gather_i(const void *base, vint index, int stride,
+                                   int offset) {
+  return vf_bits(gather_f(base, index, stride, offset));
+}
+
+/* The material coefficients of each lane. The shading functions below read
+ * only these, so one implementation serves a packet that hit one material
+ * (a beam's sub-beam, most of a stream's packets: the values broadcast) and
+ * a packet whose lanes hit different ones (gathered per lane). */
+typedef struct lane_material {
+  /* Uniform: the one material, read (broadcast) where it is used, so a
+   * beam pays only for the coefficients it needs. */
+  int uniform;
+  const material_r *m; /* NULL when mixed */
+  const pmaterial *pm;
+  /* Mixed: the gathered coefficients. */
+  vvec3 color, odd, even, ambient, absorb;
+  vfloat inv_size, kd, ks, h, kr, kt, kr_tir, eta_in, eta_out;
+  vint texture;
+} lane_material;
+
+/* A coefficient of every lane, whichever form the packet has. */
+#define LANE_SCALAR(lm, field)                                                 \
+  ((lm)->uniform ? vs_get(&(lm)->pm->field) : (lm)->field)
+#define LANE_VEC3(lm, field)                                                   \
+  ((lm)->uniform ? vv_get((lm)->pm->field) : (lm)->field)
+
+/* Where a lane's textures are anchored: the object's solid-texture origin
+ * and the world axes of its planar texture. */
+typedef struct lane_object {
+  vvec3 origin;
+  vint axis_u, axis_v;
+  const object_r *ob; /* a uniform packet's one object; NULL: mixed */
+} lane_object;
+
+static ALWAYS_INLINE lane_material lane_material_uniform(const packet_scene *ps,
+                                                         uint32_t id) {
+  lane_material lm;
+  lm.uniform = 1;
+  lm.m = &ps->s->materials[id];
+  lm.pm = &ps->materials[id];
+  return lm;
+}
+
+/* Material mi[lane] for the lanes of `hits` (the others read material 0):
+ * broadcast when they all hit one material, gathered otherwise. */
+static ALWAYS_INLINE lane_material lane_material_gather(const packet_scene *ps,
+                                                        vint mi, vmask hits) {
+  SIMD_ALIGN int32_t ids[W];
+  vi_store(ids, mi);
+  int id = ids[vm_first(hits)];
+  if (vm_none(vm_andnot(hits, vi_eq(mi, vi_set1(id)))))
+    return lane_material_uniform(ps, (uint32_t)id);
+  const scene_r *s = ps->s;
+  const material_r *mb = s->materials;
+  const int stride = FLOATS_OF(material_r);
+  lane_material lm;
+  lm.uniform = 0;
+  lm.m = NULL;
+  lm.pm = NULL;
+  lm.color =
+      vv_gather((const float *)mb, mi, stride, FLOAT_OFFSET(material_r, color));
+  lm.odd =
+      vv_gather((const float *)mb, mi, stride, FLOAT_OFFSET(material_r, odd));
+  lm.even =
+      vv_gather((const float *)mb, mi, stride, FLOAT_OFFSET(material_r, even));
+  lm.absorb = vv_gather((const float *)mb, mi, stride,
+                        FLOAT_OFFSET(material_r, absorb));
+  lm.inv_size = gather_f(mb, mi, stride, FLOAT_OFFSET(material_r, inv_size));
+  vfloat ka = gather_f(mb, mi, stride, FLOAT_OFFSET(material_r, ka));
+  lm.ambient = vv_scale(vv_set1(s->ambient), ka);
+  lm.kd = gather_f(mb, mi, stride, FLOAT_OFFSET(material_r, kd));
+  lm.ks = gather_f(mb, mi, stride, FLOAT_OFFSET(material_r, ks));
+  lm.h = gather_f(mb, mi, stride, FLOAT_OFFSET(material_r, h));
+  lm.kr = gather_f(mb, mi, stride, FLOAT_OFFSET(material_r, kr));
+  lm.kt = gather_f(mb, mi, stride, FLOAT_OFFSET(material_r, kt));
+  lm.kr_tir = vf_add(lm.kr, lm.kt);
+  /* As packet_scene.c computes them: 1/ior entering, ior leaving. */
+  lm.eta_out = gather_f(mb, mi, stride, FLOAT_OFFSET(material_r, ior));
+  lm.eta_in = vf_div(vf_set1(1), lm.eta_out);
+  lm.texture = gather_i(mb, mi, stride, FLOAT_OFFSET(material_r, texture));
+  return lm;
+}
+
+static ALWAYS_INLINE lane_object lane_object_uniform(const object_r *ob) {
+  lane_object lo = {vv_set1(ob->origin), vi_set1(ob->axis_u),
+                    vi_set1(ob->axis_v), ob};
+  return lo;
+}
+
+/* ---- surfaces ----------------------------------------------------------- */
+
+/* Where the lanes met their surfaces, with the normal facing the ray. */
 typedef struct packet_surface {
   vvec3 p, n;
   vmask front; /* hit the outside: entering a closed object */
 } packet_surface;
 
-#define FLOATS_OF(type) ((int)(sizeof(type) / sizeof(float)))
-#define FLOAT_OFFSET(type, field) ((int)(offsetof(type, field) / sizeof(float)))
+/* Interpolated vertex normals (NFF polygonal patches) of the triangles
+ * whose first normal index is n0 (x3 floats), facing the ray. */
+static ALWAYS_INLINE vvec3 packet_smooth_normal(const scene_r *s, vint n0,
+                                                const packet_hit *h, vvec3 d,
+                                                int newton) {
+  const float *nb = (const float *)s->normals;
+  vvec3 a = vv_gather(nb, n0, 1, 0);
+  vvec3 b = vv_gather(nb, n0, 1, 3);
+  vvec3 c = vv_gather(nb, n0, 1, 6);
+  vfloat w = vf_sub(vf_sub(vf_set1(1), h->u), h->v);
+  vvec3 n =
+      vv_normalize(vv_madd(vv_madd(vv_scale(a, w), h->u, b), h->v, c), newton);
+  return vv_select(vf_lt(vv_dot(n, d), vf_zero()), n, vv_neg(n));
+}
 
-static ALWAYS_INLINE packet_surface packet_surface_at(const packet_scene *ps,
-                                                      const object_r *ob,
-                                                      const packet_hit *h,
-                                                      vvec3 o, vvec3 d,
-                                                      int newton) {
+/* The surface of lanes that all hit one object. */
+static ALWAYS_INLINE packet_surface
+packet_surface_object(const packet_scene *ps, const object_r *ob,
+                      const packet_hit *h, vvec3 o, vvec3 d, int newton) {
   const scene_r *s = ps->s;
   packet_surface f;
   f.p = vv_madd(o, h->t, d);
   vvec3 ng;
   switch (ob->shape) {
   case GLINT_SHAPE_SPHERE:
-    /* Normalised, not scaled by 1/r: see surface_at in scalar_tracer.c. */
-    ng = vv_normalize(vv_sub(f.p, vv_get(ps->spheres[ob->first].center)),
-                      newton);
+    ng = packet_sphere_normal(vv_get(ps->spheres[ob->first].center), f.p,
+                              newton);
     f.front = vm_andnot(vm_true(), h->inside);
     break;
   case GLINT_SHAPE_PLANE:
@@ -47,15 +157,10 @@ static ALWAYS_INLINE packet_surface packet_surface_at(const packet_scene *ps,
     f.front = vf_lt(vv_dot(ng, d), vf_zero());
     break;
   case GLINT_SHAPE_CONE: {
-    /* q - h a - k (rb + k h) a: see cone_normal in geometry/intersect.h */
     const pcone *c = &ps->cones[ob->first];
-    vvec3 axis = vv_get(c->axis);
-    vvec3 q = vv_sub(f.p, vv_get(c->base));
-    vfloat hq = vv_dot(q, axis), k = vs_get(&c->k);
-    ng = vv_normalize(
-        vv_madd(q, vf_neg(vf_fmadd(k, vf_fmadd(k, hq, vs_get(&c->rb)), hq)),
-                axis),
-        newton);
+    ng = vv_normalize(packet_cone_normal(vv_get(c->base), vv_get(c->axis),
+                                         vs_get(&c->rb), vs_get(&c->k), f.p),
+                      newton);
     f.front = vf_lt(vv_dot(ng, d), vf_zero());
     break;
   }
@@ -67,22 +172,11 @@ static ALWAYS_INLINE packet_surface packet_surface_at(const packet_scene *ps,
                      FLOATS_OF(triangle_r), FLOAT_OFFSET(triangle_r, ng));
     f.front = vf_lt(vv_dot(ng, d), vf_zero());
     if (ob->smooth) {
-      /* Interpolated vertex normals (NFF polygonal patches). */
-      vint n0 = vf_bits(
-          vf_gather((const float *)s->triangles,
-                    vi_add(vi_mul_const(h->prim, FLOATS_OF(triangle_r)),
-                           vi_set1(FLOAT_OFFSET(triangle_r, normals)))));
+      vint n0 = gather_i(s->triangles, h->prim, FLOATS_OF(triangle_r),
+                         FLOAT_OFFSET(triangle_r, normals));
       /* Lanes outside the sub-beam may hold a flat triangle's -1. */
       n0 = vi_mul_const(vi_select(vi_eq(n0, vi_set1(-1)), vi_set1(0), n0), 3);
-      const float *nb = (const float *)s->normals;
-      vvec3 a = vv_gather(nb, n0, 1, 0);
-      vvec3 b = vv_gather(nb, n0, 1, 3);
-      vvec3 c = vv_gather(nb, n0, 1, 6);
-      vfloat w = vf_sub(vf_sub(vf_set1(1), h->u), h->v);
-      vvec3 n = vv_madd(vv_madd(vv_scale(a, w), h->u, b), h->v, c);
-      n = vv_normalize(n, newton);
-      vmask facing = vf_lt(vv_dot(n, d), vf_zero());
-      f.n = vv_select(facing, n, vv_neg(n));
+      f.n = packet_smooth_normal(s, n0, h, d, newton);
       return f;
     }
     break;
@@ -91,32 +185,155 @@ static ALWAYS_INLINE packet_surface packet_surface_at(const packet_scene *ps,
   return f;
 }
 
+/* The surface of lanes that hit different objects (a stream's mixed
+ * packet): each shape's lanes computed under a mask. Also gives each lane's
+ * material index and texture anchor. */
+static ALWAYS_INLINE packet_surface packet_surface_lanes(
+    const packet_scene *ps, const packet_hit *h, vmask hits, vvec3 o, vvec3 d,
+    int newton, vint *material, lane_object *lo) {
+  const scene_r *s = ps->s;
+  packet_surface f;
+  f.p = vv_madd(o, h->t, d);
+  vint obj = vi_select(hits, h->object, vi_set1(0)); /* misses: object 0 */
+  const object_r *ob = s->objects;
+  const int os = FLOATS_OF(object_r);
+  vint shape = gather_i(ob, obj, os, FLOAT_OFFSET(object_r, shape));
+  vint first = gather_i(ob, obj, os, FLOAT_OFFSET(object_r, first));
+  /* Each shape's gathers index its own array with the lanes of that shape
+   * only; the others read element 0, never past an array's end. */
+  const vint none = vi_set1(0);
+  *material = gather_i(ob, obj, os, FLOAT_OFFSET(object_r, material));
+  lo->origin =
+      vv_gather((const float *)ob, obj, os, FLOAT_OFFSET(object_r, origin));
+  lo->axis_u = gather_i(ob, obj, os, FLOAT_OFFSET(object_r, axis_u));
+  lo->axis_v = gather_i(ob, obj, os, FLOAT_OFFSET(object_r, axis_v));
+  lo->ob = NULL;
+  vvec3 zero = {vf_zero(), vf_zero(), vf_zero()};
+  vvec3 ng = zero, n = zero;
+  f.front = vm_false();
+  vmask smooth_done = vm_false();
+
+  vmask sph = vm_and(hits, vi_eq(shape, vi_set1(GLINT_SHAPE_SPHERE)));
+  if (vm_any(sph)) {
+    vvec3 c = vv_gather((const float *)s->spheres, vi_select(sph, first, none),
+                        FLOATS_OF(sphere_r), FLOAT_OFFSET(sphere_r, center));
+    ng = vv_select(sph, packet_sphere_normal(c, f.p, newton), ng);
+    f.front = vm_select(sph, vm_andnot(vm_true(), h->inside), f.front);
+  }
+  vmask pla = vm_and(hits, vi_eq(shape, vi_set1(GLINT_SHAPE_PLANE)));
+  if (vm_any(pla)) {
+    vvec3 g = vv_gather((const float *)s->planes, vi_select(pla, first, none),
+                        FLOATS_OF(plane_r), FLOAT_OFFSET(plane_r, n));
+    ng = vv_select(pla, g, ng);
+    f.front = vm_select(pla, vf_lt(vv_dot(g, d), vf_zero()), f.front);
+  }
+  vmask tri = vm_and(hits, vi_eq(shape, vi_set1(GLINT_SHAPE_TRIANGLE)));
+  if (vm_any(tri)) {
+    vint prim = vi_select(tri, h->prim, none);
+    vvec3 g = vv_gather((const float *)s->triangles, prim,
+                        FLOATS_OF(triangle_r), FLOAT_OFFSET(triangle_r, ng));
+    ng = vv_select(tri, g, ng);
+    f.front = vm_select(tri, vf_lt(vv_dot(g, d), vf_zero()), f.front);
+    vint nidx = gather_i(s->triangles, prim, FLOATS_OF(triangle_r),
+                         FLOAT_OFFSET(triangle_r, normals));
+    vmask smooth = vm_andnot(tri, vi_eq(nidx, vi_set1(-1)));
+    if (vm_any(smooth)) {
+      vint n0 = vi_mul_const(vi_select(smooth, nidx, none), 3);
+      n = vv_select(smooth, packet_smooth_normal(s, n0, h, d, newton), n);
+      smooth_done = smooth;
+    }
+  }
+  vmask con = vm_and(hits, vi_eq(shape, vi_set1(GLINT_SHAPE_CONE)));
+  if (vm_any(con)) {
+    const float *cb = (const float *)s->cones;
+    int stride = FLOATS_OF(cone_r);
+    first = vi_select(con, first, none);
+    vvec3 g = vv_normalize(
+        packet_cone_normal(
+            vv_gather(cb, first, stride, FLOAT_OFFSET(cone_r, base)),
+            vv_gather(cb, first, stride, FLOAT_OFFSET(cone_r, axis)),
+            gather_f(cb, first, stride, FLOAT_OFFSET(cone_r, rb)),
+            gather_f(cb, first, stride, FLOAT_OFFSET(cone_r, k)), f.p),
+        newton);
+    ng = vv_select(con, g, ng);
+    f.front = vm_select(con, vf_lt(vv_dot(g, d), vf_zero()), f.front);
+  }
+  f.n = vv_select(smooth_done, n, vv_select(f.front, ng, vv_neg(ng)));
+  return f;
+}
+
+/* ---- textures ----------------------------------------------------------- */
+
 /* floor(a) mod 2, as 0 or 1, without integer conversion (exact while the
  * cell index fits a float's 24 bits; farther out every index is even). */
 static ALWAYS_INLINE vfloat vf_parity(vfloat f) {
   return vf_fnmadd(vf_set1(2), vf_floor(vf_mul(f, vf_set1(0.5f))), f);
 }
 
-/* The surface colour C (SPEC §4 textures) for one material: the parity of
- * the sum of the cell indices picks the checker colour. */
-static ALWAYS_INLINE vvec3 packet_color(const material_r *m,
-                                        const pmaterial *pm, const object_r *ob,
-                                        vvec3 p) {
-  if (m->texture == GLINT_TEXTURE_NONE)
-    return vv_get(pm->color);
-  vfloat cells;
-  vfloat inv = vs_get(&pm->inv_size);
-  if (m->texture == GLINT_TEXTURE_CHECKER_PLANAR) {
-    vfloat axes[3] = {p.x, p.y, p.z};
-    cells = vf_add(vf_floor(vf_mul(axes[ob->axis_u], inv)),
-                   vf_floor(vf_mul(axes[ob->axis_v], inv)));
-  } else {
-    vvec3 q = vv_scale(vv_sub(p, vv_set1(ob->origin)), inv);
-    cells = vf_add(vf_add(vf_floor(q.x), vf_floor(q.y)), vf_floor(q.z));
-  }
-  vmask odd = vf_eq(vf_parity(cells), vf_set1(1));
-  return vv_select(odd, vv_get(pm->odd), vv_get(pm->even));
+/* Component `axis` (0, 1, 2 per lane) of p. */
+static ALWAYS_INLINE vfloat vv_component(vvec3 p, vint axis) {
+  return vf_select(vi_eq(axis, vi_set1(0)), p.x,
+                   vf_select(vi_eq(axis, vi_set1(1)), p.y, p.z));
 }
+
+/* The surface colour C per lane (SPEC §4 textures): the parity of the sum
+ * of the checker cell indices picks the odd or even colour. */
+static ALWAYS_INLINE vfloat checker_cells_planar(vfloat u, vfloat v,
+                                                 vfloat inv_size) {
+  return vf_add(vf_floor(vf_mul(u, inv_size)), vf_floor(vf_mul(v, inv_size)));
+}
+
+static ALWAYS_INLINE vfloat checker_cells_solid(vvec3 p, vvec3 origin,
+                                                vfloat inv_size) {
+  vvec3 q = vv_scale(vv_sub(p, origin), inv_size);
+  return vf_add(vf_add(vf_floor(q.x), vf_floor(q.y)), vf_floor(q.z));
+}
+
+static ALWAYS_INLINE vvec3 checker_pick(const lane_material *lm, vfloat cells) {
+  vmask odd = vf_eq(vf_parity(cells), vf_set1(1));
+  return vv_select(odd, LANE_VEC3(lm, odd), LANE_VEC3(lm, even));
+}
+
+static ALWAYS_INLINE vvec3 packet_color(const lane_material *lm,
+                                        const lane_object *lo, vvec3 p,
+                                        vmask hits) {
+  if (lm->uniform && lo->ob) { /* one material on one object */
+    switch (lm->m->texture) {
+    case GLINT_TEXTURE_CHECKER_PLANAR: {
+      vfloat axes[3] = {p.x, p.y, p.z};
+      return checker_pick(lm, checker_cells_planar(axes[lo->ob->axis_u],
+                                                   axes[lo->ob->axis_v],
+                                                   vs_get(&lm->pm->inv_size)));
+    }
+    case GLINT_TEXTURE_CHECKER_SOLID:
+      return checker_pick(
+          lm, checker_cells_solid(p, lo->origin, vs_get(&lm->pm->inv_size)));
+    default: return vv_get(lm->pm->color);
+    }
+  }
+  vint texture = lm->uniform ? vi_set1(lm->m->texture) : lm->texture;
+  vmask planar =
+      vm_and(hits, vi_eq(texture, vi_set1(GLINT_TEXTURE_CHECKER_PLANAR)));
+  vmask solid =
+      vm_and(hits, vi_eq(texture, vi_set1(GLINT_TEXTURE_CHECKER_SOLID)));
+  if (vm_none(vm_or(planar, solid)))
+    return LANE_VEC3(lm, color);
+  vfloat cells = vf_zero();
+  if (vm_any(planar))
+    cells = vf_select(planar,
+                      checker_cells_planar(vv_component(p, lo->axis_u),
+                                           vv_component(p, lo->axis_v),
+                                           LANE_SCALAR(lm, inv_size)),
+                      cells);
+  if (vm_any(solid))
+    cells = vf_select(
+        solid, checker_cells_solid(p, lo->origin, LANE_SCALAR(lm, inv_size)),
+        cells);
+  return vv_select(vm_or(planar, solid), checker_pick(lm, cells),
+                   LANE_VEC3(lm, color));
+}
+
+/* ---- the lights: local shading ------------------------------------------- */
 
 /* The unit direction l from p to a light, its distance, and N·l; returns
  * the lanes of m that face the light (the others need no shadow ray). */
@@ -175,59 +392,59 @@ static ALWAYS_INLINE vvec3 packet_lights(
   return vv_add(vv_mul(c, diffuse), highlight);
 }
 
+/* ---- secondary rays and Beer's law --------------------------------------- */
+
 /* Eq. 2.12 and 2.13 for the lanes of m. The refracted directions are valid
  * in *refract_mask; lanes with total internal reflection are not in it and
  * their reflection weight is kr + kt. */
-static ALWAYS_INLINE void packet_secondary(const material_r *mat,
-                                           const pmaterial *pm,
+static ALWAYS_INLINE void packet_secondary(const lane_material *lm,
                                            const packet_surface *f, vvec3 d,
                                            vmask m, vvec3 *reflected,
                                            vfloat *kr, vvec3 *refracted,
                                            vmask *refract_mask, vmask *tir) {
   vfloat cosi = vf_neg(vv_dot(d, f->n));
   *reflected = vv_madd(d, vf_add(cosi, cosi), f->n);
-  *kr = vs_get(&pm->kr);
+  *kr = LANE_SCALAR(lm, kr);
   *refract_mask = vm_false();
   *tir = vm_false();
-  if (mat->kt > 0) {
-    vfloat eta = vf_select(f->front, vs_get(&pm->eta_in), vs_get(&pm->eta_out));
-    vfloat k = vf_fnmadd(vf_mul(eta, eta), vf_fnmadd(cosi, cosi, vf_set1(1)),
-                         vf_set1(1));
-    *tir = vm_and(m, vf_lt(k, vf_zero()));
-    *refract_mask = vm_andnot(m, *tir);
-    vfloat coef = vf_sub(vf_mul(eta, cosi), vf_sqrt(vf_max(k, vf_zero())));
-    *refracted = vv_madd(vv_scale(d, eta), coef, f->n);
-    *kr = vf_select(*tir, vs_get(&pm->kr_tir), *kr);
-  }
+  vmask transparent = lm->uniform ? (lm->m->kt > 0 ? m : vm_false())
+                                  : vm_and(m, vf_gt(lm->kt, vf_zero()));
+  if (vm_none(transparent))
+    return;
+  vfloat eta =
+      vf_select(f->front, LANE_SCALAR(lm, eta_in), LANE_SCALAR(lm, eta_out));
+  vfloat k = vf_fnmadd(vf_mul(eta, eta), vf_fnmadd(cosi, cosi, vf_set1(1)),
+                       vf_set1(1));
+  *tir = vm_and(transparent, vf_lt(k, vf_zero()));
+  *refract_mask = vm_andnot(transparent, *tir);
+  vfloat coef = vf_sub(vf_mul(eta, cosi), vf_sqrt(vf_max(k, vf_zero())));
+  *refracted = vv_madd(vv_scale(d, eta), coef, f->n);
+  *kr = vf_select(*tir, LANE_SCALAR(lm, kr_tir), *kr);
 }
 
-/* Beer's law (eq. 2.11) on the lanes that travelled inside the object. */
-static ALWAYS_INLINE vvec3 packet_beer(const material_r *mat,
-                                       const pmaterial *pm,
+/* Beer's law (eq. 2.11) on the lanes of m that travelled inside their
+ * object: color exp(-a t) per channel. */
+static ALWAYS_INLINE vvec3 packet_beer(const lane_material *lm,
                                        const packet_surface *f, vfloat t,
                                        vmask m, vvec3 color, glint_math math) {
-  if (!mat->absorbs)
+  if (lm->uniform && !lm->m->absorbs)
     return color;
   vmask inside = vm_andnot(m, f->front);
   if (vm_none(inside))
     return color;
   vfloat nt = vf_neg(t);
-  /* exp(0) = 1: channels that absorb nothing are left alone. */
-  if (mat->absorb.x != 0)
+  vvec3 absorb = LANE_VEC3(lm, absorb);
+  /* exp(0) = 1: a uniform material's channels that absorb nothing are left
+   * alone. */
+  if (!lm->uniform || lm->m->absorb.x != 0)
     color.x = vf_select(
-        inside,
-        vf_mul(color.x, vm_exp(vf_mul(vs_get(&pm->absorb[0]), nt), math)),
-        color.x);
-  if (mat->absorb.y != 0)
+        inside, vf_mul(color.x, vm_exp(vf_mul(absorb.x, nt), math)), color.x);
+  if (!lm->uniform || lm->m->absorb.y != 0)
     color.y = vf_select(
-        inside,
-        vf_mul(color.y, vm_exp(vf_mul(vs_get(&pm->absorb[1]), nt), math)),
-        color.y);
-  if (mat->absorb.z != 0)
+        inside, vf_mul(color.y, vm_exp(vf_mul(absorb.y, nt), math)), color.y);
+  if (!lm->uniform || lm->m->absorb.z != 0)
     color.z = vf_select(
-        inside,
-        vf_mul(color.z, vm_exp(vf_mul(vs_get(&pm->absorb[2]), nt), math)),
-        color.z);
+        inside, vf_mul(color.z, vm_exp(vf_mul(absorb.z, nt), math)), color.z);
   return color;
 }
 

@@ -205,197 +205,6 @@ static ALWAYS_INLINE void accumulate(stream_scratch *sc, vmask m, vint pixel,
   sc->log_count = n + W;
 }
 
-/* ---- shading with per-lane materials ------------------------------------ */
-
-#define MAT_FLOATS FLOATS_OF(material_r)
-#define MAT_AT(field) FLOAT_OFFSET(material_r, field)
-#define OBJ_FLOATS FLOATS_OF(object_r)
-#define OBJ_AT(field) FLOAT_OFFSET(object_r, field)
-
-static ALWAYS_INLINE vfloat gather_f(const void *base, vint index, int stride,
-                                     int offset) {
-  return vf_gather((const float *)base,
-                   vi_add(vi_mul_const(index, stride), vi_set1(offset)));
-}
-
-static ALWAYS_INLINE vint gather_i(const void *base, vint index, int stride,
-                                   int offset) {
-  return vf_bits(gather_f(base, index, stride, offset));
-}
-
-/* The material coefficients of each lane: broadcast when the whole packet
- * hit one material (the common case), gathered otherwise. */
-typedef struct lane_material {
-  vvec3 color, odd, even, ambient, absorb;
-  vfloat inv_size, kd, ks, h, kr, kt, ior;
-  vint texture;
-  int uniform; /* every lane the same material: *m is it */
-  const material_r *m;
-} lane_material;
-
-static ALWAYS_INLINE lane_material gather_material(const packet_scene *ps,
-                                                   vint mi, vmask hits) {
-  const scene_r *s = ps->s;
-  lane_material lm;
-  int first = vm_first(hits);
-  SIMD_ALIGN int32_t ids[W];
-  vi_store(ids, mi);
-  int id = ids[first];
-  lm.uniform = vm_none(vm_andnot(hits, vi_eq(mi, vi_set1(id))));
-  if (lm.uniform) {
-    const pmaterial *pm = &ps->materials[id];
-    lm.m = &s->materials[id];
-    lm.color = vv_get(pm->color);
-    lm.odd = vv_get(pm->odd);
-    lm.even = vv_get(pm->even);
-    lm.ambient = vv_get(pm->ambient);
-    lm.absorb = vv_get(pm->absorb);
-    lm.inv_size = vs_get(&pm->inv_size);
-    lm.kd = vs_get(&pm->kd);
-    lm.ks = vs_get(&pm->ks);
-    lm.h = vs_get(&pm->h);
-    lm.kr = vs_get(&pm->kr);
-    lm.kt = vs_get(&pm->kt);
-    lm.ior = vs_get(&pm->ior_value);
-    lm.texture = vi_set1(lm.m->texture);
-    return lm;
-  }
-  lm.m = NULL;
-  const material_r *mb = s->materials;
-  lm.color = vv_gather((const float *)mb, mi, MAT_FLOATS, MAT_AT(color));
-  lm.odd = vv_gather((const float *)mb, mi, MAT_FLOATS, MAT_AT(odd));
-  lm.even = vv_gather((const float *)mb, mi, MAT_FLOATS, MAT_AT(even));
-  lm.absorb = vv_gather((const float *)mb, mi, MAT_FLOATS, MAT_AT(absorb));
-  lm.inv_size = gather_f(mb, mi, MAT_FLOATS, MAT_AT(inv_size));
-  vfloat ka = gather_f(mb, mi, MAT_FLOATS, MAT_AT(ka));
-  lm.ambient = vv_scale(vv_set1(s->ambient), ka);
-  lm.kd = gather_f(mb, mi, MAT_FLOATS, MAT_AT(kd));
-  lm.ks = gather_f(mb, mi, MAT_FLOATS, MAT_AT(ks));
-  lm.h = gather_f(mb, mi, MAT_FLOATS, MAT_AT(h));
-  lm.kr = gather_f(mb, mi, MAT_FLOATS, MAT_AT(kr));
-  lm.kt = gather_f(mb, mi, MAT_FLOATS, MAT_AT(kt));
-  lm.ior = gather_f(mb, mi, MAT_FLOATS, MAT_AT(ior));
-  lm.texture = gather_i(mb, mi, MAT_FLOATS, MAT_AT(texture));
-  return lm;
-}
-
-/* Each lane's surface: point, normal facing the ray, front side, material
- * index, whatever shape it hit. */
-static ALWAYS_INLINE packet_surface
-stream_surface(const packet_scene *ps, const packet_hit *h, vmask hits, vvec3 o,
-               vvec3 d, vint *material, vvec3 *origin, vint *axes, int newton) {
-  const scene_r *s = ps->s;
-  packet_surface f;
-  f.p = vv_madd(o, h->t, d);
-  vint obj = vi_select(hits, h->object, vi_set1(0)); /* misses: object 0 */
-  const object_r *ob = s->objects;
-  vint shape = gather_i(ob, obj, OBJ_FLOATS, OBJ_AT(shape));
-  vint first = gather_i(ob, obj, OBJ_FLOATS, OBJ_AT(first));
-  /* Each shape's gathers index its own array with the lanes of that shape
-   * only; the others read element 0, never past an array's end. */
-  const vint none = vi_set1(0);
-  *material = gather_i(ob, obj, OBJ_FLOATS, OBJ_AT(material));
-  *origin = vv_gather((const float *)ob, obj, OBJ_FLOATS, OBJ_AT(origin));
-  vint au = gather_i(ob, obj, OBJ_FLOATS, OBJ_AT(axis_u));
-  vint av = gather_i(ob, obj, OBJ_FLOATS, OBJ_AT(axis_v));
-  *axes = vi_or(au, vi_shl(av, 4));
-  vvec3 zero = {vf_zero(), vf_zero(), vf_zero()};
-  vvec3 ng = zero, n = zero;
-  f.front = vm_false();
-  vmask smooth_done = vm_false();
-
-  vmask sph = vm_and(hits, vi_eq(shape, vi_set1(GLINT_SHAPE_SPHERE)));
-  if (vm_any(sph)) {
-    vvec3 c = vv_gather((const float *)s->spheres, vi_select(sph, first, none),
-                        FLOATS_OF(sphere_r), FLOAT_OFFSET(sphere_r, center));
-    vvec3 g = vv_normalize(vv_sub(f.p, c), newton);
-    ng = vv_select(sph, g, ng);
-    f.front = vm_select(sph, vm_andnot(vm_true(), h->inside), f.front);
-  }
-  vmask pla = vm_and(hits, vi_eq(shape, vi_set1(GLINT_SHAPE_PLANE)));
-  if (vm_any(pla)) {
-    vvec3 g = vv_gather((const float *)s->planes, vi_select(pla, first, none),
-                        FLOATS_OF(plane_r), FLOAT_OFFSET(plane_r, n));
-    ng = vv_select(pla, g, ng);
-    f.front = vm_select(pla, vf_lt(vv_dot(g, d), vf_zero()), f.front);
-  }
-  vmask tri = vm_and(hits, vi_eq(shape, vi_set1(GLINT_SHAPE_TRIANGLE)));
-  if (vm_any(tri)) {
-    vint prim = vi_select(tri, h->prim, none);
-    vvec3 g = vv_gather((const float *)s->triangles, prim,
-                        FLOATS_OF(triangle_r), FLOAT_OFFSET(triangle_r, ng));
-    ng = vv_select(tri, g, ng);
-    f.front = vm_select(tri, vf_lt(vv_dot(g, d), vf_zero()), f.front);
-    vint nidx = gather_i(s->triangles, prim, FLOATS_OF(triangle_r),
-                         FLOAT_OFFSET(triangle_r, normals));
-    vmask smooth = vm_andnot(tri, vi_eq(nidx, vi_set1(-1)));
-    if (vm_any(smooth)) {
-      /* Interpolated vertex normals (NFF polygonal patches). */
-      vint n0 = vi_mul_const(vi_select(smooth, nidx, none), 3);
-      const float *nb = (const float *)s->normals;
-      vvec3 a = vv_gather(nb, n0, 1, 0);
-      vvec3 b = vv_gather(nb, n0, 1, 3);
-      vvec3 c = vv_gather(nb, n0, 1, 6);
-      vfloat w = vf_sub(vf_sub(vf_set1(1), h->u), h->v);
-      vvec3 ns = vv_normalize(
-          vv_madd(vv_madd(vv_scale(a, w), h->u, b), h->v, c), newton);
-      vmask facing = vf_lt(vv_dot(ns, d), vf_zero());
-      n = vv_select(smooth, vv_select(facing, ns, vv_neg(ns)), n);
-      smooth_done = smooth;
-    }
-  }
-  vmask con = vm_and(hits, vi_eq(shape, vi_set1(GLINT_SHAPE_CONE)));
-  if (vm_any(con)) {
-    const float *cb = (const float *)s->cones;
-    int stride = FLOATS_OF(cone_r);
-    first = vi_select(con, first, none);
-    vvec3 base = vv_gather(cb, first, stride, FLOAT_OFFSET(cone_r, base));
-    vvec3 axis = vv_gather(cb, first, stride, FLOAT_OFFSET(cone_r, axis));
-    vfloat rb = gather_f(cb, first, stride, FLOAT_OFFSET(cone_r, rb));
-    vfloat k = gather_f(cb, first, stride, FLOAT_OFFSET(cone_r, k));
-    vvec3 q = vv_sub(f.p, base);
-    vfloat hq = vv_dot(q, axis);
-    vvec3 g = vv_normalize(
-        vv_madd(q, vf_neg(vf_fmadd(k, vf_fmadd(k, hq, rb), hq)), axis), newton);
-    ng = vv_select(con, g, ng);
-    f.front = vm_select(con, vf_lt(vv_dot(g, d), vf_zero()), f.front);
-  }
-  f.n = vv_select(smooth_done, n, vv_select(f.front, ng, vv_neg(ng)));
-  return f;
-}
-
-/* The surface colour per lane (SPEC §4 textures). */
-static ALWAYS_INLINE vvec3 stream_color(const lane_material *lm, vvec3 p,
-                                        vvec3 origin, vint axes, vmask hits) {
-  vmask planar =
-      vm_and(hits, vi_eq(lm->texture, vi_set1(GLINT_TEXTURE_CHECKER_PLANAR)));
-  vmask solid =
-      vm_and(hits, vi_eq(lm->texture, vi_set1(GLINT_TEXTURE_CHECKER_SOLID)));
-  if (vm_none(vm_or(planar, solid)))
-    return lm->color;
-  vfloat cells = vf_zero();
-  if (vm_any(planar)) {
-    vint au = vi_and(axes, vi_set1(15)), av = vi_shr(axes, 4);
-    vfloat u = vf_select(vi_eq(au, vi_set1(0)), p.x,
-                         vf_select(vi_eq(au, vi_set1(1)), p.y, p.z));
-    vfloat v = vf_select(vi_eq(av, vi_set1(0)), p.x,
-                         vf_select(vi_eq(av, vi_set1(1)), p.y, p.z));
-    cells = vf_select(planar,
-                      vf_add(vf_floor(vf_mul(u, lm->inv_size)),
-                             vf_floor(vf_mul(v, lm->inv_size))),
-                      cells);
-  }
-  if (vm_any(solid)) {
-    vvec3 q = vv_scale(vv_sub(p, origin), lm->inv_size);
-    cells = vf_select(
-        solid, vf_add(vf_add(vf_floor(q.x), vf_floor(q.y)), vf_floor(q.z)),
-        cells);
-  }
-  vmask odd = vf_eq(vf_parity(cells), vf_set1(1));
-  vvec3 checker = vv_select(odd, lm->odd, lm->even);
-  return vv_select(vm_or(planar, solid), checker, lm->color);
-}
-
 /* Whether level's two streams can take one more packet's children each. */
 static ALWAYS_INLINE int room(const tracer *t, int level) {
   return STREAM(t->sc, level, TRANSMITTED)->count <= STREAM_CAPACITY - W &&
@@ -439,6 +248,64 @@ static ALWAYS_INLINE void emit_child(tracer *t, int level, int kind, vmask m,
   append_ray(t, STREAM(t->sc, level + 1, kind), m, o, d, w, pixel);
 }
 
+/* The shading of a packet's hits, once its surface and materials are
+ * known (a uniform packet's or a mixed one's: shade_packet inlines this
+ * twice, so each form is compiled for what it is). Everything a hit brings
+ * is linear in the rays' weights w. */
+static ALWAYS_INLINE vvec3 shade_hits(
+    tracer *t, int level, vmask hits, vmask misses, vvec3 bg,
+    const packet_hit *hp, vvec3 d, vvec3 w, vint pixel, packet_child *next,
+    const packet_surface *fp, const lane_material *lmp, const lane_object *lop,
+    uint64_t t1, glint_math math, int newton) {
+  const packet_scene *ps = t->ps;
+  packet_hit h = *hp;
+  packet_surface f = *fp;
+  lane_material lm = *lmp;
+  lane_object lo = *lop;
+  vvec3 c = packet_color(&lm, &lo, f.p, hits);
+  /* Beer's law (eq. 2.11) on the stretch just travelled inside. */
+  w = packet_beer(&lm, &f, h.t, hits, w, math);
+
+  uint64_t shadow = 0; /* shadow rays: traversal, not shading */
+  int highlights =
+      lm.uniform ? lm.m->ks > 0 : vm_any(vm_and(hits, vf_gt(lm.ks, vf_zero())));
+  vvec3 local =
+      vv_mul(w, packet_lights(ps, &f, d, hits, c, LANE_VEC3(&lm, ambient),
+                              LANE_SCALAR(&lm, kd), LANE_SCALAR(&lm, ks),
+                              LANE_SCALAR(&lm, h), highlights, math, newton,
+                              t->st, t->timing ? &shadow : NULL));
+  t->stage_ticks[STAGE_TRAVERSE] += shadow;
+  t1 += shadow;
+  vvec3 zero = {vf_zero(), vf_zero(), vf_zero()};
+  vvec3 brings = vv_select(hits, local, vv_select(misses, bg, zero));
+
+  /* Secondary rays, one level deeper (SPEC §4; eq. 2.12, 2.13). */
+  if (level + 1 < t->max_depth &&
+      (!lm.uniform || lm.m->kr > 0 || lm.m->kt > 0)) {
+    vvec3 reflected, refracted;
+    vfloat kr;
+    vmask refract, tir;
+    packet_secondary(&lm, &f, d, hits, &reflected, &kr, &refracted, &refract,
+                     &tir);
+    t->st->total_internal_reflections += (uint64_t)vm_count(tir);
+    if (vm_any(refract)) {
+      t->st->secondary_rays += (uint64_t)vm_count(refract);
+      t->st->refracted_rays += (uint64_t)vm_count(refract);
+      emit_child(t, level, TRANSMITTED, refract, f.p, refracted,
+                 vv_scale(w, LANE_SCALAR(&lm, kt)), pixel, next);
+    }
+    vmask reflect = vm_and(hits, vf_gt(kr, vf_zero()));
+    if (vm_any(reflect)) {
+      t->st->secondary_rays += (uint64_t)vm_count(reflect);
+      t->st->reflected_rays += (uint64_t)vm_count(reflect);
+      emit_child(t, level, REFLECTED, reflect, f.p, reflected, vv_scale(w, kr),
+                 pixel, next);
+    }
+  }
+  t->stage_ticks[STAGE_SHADE] += tick(t) - t1;
+  return brings;
+}
+
 /* One packet of a generation: intersect, shade (its shadow rays traced at
  * once: the packet is full, so they are a full packet too) and append its
  * child rays. Returns what the packet brings to its pixels (0 in inactive
@@ -465,116 +332,27 @@ static ALWAYS_INLINE vvec3 shade_packet(tracer *t, int level, vmask active,
     return vv_select(misses, bg, z);
   }
 
-  /* Every lane hit one object (coherent packets, as a beam's sub-beam): the
-   * beam tracer's kernels, scaled by the rays' weights, since everything a
-   * hit brings is linear in them. */
+  /* The surface and the materials: when every lane hit one object
+   * (coherent packets, as a beam's sub-beam), as the beams compute them;
+   * otherwise lane by lane. */
   SIMD_ALIGN int32_t objs[W];
   vi_store(objs, h.object);
   int obj0 = objs[vm_first(hits)];
-  vvec3 zero = {vf_zero(), vf_zero(), vf_zero()};
   if (vm_none(vm_andnot(hits, vi_eq(h.object, vi_set1(obj0))))) {
     const object_r *ob = &s->objects[obj0];
-    const material_r *mat = &s->materials[ob->material];
-    const pmaterial *pm = &ps->materials[ob->material];
-    packet_surface f = packet_surface_at(ps, ob, &h, o, d, newton);
-    vvec3 c = packet_color(mat, pm, ob, f.p);
-    vvec3 unit = {vf_set1(1), vf_set1(1), vf_set1(1)};
-    w = vv_mul(w, packet_beer(mat, pm, &f, h.t, hits, unit, math));
-    uint64_t shadow = 0; /* shadow rays: traversal, not shading */
-    vvec3 local =
-        packet_lights(ps, &f, d, hits, c, vv_get(pm->ambient), vs_get(&pm->kd),
-                      vs_get(&pm->ks), vs_get(&pm->h), mat->ks > 0, math,
-                      newton, t->st, t->timing ? &shadow : NULL);
-    t->stage_ticks[STAGE_TRAVERSE] += shadow;
-    t1 += shadow;
-    vvec3 brings =
-        vv_select(hits, vv_mul(w, local), vv_select(misses, bg, zero));
-    if (level + 1 < t->max_depth && (mat->kr > 0 || mat->kt > 0)) {
-      vvec3 reflected, refracted;
-      vfloat kr;
-      vmask refract, tir;
-      packet_secondary(mat, pm, &f, d, hits, &reflected, &kr, &refracted,
-                       &refract, &tir);
-      t->st->total_internal_reflections += (uint64_t)vm_count(tir);
-      if (vm_any(refract)) {
-        t->st->secondary_rays += (uint64_t)vm_count(refract);
-        t->st->refracted_rays += (uint64_t)vm_count(refract);
-        emit_child(t, level, TRANSMITTED, refract, f.p, refracted,
-                   vv_scale(w, vs_get(&pm->kt)), pixel, next);
-      }
-      vmask reflect = vm_and(hits, vf_gt(kr, vf_zero()));
-      if (vm_any(reflect)) {
-        t->st->secondary_rays += (uint64_t)vm_count(reflect);
-        t->st->reflected_rays += (uint64_t)vm_count(reflect);
-        emit_child(t, level, REFLECTED, reflect, f.p, reflected,
-                   vv_scale(w, kr), pixel, next);
-      }
-    }
-    t->stage_ticks[STAGE_SHADE] += tick(t) - t1;
-    return brings;
+    packet_surface f = packet_surface_object(ps, ob, &h, o, d, newton);
+    lane_material lm = lane_material_uniform(ps, ob->material);
+    lane_object lo = lane_object_uniform(ob);
+    return shade_hits(t, level, hits, misses, bg, &h, d, w, pixel, next, &f,
+                      &lm, &lo, t1, math, newton);
   }
-
-  /* A mixed packet: every lane's surface and material gathered. */
-  vint mi, axes;
-  vvec3 origin;
-  packet_surface f =
-      stream_surface(ps, &h, hits, o, d, &mi, &origin, &axes, newton);
-  lane_material lm = gather_material(ps, vi_select(hits, mi, vi_set1(0)), hits);
-  vvec3 c = stream_color(&lm, f.p, origin, axes, hits);
-
-  /* Beer's law (eq. 2.11) on the stretch just travelled inside. */
-  vmask inside = vm_andnot(hits, f.front);
-  if (vm_any(inside) && (!lm.uniform || lm.m->absorbs)) {
-    vfloat nt = vf_neg(h.t);
-    vvec3 a = {vm_exp(vf_mul(lm.absorb.x, nt), math),
-               vm_exp(vf_mul(lm.absorb.y, nt), math),
-               vm_exp(vf_mul(lm.absorb.z, nt), math)};
-    w = vv_select(inside, vv_mul(w, a), w);
-  }
-
-  uint64_t shadow = 0; /* shadow rays: traversal, not shading */
-  int highlights =
-      lm.uniform ? lm.m->ks > 0 : vm_any(vm_and(hits, vf_gt(lm.ks, vf_zero())));
-  vvec3 local = vv_mul(w, packet_lights(ps, &f, d, hits, c, lm.ambient, lm.kd,
-                                        lm.ks, lm.h, highlights, math, newton,
-                                        t->st, t->timing ? &shadow : NULL));
-  t->stage_ticks[STAGE_TRAVERSE] += shadow;
-  t1 += shadow;
-  vvec3 brings = vv_select(hits, local, vv_select(misses, bg, zero));
-
-  /* Secondary rays, one level deeper (SPEC §4; eq. 2.12, 2.13). */
-  if (level + 1 < t->max_depth) {
-    vfloat cosi = vf_neg(vv_dot(d, f.n));
-    vvec3 reflected = vv_madd(d, vf_add(cosi, cosi), f.n);
-    vfloat kr = lm.kr;
-    vmask transparent = vm_and(hits, vf_gt(lm.kt, vf_zero()));
-    if (vm_any(transparent)) {
-      vfloat eta = vf_select(f.front, vf_rcp(lm.ior, newton), lm.ior);
-      vfloat k = vf_fnmadd(vf_mul(eta, eta), vf_fnmadd(cosi, cosi, vf_set1(1)),
-                           vf_set1(1));
-      vmask tir = vm_and(transparent, vf_lt(k, vf_zero()));
-      vmask refract = vm_andnot(transparent, tir);
-      t->st->total_internal_reflections += (uint64_t)vm_count(tir);
-      kr = vf_select(tir, vf_add(kr, lm.kt), kr);
-      if (vm_any(refract)) {
-        vfloat coef = vf_sub(vf_mul(eta, cosi), vf_sqrt(vf_max(k, vf_zero())));
-        vvec3 refracted = vv_madd(vv_scale(d, eta), coef, f.n);
-        t->st->secondary_rays += (uint64_t)vm_count(refract);
-        t->st->refracted_rays += (uint64_t)vm_count(refract);
-        emit_child(t, level, TRANSMITTED, refract, f.p, refracted,
-                   vv_scale(w, lm.kt), pixel, next);
-      }
-    }
-    vmask reflect = vm_and(hits, vf_gt(kr, vf_zero()));
-    if (vm_any(reflect)) {
-      t->st->secondary_rays += (uint64_t)vm_count(reflect);
-      t->st->reflected_rays += (uint64_t)vm_count(reflect);
-      emit_child(t, level, REFLECTED, reflect, f.p, reflected, vv_scale(w, kr),
-                 pixel, next);
-    }
-  }
-  t->stage_ticks[STAGE_SHADE] += tick(t) - t1;
-  return brings;
+  vint mi;
+  lane_object lo;
+  packet_surface f = packet_surface_lanes(ps, &h, hits, o, d, newton, &mi, &lo);
+  lane_material lm =
+      lane_material_gather(ps, vi_select(hits, mi, vi_set1(0)), hits);
+  return shade_hits(t, level, hits, misses, bg, &h, d, w, pixel, next, &f, &lm,
+                    &lo, t1, math, newton);
 }
 
 /* Shades a packet at `level` and the chain of full children that follows

@@ -15,7 +15,10 @@ typedef __m256i vint;
  * vbroadcastss loads into every lane in one instruction. */
 typedef float vscalar;
 static inline vscalar vs_make(float a) { return a; }
-static inline vfloat vs_get(const vscalar *p) { return _mm256_broadcast_ss(p); }
+/* A set1 of a load rather than _mm256_broadcast_ss: GCC keeps an unused
+ * broadcast builtin (it reads memory) but removes an unused set1; both
+ * compile to one vbroadcastss from memory. */
+static inline vfloat vs_get(const vscalar *p) { return _mm256_set1_ps(*p); }
 
 static inline vfloat vf_set1(float a) { return _mm256_set1_ps(a); }
 static inline vfloat vf_zero(void) { return _mm256_setzero_ps(); }
