@@ -8,6 +8,7 @@
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
+#include <strings.h>
 #include <sys/resource.h>
 #include <unistd.h>
 
@@ -19,8 +20,9 @@ static void render_usage(FILE *f) {
       "default is whitted) or a scene file (.nff or .json).\n"
       "\n"
       "Options:\n"
-      "  -o, --output FILE    image to write: .png, .bmp or .ppm\n"
-      "                       (default: SCENE.png)\n"
+      "  -o, --output FILE    image to write: .png, .bmp or .ppm (8-bit),\n"
+      "                       or the linear floating-point film as .pfm or\n"
+      "                       .exr (default: SCENE.png)\n"
       "  -W, --width N        image width in pixels (default: 640, or the\n"
       "                       scene file's own)\n"
       "  -H, --height N       image height in pixels (default: 480, or the\n"
@@ -38,7 +40,8 @@ static void render_usage(FILE *f) {
       "      --no-newton      skip the Newton step after rcp (thesis fig. "
       "5.7)\n"
       "      --accel NAME     bvh or none (default: bvh)\n"
-      "      --gamma G        encode with gamma G (default: 1, linear)\n"
+      "      --gamma G        encode with gamma G (default: 1, linear);\n"
+      "                       8-bit outputs only\n"
       "      --region X,Y,W,H render only this window of the image (pixels)\n"
       "  -q, --quiet          no progress bar and no summary line\n"
       "      --stats          detailed statistics after rendering\n"
@@ -149,6 +152,48 @@ static void print_stats(const glint_stats *s) {
   printf("  peak memory (RSS)  %.1f MiB\n", cli_peak_rss_mib());
 }
 
+/* .pfm and .exr hold the linear film itself. */
+static int is_film_path(const char *path) {
+  const char *slash = strrchr(path, '/');
+  const char *dot = strrchr(slash ? slash : path, '.');
+  return dot && (strcasecmp(dot, ".pfm") == 0 || strcasecmp(dot, ".exr") == 0);
+}
+
+/* The frame through a committed world and a renderer, into a film. */
+static glint_status render_film(const glint_scene *scene,
+                                const glint_render_settings *rs,
+                                glint_film **out, glint_stats *stats,
+                                glint_error *err) {
+  glint_world *world;
+  glint_renderer *renderer;
+  glint_stats commit;
+  glint_status st = glint_world_commit(scene, &world, &commit, err);
+  if (st)
+    return st;
+  st = glint_renderer_create(world, rs, &renderer, err);
+  glint_world_destroy(world); /* the renderer holds it */
+  if (st)
+    return st;
+  glint_scene_info info;
+  glint_scene_get_info(scene, &info);
+  int w = rs->width ? rs->width : info.width;
+  int h = rs->height ? rs->height : info.height;
+  if (rs->region_width)
+    w = rs->region_width, h = rs->region_height;
+  glint_film *film = NULL;
+  st = glint_film_create(w, h, &film, err);
+  if (st == GLINT_OK)
+    st = glint_renderer_render(renderer, NULL, film, stats, err);
+  glint_renderer_destroy(renderer);
+  if (st) {
+    glint_film_destroy(film);
+    return st;
+  }
+  stats->prepare_seconds = commit.prepare_seconds;
+  *out = film;
+  return GLINT_OK;
+}
+
 int cmd_render(int argc, char **argv) {
   const char *scene_arg = NULL, *output = NULL, *v;
   int quiet = 0, want_stats = 0;
@@ -229,7 +274,16 @@ int cmd_render(int argc, char **argv) {
     output = default_output;
   }
   /* Refuse a bad output path before a long render, not after. */
-  if (glint_image_check_writable(output, &err)) {
+  int film_output = is_film_path(output);
+  if (film_output && rs.gamma != 1) {
+    cli_error("%s: --gamma applies to 8-bit images; .pfm and .exr are "
+              "linear",
+              output);
+    glint_scene_destroy(scene);
+    return EXIT_USAGE;
+  }
+  if (film_output ? glint_film_check_writable(output, &err)
+                  : glint_image_check_writable(output, &err)) {
     cli_error("%s", err.message);
     glint_scene_destroy(scene);
     return EXIT_USAGE;
@@ -242,8 +296,11 @@ int cmd_render(int argc, char **argv) {
     rs.progress_user = &ps;
   }
   glint_image *image = NULL;
+  glint_film *film = NULL;
   glint_stats stats;
-  glint_status st = glint_render(scene, &rs, &image, &stats, &err);
+  glint_status st = film_output
+                        ? render_film(scene, &rs, &film, &stats, &err)
+                        : glint_render(scene, &rs, &image, &stats, &err);
   if (show_progress)
     fputs("\r\033[K", stderr);
   glint_scene_destroy(scene);
@@ -260,10 +317,13 @@ int cmd_render(int argc, char **argv) {
   sigaddset(&block, SIGTERM);
   sigaddset(&block, SIGHUP);
   sigprocmask(SIG_BLOCK, &block, &old);
-  st = glint_image_write(image, output, &err);
+  st = film_output ? glint_film_write(film, output, &err)
+                   : glint_image_write(image, output, &err);
   sigprocmask(SIG_SETMASK, &old, NULL);
-  int out_w = glint_image_width(image), out_h = glint_image_height(image);
+  int out_w = film_output ? glint_film_width(film) : glint_image_width(image);
+  int out_h = film_output ? glint_film_height(film) : glint_image_height(image);
   glint_image_destroy(image);
+  glint_film_destroy(film);
   if (st) {
     cli_error("%s", err.message);
     return EXIT_USAGE;

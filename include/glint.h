@@ -374,6 +374,8 @@ glint_status glint_film_to_image(const glint_film *film, double gamma,
  * glint_image_write. */
 glint_status glint_film_write(const glint_film *film, const char *path,
                               glint_error *error);
+/* As glint_image_check_writable, for .pfm and .exr. */
+glint_status glint_film_check_writable(const char *path, glint_error *error);
 
 /* ------------------------------------------------------------------------ */
 /* Worlds and renderers: commit a scene once, render many frames            */

@@ -14,6 +14,7 @@ packages=(
   libcjson-dev      # glint's JSON scene format
   zlib1g-dev        # .gz meshes
   libcmocka-dev     # the unit-test framework
+  libopenexr-dev    # linear film output as .exr (OpenEXRCore)
   gnuplot-nox       # glint bench --plot
 )
 if [ "${1:-}" = "--peers" ]; then

@@ -228,6 +228,45 @@ static void render_writes_every_format(void **state) {
   assert_int_equal(system(cmd), 0);
 }
 
+/* The linear film as .pfm: the same pixels as the 8-bit image, before the
+ * conversion; --gamma is refused for it, and an unwritable place is caught
+ * before rendering. (.exr is read back in test_film.) */
+static void render_writes_the_film(void **state) {
+  (void)state;
+  assert_int_equal(
+      run("render", "whitted", "-W", "32", "-H", "24", "-o", "w.pfm", NULL), 0);
+  assert_int_equal(
+      run("render", "whitted", "-W", "32", "-H", "24", "-o", "w.ppm", NULL), 0);
+  char pf[128], pp[128];
+  snprintf(pf, sizeof pf, "%s/w.pfm", dir);
+  snprintf(pp, sizeof pp, "%s/w.ppm", dir);
+  glint_image *im;
+  ASSERT_OK(glint_image_read(pp, &im, &e_));
+  FILE *f = fopen(pf, "rb");
+  assert_non_null(f);
+  char header[32];
+  assert_non_null(fgets(header, sizeof header, f));
+  assert_string_equal(header, "PF\n");
+  assert_non_null(fgets(header, sizeof header, f));
+  assert_string_equal(header, "32 24\n");
+  assert_non_null(fgets(header, sizeof header, f));
+  const uint8_t *bytes = glint_image_pixels_const(im);
+  for (int y = 23; y >= 0; y--)
+    for (int i = 0; i < 32 * 3; i++) {
+      float v;
+      assert_int_equal(fread(&v, 4, 1, f), 1);
+      assert_int_equal(bytes[y * 32 * 3 + i], expected_byte(v));
+    }
+  fclose(f);
+  glint_image_destroy(im);
+  unlink(pf);
+  unlink(pp);
+  EXPECT_USAGE_ERROR("--gamma applies to 8-bit images", "render", "-W", "8",
+                     "-H", "8", "--gamma", "2.2", "-o", "out.pfm");
+  EXPECT_USAGE_ERROR("/no/such/folder/out.exr: cannot write here", "render",
+                     "-W", "8", "-H", "8", "-o", "/no/such/folder/out.exr");
+}
+
 static void defaults_quiet_and_stats(void **state) {
   (void)state;
   /* The default output is SCENE.png. */
@@ -335,6 +374,7 @@ int main(void) {
       cmocka_unit_test(existing_file_survives_errors),
       cmocka_unit_test(help_and_version),
       cmocka_unit_test(render_writes_every_format),
+      cmocka_unit_test(render_writes_the_film),
       cmocka_unit_test(defaults_quiet_and_stats),
       cmocka_unit_test(bench_runs_and_writes_csv),
       cmocka_unit_test(bench_errors),

@@ -7,6 +7,8 @@
 
 #include <math.h>
 #include <stdlib.h>
+#include <string.h>
+#include <strings.h>
 
 glint_status glint_film_create(int w, int h, glint_film **out,
                                glint_error *error) {
@@ -78,4 +80,60 @@ glint_status glint_film_to_image(const glint_film *film, double gamma,
                            (size_t)film->width * (size_t)film->height * 3,
                            gamma);
   return GLINT_OK;
+}
+
+static int write_pfm(const void *film, FILE *f) {
+  return glint_pfm_encode(film, f);
+}
+
+#ifdef GLINT_HAVE_EXR
+static int write_exr(const void *film, FILE *f) {
+  return glint_exr_encode(film, f);
+}
+#endif
+
+typedef enum film_format { FILM_UNKNOWN, FILM_PFM, FILM_EXR } film_format;
+
+static film_format film_format_of(const char *path) {
+  const char *slash = strrchr(path, '/');
+  const char *dot = strrchr(slash ? slash : path, '.');
+  if (dot && strcasecmp(dot, ".pfm") == 0)
+    return FILM_PFM;
+  if (dot && strcasecmp(dot, ".exr") == 0)
+    return FILM_EXR;
+  return FILM_UNKNOWN;
+}
+
+/* The format's writer, or an error saying why there is none. */
+static glint_status film_writer(const char *path, write_fn *write,
+                                glint_error *error) {
+  switch (film_format_of(path)) {
+  case FILM_PFM: *write = write_pfm; return GLINT_OK;
+  case FILM_EXR:
+#ifdef GLINT_HAVE_EXR
+    *write = write_exr;
+    return GLINT_OK;
+#else
+    return glint_fail(error, GLINT_E_UNSUPPORTED,
+                      "%s: this build of glint has no OpenEXR (install "
+                      "libopenexr-dev and rebuild, or write .pfm)",
+                      path);
+#endif
+  default:
+    return glint_fail(error, GLINT_E_ARGUMENT,
+                      "%s: unknown film format (use .pfm or .exr)", path);
+  }
+}
+
+glint_status glint_film_check_writable(const char *path, glint_error *error) {
+  write_fn write = NULL;
+  glint_status st = film_writer(path, &write, error);
+  return st ? st : glint_check_folder_writable(path, error);
+}
+
+glint_status glint_film_write(const glint_film *film, const char *path,
+                              glint_error *error) {
+  write_fn write = NULL;
+  glint_status st = film_writer(path, &write, error);
+  return st ? st : glint_write_atomically(path, write, film, error);
 }

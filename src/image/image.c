@@ -69,6 +69,11 @@ static glint_status unknown_format(const char *path, glint_error *error) {
                     "%s: unknown image format (use .png, .bmp or .ppm)", path);
 }
 
+typedef struct encode_job {
+  const glint_image *image;
+  glint_image_format format;
+} encode_job;
+
 /* "dir/name.png" -> "dir/.name.png.XXXXXX" for mkstemp. */
 static char *temp_template(const char *path) {
   const char *slash = strrchr(path, '/');
@@ -106,6 +111,10 @@ static int open_temp(const char *path, char **temp, glint_error *error) {
 glint_status glint_image_check_writable(const char *path, glint_error *error) {
   if (glint_image_format_from_path(path) == GLINT_FORMAT_UNKNOWN)
     return unknown_format(path, error);
+  return glint_check_folder_writable(path, error);
+}
+
+glint_status glint_check_folder_writable(const char *path, glint_error *error) {
   char *temp;
   int fd = open_temp(path, &temp, error);
   if (fd < 0)
@@ -116,16 +125,13 @@ glint_status glint_image_check_writable(const char *path, glint_error *error) {
   return GLINT_OK;
 }
 
-glint_status glint_image_write(const glint_image *im, const char *path,
-                               glint_error *error) {
-  glint_image_format fmt = glint_image_format_from_path(path);
-  if (fmt == GLINT_FORMAT_UNKNOWN)
-    return unknown_format(path, error);
+glint_status glint_write_atomically(const char *path, write_fn write,
+                                    const void *data, glint_error *error) {
   char *temp;
   int fd = open_temp(path, &temp, error);
   if (fd < 0)
     return error ? error->status : GLINT_E_IO;
-  /* mkstemp creates 0600; give the image the usual permissions. */
+  /* mkstemp creates 0600; give the file the usual permissions. */
   mode_t mask = umask(0);
   umask(mask);
   fchmod(fd, 0666 & ~mask);
@@ -136,9 +142,7 @@ glint_status glint_image_write(const glint_image *im, const char *path,
     free(temp);
     return glint_fail(error, GLINT_E_IO, "%s: %s", path, strerror(errno));
   }
-  int bad = fmt == GLINT_FORMAT_PNG   ? glint_png_encode(im, f)
-            : fmt == GLINT_FORMAT_BMP ? glint_bmp_encode(im, f)
-                                      : glint_ppm_encode(im, f);
+  int bad = write(data, f);
   int saved = errno;
   if (!bad && fflush(f) != 0)
     bad = 1, saved = errno;
@@ -156,6 +160,22 @@ glint_status glint_image_write(const glint_image *im, const char *path,
   }
   free(temp);
   return GLINT_OK;
+}
+
+static int encode_image(const void *data, FILE *f) {
+  const encode_job *job = data;
+  return job->format == GLINT_FORMAT_PNG   ? glint_png_encode(job->image, f)
+         : job->format == GLINT_FORMAT_BMP ? glint_bmp_encode(job->image, f)
+                                           : glint_ppm_encode(job->image, f);
+}
+
+glint_status glint_image_write(const glint_image *im, const char *path,
+                               glint_error *error) {
+  glint_image_format fmt = glint_image_format_from_path(path);
+  if (fmt == GLINT_FORMAT_UNKNOWN)
+    return unknown_format(path, error);
+  encode_job job = {im, fmt};
+  return glint_write_atomically(path, encode_image, &job, error);
 }
 
 glint_status glint_image_read(const char *path, glint_image **out,

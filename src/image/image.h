@@ -21,6 +21,22 @@ struct glint_film {
 void glint_film_span_to_bytes(const float *src, uint8_t *dst, size_t n,
                               double gamma);
 
+/* Writes `path` atomically: write(data, f) fills a temporary file beside
+ * it (returning 0 on success), which is flushed, synced and renamed over
+ * `path` only when complete. */
+typedef int (*write_fn)(const void *data, FILE *f);
+/* Whether glint_write_atomically could write `path` now (not a folder, and
+ * its folder takes a new file); leaves nothing behind. */
+glint_status glint_check_folder_writable(const char *path, glint_error *error);
+glint_status glint_write_atomically(const char *path, write_fn write,
+                                    const void *data, glint_error *error);
+
+/* Film encoders: 0 on success. EXR returns -1 with errno 0 on a library
+ * error, and is absent (GLINT_HAVE_EXR undefined) in builds without
+ * OpenEXR. */
+int glint_pfm_encode(const glint_film *film, FILE *f);
+int glint_exr_encode(const glint_film *film, FILE *f);
+
 /* Encoders write the whole image to an open stream; 0 on success. */
 int glint_png_encode(const glint_image *image, FILE *f);
 int glint_bmp_encode(const glint_image *image, FILE *f);

@@ -1,0 +1,186 @@
+/* Films: the 8-bit conversion against hand-computed bytes, and the linear
+ * writers read back: PFM parsed by hand (header, little-endian floats,
+ * bottom row first), OpenEXR through OpenEXRCore's reader (SKIPPED in
+ * builds without OpenEXR); every error a user can meet. */
+#include "test_util.h"
+
+#include <math.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+#include <sys/stat.h>
+#include <unistd.h>
+
+#ifdef GLINT_HAVE_EXR
+#include <openexr.h>
+#endif
+
+#define FW 5
+#define FH 3
+
+static glint_film *ramp(void) {
+  glint_film *film;
+  ASSERT_OK(glint_film_create(FW, FH, &film, &e_));
+  float *p = glint_film_pixels(film);
+  for (int i = 0; i < FW * FH * 3; i++)
+    p[i] = (float)i * 0.125f - 1.0f; /* negative, in range and above 1 */
+  return film;
+}
+
+static char *temp_path(const char *name) {
+  static char path[256];
+  snprintf(path, sizeof path, "%s/glint-film-%d-%s",
+           getenv("TMPDIR") ? getenv("TMPDIR") : "/tmp", (int)getpid(), name);
+  return path;
+}
+
+static void converts_to_bytes(void **state) {
+  (void)state;
+  glint_film *film = ramp();
+  glint_image *image;
+  ASSERT_OK(glint_image_create(FW, FH, &image, &e_));
+  ASSERT_OK(glint_film_to_image(film, 1, image, &e_));
+  const float *p = glint_film_pixels(film);
+  for (int i = 0; i < FW * FH * 3; i++)
+    assert_int_equal(glint_image_pixels(image)[i], expected_byte(p[i]));
+  ASSERT_OK(glint_film_to_image(film, 2.2, image, &e_));
+  for (int i = 0; i < FW * FH * 3; i++)
+    assert_int_equal(
+        glint_image_pixels(image)[i],
+        expected_byte(p[i] > 0 ? pow(p[i] < 1 ? p[i] : 1, 1 / 2.2) : 0));
+  glint_error e;
+  assert_int_equal(glint_film_to_image(film, 0, image, &e), GLINT_E_ARGUMENT);
+  assert_non_null(strstr(e.message, "gamma"));
+  glint_image *small;
+  ASSERT_OK(glint_image_create(FW, FH + 1, &small, &e_));
+  assert_int_equal(glint_film_to_image(film, 1, small, &e), GLINT_E_ARGUMENT);
+  assert_non_null(strstr(e.message, "does not fit"));
+  glint_image_destroy(small);
+  glint_image_destroy(image);
+  glint_film_destroy(film);
+}
+
+static void writes_pfm(void **state) {
+  (void)state;
+  glint_film *film = ramp();
+  const char *path = temp_path("a.pfm");
+  ASSERT_OK(glint_film_write(film, path, &e_));
+  FILE *f = fopen(path, "rb");
+  assert_non_null(f);
+  char magic[3] = {0};
+  int w = 0, h = 0;
+  double scale = 0;
+  assert_int_equal(fscanf(f, "%2s %d %d %lf", magic, &w, &h, &scale), 4);
+  assert_string_equal(magic, "PF");
+  assert_int_equal(w, FW);
+  assert_int_equal(h, FH);
+  assert_true(scale < 0); /* little-endian */
+  assert_int_equal(fgetc(f), '\n');
+  const float *p = glint_film_pixels(film);
+  for (int y = FH - 1; y >= 0; y--) /* bottom row first */
+    for (int i = 0; i < FW * 3; i++) {
+      unsigned char b[4];
+      assert_int_equal(fread(b, 1, 4, f), 4);
+      uint32_t bits = (uint32_t)b[0] | (uint32_t)b[1] << 8 |
+                      (uint32_t)b[2] << 16 | (uint32_t)b[3] << 24;
+      float v;
+      memcpy(&v, &bits, 4);
+      assert_true(v == p[(size_t)y * FW * 3 + i]);
+    }
+  assert_int_equal(fgetc(f), EOF);
+  fclose(f);
+  unlink(path);
+  glint_film_destroy(film);
+}
+
+static void writes_exr(void **state) {
+  (void)state;
+#ifndef GLINT_HAVE_EXR
+  skip();
+#else
+  glint_film *film = ramp();
+  const char *path = temp_path("b.exr");
+  ASSERT_OK(glint_film_write(film, path, &e_));
+  exr_context_t ctx;
+  exr_context_initializer_t init = EXR_DEFAULT_CONTEXT_INITIALIZER;
+  assert_int_equal(exr_start_read(&ctx, path, &init), EXR_ERR_SUCCESS);
+  exr_attr_box2i_t box;
+  assert_int_equal(exr_get_data_window(ctx, 0, &box), EXR_ERR_SUCCESS);
+  assert_int_equal(box.max.x - box.min.x + 1, FW);
+  assert_int_equal(box.max.y - box.min.y + 1, FH);
+  int lines;
+  assert_int_equal(exr_get_scanlines_per_chunk(ctx, 0, &lines),
+                   EXR_ERR_SUCCESS);
+  float back[FW * FH * 3];
+  memset(back, 0, sizeof back);
+  exr_decode_pipeline_t dec;
+  int started = 0;
+  for (int y = 0; y < FH; y += lines) {
+    exr_chunk_info_t chunk;
+    assert_int_equal(
+        exr_read_scanline_chunk_info(ctx, 0, box.min.y + y, &chunk),
+        EXR_ERR_SUCCESS);
+    assert_int_equal(started ? exr_decoding_update(ctx, 0, &chunk, &dec)
+                             : exr_decoding_initialize(ctx, 0, &chunk, &dec),
+                     EXR_ERR_SUCCESS);
+    assert_int_equal(dec.channel_count, 3);
+    for (int c = 0; c < 3; c++) {
+      exr_coding_channel_info_t *ch = &dec.channels[c];
+      int k = ch->channel_name[0] == 'R'   ? 0
+              : ch->channel_name[0] == 'G' ? 1
+                                           : 2;
+      ch->decode_to_ptr = (uint8_t *)(back + (size_t)y * FW * 3 + k);
+      ch->user_pixel_stride = 3 * sizeof(float);
+      ch->user_line_stride = FW * 3 * sizeof(float);
+      ch->user_bytes_per_element = sizeof(float);
+      ch->user_data_type = EXR_PIXEL_FLOAT;
+    }
+    if (!started)
+      assert_int_equal(exr_decoding_choose_default_routines(ctx, 0, &dec),
+                       EXR_ERR_SUCCESS);
+    started = 1;
+    assert_int_equal(exr_decoding_run(ctx, 0, &dec), EXR_ERR_SUCCESS);
+  }
+  exr_decoding_destroy(ctx, &dec);
+  exr_finish(&ctx);
+  assert_memory_equal(back, glint_film_pixels(film), sizeof back);
+  unlink(path);
+  glint_film_destroy(film);
+#endif
+}
+
+static void expect_write_error(const glint_film *film, const char *path,
+                               const char *words) {
+  glint_error e;
+  assert_int_not_equal(glint_film_write(film, path, &e), GLINT_OK);
+  if (!strstr(e.message, words))
+    fail_msg("'%s': message '%s' lacks '%s'", path, e.message, words);
+}
+
+static void refuses_bad_paths(void **state) {
+  (void)state;
+  glint_film *film = ramp();
+  expect_write_error(film, temp_path("c.tiff"), "unknown film format");
+  expect_write_error(film, "/nonexistent-folder/d.pfm", "cannot write here");
+  char dir[256];
+  snprintf(dir, sizeof dir, "%s", temp_path("dir.pfm"));
+  mkdir(dir, 0755);
+  expect_write_error(film, dir, "is a directory");
+  rmdir(dir);
+  glint_error e;
+  glint_film *none;
+  assert_int_equal(glint_film_create(GLINT_MAX_DIMENSION + 1, 1, &none, &e),
+                   GLINT_E_ARGUMENT);
+  assert_non_null(strstr(e.message, "film size"));
+  glint_film_destroy(film);
+}
+
+int main(void) {
+  const struct CMUnitTest tests[] = {
+      cmocka_unit_test(converts_to_bytes),
+      cmocka_unit_test(writes_pfm),
+      cmocka_unit_test(writes_exr),
+      cmocka_unit_test(refuses_bad_paths),
+  };
+  return cmocka_run_group_tests(tests, NULL, NULL);
+}
