@@ -29,9 +29,9 @@ static const struct {
   int width;
   nearest_fn nearest;
 } packets[] = {
-    {GLINT_BACKEND_SSE, 4, glint_beam_nearest_hit_sse},
-    {GLINT_BACKEND_AVX2, 8, glint_beam_nearest_hit_avx2},
-    {GLINT_BACKEND_AVX512, 16, glint_beam_nearest_hit_avx512},
+    {GLINT_BACKEND_SSE, 4, gli_beam_nearest_hit_sse},
+    {GLINT_BACKEND_AVX2, 8, gli_beam_nearest_hit_avx2},
+    {GLINT_BACKEND_AVX512, 16, gli_beam_nearest_hit_avx512},
 };
 
 static double uniform(unsigned long long *s) {
@@ -66,7 +66,7 @@ static void nearest_hits_agree(void **state) {
         continue;
       test_view packet_view;
       void *prep = test_view_open(
-          g, glint_backend_ops_of(packets[k].backend)->data, 0, &packet_view);
+          g, gli_backend_ops_of(packets[k].backend)->data, 0, &packet_view);
       int w = packets[k].width, ties = 0, hits = 0;
       unsigned long long seed = 1234 + si;
       for (int base = 0; base < RAYS; base += w) {
@@ -95,7 +95,7 @@ static void nearest_hits_agree(void **state) {
           vec3 org = v3(o[i], o[w + i], o[2 * w + i]);
           vec3 dir = v3(d[i], d[w + i], d[2 * w + i]);
           int found =
-              glint_scalar_nearest_hit_float(ref, org, dir, REAL_MAX, &h);
+              gli_scalar_nearest_hit_float(ref, org, dir, REAL_MAX, &h);
           int ref_obj = -1;
           if (found) {
             hits++;

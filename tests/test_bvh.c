@@ -53,9 +53,9 @@ static const struct {
   int width;
   nearest_fn nearest;
 } packets[] = {
-    {GLINT_BACKEND_SSE, 4, glint_beam_nearest_hit_sse},
-    {GLINT_BACKEND_AVX2, 8, glint_beam_nearest_hit_avx2},
-    {GLINT_BACKEND_AVX512, 16, glint_beam_nearest_hit_avx512},
+    {GLINT_BACKEND_SSE, 4, gli_beam_nearest_hit_sse},
+    {GLINT_BACKEND_AVX2, 8, gli_beam_nearest_hit_avx2},
+    {GLINT_BACKEND_AVX512, 16, gli_beam_nearest_hit_avx512},
 };
 
 static int object_of(const scene_r *s, const hit_r *h) {
@@ -118,9 +118,9 @@ static void nearest_hits_equal_brute_force(void **state) {
       float o[3], d[3];
       make_ray(&info, &seed, o, d);
       hit_r ha, hb;
-      int fa = glint_scalar_nearest_hit_float(
+      int fa = gli_scalar_nearest_hit_float(
           fb, v3(o[0], o[1], o[2]), v3(d[0], d[1], d[2]), REAL_MAX, &ha);
-      int fbr = glint_scalar_nearest_hit_float(
+      int fbr = gli_scalar_nearest_hit_float(
           fn, v3(o[0], o[1], o[2]), v3(d[0], d[1], d[2]), REAL_MAX, &hb);
       compare(scenes[si], "scalar-float", fa ? object_of(fb, &ha) : -1, ha.t,
               fbr ? object_of(fn, &hb) : -1, hb.t, &ties);
@@ -130,7 +130,7 @@ static void nearest_hits_equal_brute_force(void **state) {
     for (size_t k = 0; k < sizeof packets / sizeof *packets; k++) {
       if (!glint_backend_supported(packets[k].backend))
         continue;
-      data_kind kind = glint_backend_ops_of(packets[k].backend)->data;
+      data_kind kind = gli_backend_ops_of(packets[k].backend)->data;
       test_view pvb, pvn;
       void *pb = test_view_open(g, kind, 1, &pvb);
       void *pn = test_view_open(g, kind, 0, &pvn);

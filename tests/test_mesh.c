@@ -113,7 +113,7 @@ static void assert_vec(V got, double x, double y, double z) {
 
 static void assert_tri(const glint_scene *s, size_t i, V a, V b, V c) {
   assert_true(i < s->triangle_count);
-  const glint_triangle_prim *t = &s->triangles[i];
+  const gli_triangle_prim *t = &s->triangles[i];
   assert_vec(t->v[0], a.x, a.y, a.z);
   assert_vec(t->v[1], b.x, b.y, b.z);
   assert_vec(t->v[2], c.x, c.y, c.z);
@@ -134,13 +134,13 @@ static void expect_fail_path(const char *path, glint_status status,
   glint_scene *s = new_scene(&m);
   ASSERT_OK(glint_scene_add_triangle(s, (V){0, 0, 0}, (V){1, 0, 0},
                                      (V){0, 1, 0}, m, &e_));
-  ASSERT_OK(glint_scene_begin_object(s, GLINT_SHAPE_TRIANGLE, m, &e_));
+  ASSERT_OK(gli_scene_begin_object(s, GLINT_SHAPE_TRIANGLE, m, &e_));
   V n[3] = {{0, 0, 1}, {0, 0, 1}, {0, 0, 1}};
-  ASSERT_OK(glint_scene_push_triangle(s, (V){0, 0, 1}, (V){1, 0, 1},
+  ASSERT_OK(gli_scene_push_triangle(s, (V){0, 0, 1}, (V){1, 0, 1},
                                       (V){0, 1, 1}, n, &e_));
   size_t objects = s->object_count, tris = s->triangle_count,
          normals = s->tri_normal_count;
-  glint_triangle_prim before[2];
+  gli_triangle_prim before[2];
   memcpy(before, s->triangles, sizeof before);
 
   glint_error e;
@@ -214,7 +214,7 @@ static void obj_polygons_are_fans(void **state) {
 static double area_xy(const glint_scene *s, size_t from, size_t to) {
   double area = 0;
   for (size_t i = from; i < to; i++) {
-    const glint_triangle_prim *t = &s->triangles[i];
+    const gli_triangle_prim *t = &s->triangles[i];
     double a = 0.5 * ((t->v[1].x - t->v[0].x) * (t->v[2].y - t->v[0].y) -
                       (t->v[1].y - t->v[0].y) * (t->v[2].x - t->v[0].x));
     if (a < -1e-12)

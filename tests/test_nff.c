@@ -81,14 +81,14 @@ static void every_entity(void **state) {
   assert_true(s->spheres[1].radius == 0.5);
   assert_true(s->cones[1].base_radius == 0.2);
   /* pp keeps its normals (normalised). */
-  const glint_triangle_prim *t = &s->triangles[s->triangle_count - 1];
+  const gli_triangle_prim *t = &s->triangles[s->triangle_count - 1];
   assert_true(t->normals != GLINT_NO_NORMALS);
   assert_true(fabs(s->tri_normals[t->normals + 2].y - sqrt(0.5)) < 1e-12);
   /* The concave polygon's triangles cover its area (4 + 3*... = 7): the
    * L-shape 4x1 + 1x3 has area 7. */
   double area = 0;
   for (size_t i = 3; i < 7; i++) {
-    const glint_triangle_prim *q = &s->triangles[i];
+    const gli_triangle_prim *q = &s->triangles[i];
     double ax = q->v[1].x - q->v[0].x, ay = q->v[1].y - q->v[0].y;
     double bx = q->v[2].x - q->v[0].x, by = q->v[2].y - q->v[0].y;
     area += 0.5 * (ax * by - ay * bx);
@@ -212,7 +212,7 @@ static void expect_cover(const char *path, const double (*pt)[2], size_t n) {
   assert_int_equal(s->triangle_count, n - 2);
   double area = 0;
   for (size_t i = 0; i < s->triangle_count; i++) {
-    const glint_triangle_prim *q = &s->triangles[i];
+    const gli_triangle_prim *q = &s->triangles[i];
     double ax = q->v[1].x - q->v[0].x, ay = q->v[1].y - q->v[0].y;
     double bx = q->v[2].x - q->v[0].x, by = q->v[2].y - q->v[0].y;
     double a = 0.5 * (ax * by - ay * bx);

@@ -14,17 +14,17 @@ typedef struct test_view {
   void *view;
 } test_view;
 
-static const glint_bvh test_no_bvh;
+static const gli_bvh test_no_bvh;
 
 static void *test_view_open(const glint_scene *scene, data_kind kind,
                             int with_bvh, test_view *tv) {
   ASSERT_OK(world_create(scene, &tv->world, &e_));
   const void *data;
   ASSERT_OK(world_data(tv->world, kind, &data, &e_));
-  const glint_bvh *bvh = &test_no_bvh;
+  const gli_bvh *bvh = &test_no_bvh;
   if (with_bvh)
     ASSERT_OK(world_bvh(tv->world, &bvh, &e_));
-  tv->layout = glint_data_ops_of(kind);
+  tv->layout = gli_data_ops_of(kind);
   ASSERT_OK(tv->layout->bind(data, bvh, &tv->view, &e_));
   return tv->view;
 }

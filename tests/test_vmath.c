@@ -26,12 +26,12 @@ typedef struct isa {
 } isa;
 
 static const isa isas[] = {
-    {"sse", GLINT_BACKEND_SSE, glint_vmath_pow_sse, glint_vmath_exp_sse,
-     glint_vmath_rcp_sse},
-    {"avx2", GLINT_BACKEND_AVX2, glint_vmath_pow_avx2, glint_vmath_exp_avx2,
-     glint_vmath_rcp_avx2},
-    {"avx512", GLINT_BACKEND_AVX512, glint_vmath_pow_avx512,
-     glint_vmath_exp_avx512, glint_vmath_rcp_avx512},
+    {"sse", GLINT_BACKEND_SSE, gli_vmath_pow_sse, gli_vmath_exp_sse,
+     gli_vmath_rcp_sse},
+    {"avx2", GLINT_BACKEND_AVX2, gli_vmath_pow_avx2, gli_vmath_exp_avx2,
+     gli_vmath_rcp_avx2},
+    {"avx512", GLINT_BACKEND_AVX512, gli_vmath_pow_avx512,
+     gli_vmath_exp_avx512, gli_vmath_rcp_avx512},
 };
 
 /* Documented bounds, by glint_math. */

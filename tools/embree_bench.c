@@ -96,7 +96,7 @@ int main(int argc, char **argv) {
 
   camera c;
   camera_init(&c, &cam, w, h);
-  float tnear = (float)glint_scene_epsilon(scene); /* glint's, for the
+  float tnear = (float)gli_scene_epsilon(scene); /* glint's, for the
                                                      same hits */
   double *times = malloc(sizeof *times * (size_t)runs);
   unsigned long long hits = 0;

@@ -165,7 +165,7 @@ static void emit(const char *name, const char *id, const char *what, int n,
          "coefficients) */\n",
          what, n, err, ferr);
   printf("#define GLINT_%s_DEGREE %d\n", name, n);
-  printf("static const float glint_%s_coeffs[%d] = {\n", id, n + 1);
+  printf("static const float gli_%s_coeffs[%d] = {\n", id, n + 1);
   for (int k = 0; k <= n; k++)
     printf("    %.9ef,\n", (double)c[k]);
   printf("};\n\n");

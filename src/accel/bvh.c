@@ -64,7 +64,7 @@ static box box_of(double lo[3], double hi[3]) {
   return b;
 }
 
-static box sphere_box(const glint_sphere_prim *s) {
+static box sphere_box(const gli_sphere_prim *s) {
   double c[3] = {s->center.x, s->center.y, s->center.z};
   double lo[3], hi[3];
   for (int k = 0; k < 3; k++)
@@ -72,7 +72,7 @@ static box sphere_box(const glint_sphere_prim *s) {
   return box_of(lo, hi);
 }
 
-static box triangle_box(const glint_triangle_prim *t) {
+static box triangle_box(const gli_triangle_prim *t) {
   double lo[3] = {DBL_MAX, DBL_MAX, DBL_MAX},
          hi[3] = {-DBL_MAX, -DBL_MAX, -DBL_MAX};
   for (int i = 0; i < 3; i++) {
@@ -85,7 +85,7 @@ static box triangle_box(const glint_triangle_prim *t) {
 
 /* The two end disks' boxes: a disk of radius r with unit normal a reaches
  * r sqrt(1 - a_k^2) along axis k. */
-static box cone_box(const glint_cone_prim *c) {
+static box cone_box(const gli_cone_prim *c) {
   double a[3] = {c->apex.x - c->base.x, c->apex.y - c->base.y,
                  c->apex.z - c->base.z};
   double len = sqrt(a[0] * a[0] + a[1] * a[1] + a[2] * a[2]);
@@ -143,7 +143,7 @@ static float box4_area(box4 b) {
 typedef struct builder {
   box4 *boxes; /* by reference, in the order of refs */
   uint32_t *refs;
-  glint_bvh_node *nodes;
+  gli_bvh_node *nodes;
   uint32_t node_count;
   int depth;
 } builder;
@@ -156,7 +156,7 @@ typedef struct task {
   box4 bounds, cbounds;
 } task;
 
-static void store_bounds(glint_bvh_node *n, box4 b) {
+static void store_bounds(gli_bvh_node *n, box4 b) {
   float lo[4], hi[4];
   _mm_storeu_ps(lo, b.lo);
   _mm_storeu_ps(hi, b.hi);
@@ -332,9 +332,9 @@ by_count:
   return mid;
 }
 
-glint_status glint_bvh_build(const glint_scene *scene, glint_bvh *bvh,
+glint_status gli_bvh_build(const glint_scene *scene, gli_bvh *bvh,
                              glint_error *error) {
-  double t0 = glint_now();
+  double t0 = gli_now();
   memset(bvh, 0, sizeof *bvh);
   size_t n = scene->sphere_count + scene->triangle_count + scene->cone_count;
   /* A hierarchy over a handful of primitives costs more in box tests than
@@ -343,7 +343,7 @@ glint_status glint_bvh_build(const glint_scene *scene, glint_bvh *bvh,
   if (n <= GLINT_BVH_MIN_PRIMS)
     return GLINT_OK;
   if (n > GLINT_MAX_BVH_PRIMS)
-    return glint_fail(error, GLINT_E_ARGUMENT,
+    return gli_fail(error, GLINT_E_ARGUMENT,
                       "too many primitives for the BVH (%zu)", n);
   builder b = {0};
   b.boxes = aligned_alloc(
@@ -355,11 +355,11 @@ glint_status glint_bvh_build(const glint_scene *scene, glint_bvh *bvh,
                        GLINT_ALIGN);
   task *stack = malloc(sizeof *stack * 4 * GLINT_BVH_MAX_DEPTH);
   if (!b.boxes || !b.refs || !b.nodes || !stack) {
-    glint_aligned_free(b.boxes);
+    gli_aligned_free(b.boxes);
     free(b.refs);
-    glint_aligned_free(b.nodes);
+    gli_aligned_free(b.nodes);
     free(stack);
-    return glint_fail(error, GLINT_E_MEMORY,
+    return gli_fail(error, GLINT_E_MEMORY,
                       "out of memory building the BVH of %zu primitives", n);
   }
   size_t r = 0;
@@ -392,7 +392,7 @@ glint_status glint_bvh_build(const glint_scene *scene, glint_bvh *bvh,
   stack[sp++] = root;
   while (sp > 0) {
     task t = stack[--sp];
-    glint_bvh_node *node = &b.nodes[t.node];
+    gli_bvh_node *node = &b.nodes[t.node];
     store_bounds(node, t.bounds);
     if (t.depth > b.depth)
       b.depth = t.depth;
@@ -422,9 +422,9 @@ glint_status glint_bvh_build(const glint_scene *scene, glint_bvh *bvh,
     stack[sp++] = (task){left, t.begin, mid, t.depth + 1, lb, lc};
   }
   free(stack);
-  glint_aligned_free(b.boxes);
+  gli_aligned_free(b.boxes);
 
-  glint_bvh_node *shrunk = glint_aligned_calloc(b.node_count, sizeof *shrunk);
+  gli_bvh_node *shrunk = gli_aligned_calloc(b.node_count, sizeof *shrunk);
   if (shrunk) {
     memcpy(shrunk, b.nodes, b.node_count * sizeof *shrunk);
     free(b.nodes);
@@ -435,17 +435,17 @@ glint_status glint_bvh_build(const glint_scene *scene, glint_bvh *bvh,
   bvh->refs = b.refs;
   bvh->ref_count = (uint32_t)n;
   bvh->depth = b.depth;
-  bvh->build_seconds = glint_now() - t0;
+  bvh->build_seconds = gli_now() - t0;
   return GLINT_OK;
 }
 
-void glint_bvh_free(glint_bvh *bvh) {
-  glint_aligned_free(bvh->nodes);
+void gli_bvh_free(gli_bvh *bvh) {
+  gli_aligned_free(bvh->nodes);
   free(bvh->refs);
   memset(bvh, 0, sizeof *bvh);
 }
 
-uint64_t glint_bvh_bytes(const glint_bvh *bvh) {
-  return (uint64_t)bvh->node_count * sizeof(glint_bvh_node) +
+uint64_t gli_bvh_bytes(const gli_bvh *bvh) {
+  return (uint64_t)bvh->node_count * sizeof(gli_bvh_node) +
          (uint64_t)bvh->ref_count * sizeof(uint32_t);
 }

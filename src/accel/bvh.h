@@ -20,32 +20,32 @@
 
 /* 32 bytes, two to a cache line. The children of an inner node are
  * adjacent: offset and offset + 1. */
-typedef struct glint_bvh_node {
+typedef struct gli_bvh_node {
   float lo[3], hi[3];
   uint32_t offset; /* inner: first child; leaf: first reference */
   uint16_t count;  /* references in a leaf; 0 for an inner node */
   uint16_t axis;   /* an inner node's split axis */
-} glint_bvh_node;
+} gli_bvh_node;
 
 #define GLINT_BVH_MAX_DEPTH 64 /* traversal stacks are this deep */
 #define GLINT_BVH_MIN_PRIMS 16 /* fewer bounded primitives: no hierarchy */
 
-typedef struct glint_bvh {
-  glint_bvh_node *nodes;
+typedef struct gli_bvh {
+  gli_bvh_node *nodes;
   uint32_t node_count;
   uint32_t *refs;
   uint32_t ref_count;
   int depth;
   double build_seconds;
-} glint_bvh;
+} gli_bvh;
 
 /* Builds over the scene's spheres, triangles and cones. A scene with at most
  * GLINT_BVH_MIN_PRIMS of them gives node_count = 0: test them all. */
-glint_status glint_bvh_build(const glint_scene *scene, glint_bvh *bvh,
+glint_status gli_bvh_build(const glint_scene *scene, gli_bvh *bvh,
                              glint_error *error);
-void glint_bvh_free(glint_bvh *bvh);
+void gli_bvh_free(gli_bvh *bvh);
 
 /* Bytes the built hierarchy occupies (nodes and references). */
-uint64_t glint_bvh_bytes(const glint_bvh *bvh);
+uint64_t gli_bvh_bytes(const gli_bvh *bvh);
 
 #endif

@@ -53,7 +53,7 @@ static ALWAYS_INLINE packet_inv packet_inverse(vvec3 o, vvec3 d, vmask active,
 /* The slab test for all lanes of `active` against a node's box within
  * (tmin, tmax). The far distance is widened by a few ulps so rounding in
  * the reciprocal cannot cull a hit on the box's surface. */
-static ALWAYS_INLINE vmask packet_box(const glint_bvh_node *n,
+static ALWAYS_INLINE vmask packet_box(const gli_bvh_node *n,
                                       const packet_inv *r, vfloat tmin,
                                       vfloat tmax, vmask active) {
   vfloat lx, ly, lz, hx, hy, hz, unused0, unused1;
@@ -80,7 +80,7 @@ typedef void (*packet_leaf_fn)(void *ctx, uint32_t ref, vmask m);
  * first is pushed last. A node's box is tested when it is popped, against
  * the lanes' nearest hits so far (*tmax, which the leaf function narrows),
  * so boxes behind a hit are skipped. */
-static ALWAYS_INLINE void packet_bvh_closest(const glint_bvh *bvh, vvec3 o,
+static ALWAYS_INLINE void packet_bvh_closest(const gli_bvh *bvh, vvec3 o,
                                              vvec3 d, vmask active, vfloat tmin,
                                              const vfloat *tmax, int newton,
                                              glint_stats *st,
@@ -91,7 +91,7 @@ static ALWAYS_INLINE void packet_bvh_closest(const glint_bvh *bvh, vvec3 o,
   int sp = 0;
   stack[sp++] = 0;
   while (sp > 0) {
-    const glint_bvh_node *n = &bvh->nodes[stack[--sp]];
+    const gli_bvh_node *n = &bvh->nodes[stack[--sp]];
     vmask m = packet_box(n, &r, tmin, *tmax, active);
     count_tests(st, 1, lanes);
     if (vm_none(m))
@@ -112,7 +112,7 @@ static ALWAYS_INLINE void packet_bvh_closest(const glint_bvh *bvh, vvec3 o,
  * tmax) pass through, in any order, until no lane is *alive. While a leaf's
  * primitives are tested, *alive holds only the lanes inside its box; the
  * leaf function clears the lanes it blocks. */
-static ALWAYS_INLINE void packet_bvh_segment(const glint_bvh *bvh, vvec3 o,
+static ALWAYS_INLINE void packet_bvh_segment(const gli_bvh *bvh, vvec3 o,
                                              vvec3 d, vfloat tmin, vfloat tmax,
                                              vmask *alive, int newton,
                                              glint_stats *st,
@@ -122,7 +122,7 @@ static ALWAYS_INLINE void packet_bvh_segment(const glint_bvh *bvh, vvec3 o,
   int sp = 0;
   stack[sp++] = 0;
   while (sp > 0 && vm_any(*alive)) {
-    const glint_bvh_node *n = &bvh->nodes[stack[--sp]];
+    const gli_bvh_node *n = &bvh->nodes[stack[--sp]];
     vmask m = packet_box(n, &r, tmin, tmax, *alive);
     count_tests(st, 1, vm_count(*alive));
     if (vm_none(m))

@@ -28,7 +28,7 @@ static inline vec3 safe_inverse(vec3 d) {
  * REAL_MAX: a ray without a hit yet has tmax = REAL_MAX, and every missed
  * box would pass entry <= tmax.) The far distance is widened by a few ulps
  * so rounding cannot cull a hit on the box's surface. */
-static inline real box_entry(const glint_bvh_node *n, vec3 o, vec3 inv,
+static inline real box_entry(const gli_bvh_node *n, vec3 o, vec3 inv,
                              real tmin, real tmax) {
   real t0x = ((real)n->lo[0] - o.x) * inv.x,
        t1x = ((real)n->hi[0] - o.x) * inv.x;
@@ -50,9 +50,9 @@ typedef void (*bvh_closest_fn)(void *ctx, uint32_t ref, real *tmax);
  * and the nearer is visited first; the farther waits on the stack with its
  * entry distance, and is skipped if a hit has come closer since. */
 static inline __attribute__((always_inline)) void
-bvh_closest(const glint_bvh *bvh, vec3 o, vec3 d, real tmin, real *tmax,
+bvh_closest(const gli_bvh *bvh, vec3 o, vec3 d, real tmin, real *tmax,
             bvh_closest_fn leaf, void *ctx) {
-  const glint_bvh_node *nodes = bvh->nodes;
+  const gli_bvh_node *nodes = bvh->nodes;
   if (nodes[0].count) { /* a single leaf: its box test would only cost */
     for (uint32_t k = 0; k < nodes[0].count; k++)
       leaf(ctx, bvh->refs[k], tmax);
@@ -68,7 +68,7 @@ bvh_closest(const glint_bvh *bvh, vec3 o, vec3 d, real tmin, real *tmax,
   if (box_entry(&nodes[0], o, inv, tmin, *tmax) > *tmax)
     return;
   for (;;) {
-    const glint_bvh_node *n = &nodes[node];
+    const gli_bvh_node *n = &nodes[node];
     if (n->count == 0) {
       uint32_t a = n->offset, b = n->offset + 1;
       real ta = box_entry(&nodes[a], o, inv, tmin, *tmax);
@@ -106,15 +106,15 @@ typedef int (*bvh_segment_fn)(void *ctx, uint32_t ref);
 /* The segment walk: every node the segment (tmin, tmax) passes through, in
  * any order; returns 0 as soon as the leaf function reports a block. */
 static inline __attribute__((always_inline)) int
-bvh_segment(const glint_bvh *bvh, vec3 o, vec3 d, real tmin, real tmax,
+bvh_segment(const gli_bvh *bvh, vec3 o, vec3 d, real tmin, real tmax,
             bvh_segment_fn leaf, void *ctx) {
-  const glint_bvh_node *nodes = bvh->nodes;
+  const gli_bvh_node *nodes = bvh->nodes;
   vec3 inv = safe_inverse(d);
   uint32_t stack[GLINT_BVH_MAX_DEPTH];
   int sp = 0;
   stack[sp++] = 0;
   while (sp > 0) {
-    const glint_bvh_node *n = &nodes[stack[--sp]];
+    const gli_bvh_node *n = &nodes[stack[--sp]];
     /* (a root that is a single leaf needs no box test) */
     if (n != nodes && box_entry(n, o, inv, tmin, tmax) > tmax)
       continue;

@@ -9,7 +9,7 @@
 /* GLINT_ISA=none|sse|avx2|avx512 caps what detection reports, to test
  * fallbacks and to compare instruction sets on one machine. It can only
  * take features away, never claim ones the CPU lacks. */
-static void apply_cap(glint_cpu_features *f) {
+static void apply_cap(gli_cpu_features *f) {
   const char *cap = getenv("GLINT_ISA");
   if (!cap || !*cap)
     return;
@@ -30,7 +30,7 @@ static unsigned long long xgetbv0(void) {
   return ((unsigned long long)edx << 32) | eax;
 }
 
-void glint_cpu_detect(glint_cpu_features *f) {
+void gli_cpu_detect(gli_cpu_features *f) {
   unsigned int a, b, c, d;
   f->sse41 = f->avx2 = f->avx512 = 0;
   if (!__get_cpuid(1, &a, &b, &c, &d))
@@ -56,7 +56,7 @@ void glint_cpu_detect(glint_cpu_features *f) {
   apply_cap(f);
 }
 #else
-void glint_cpu_detect(glint_cpu_features *f) {
+void gli_cpu_detect(gli_cpu_features *f) {
   f->sse41 = f->avx2 = f->avx512 = 0;
 }
 #endif

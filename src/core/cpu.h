@@ -2,12 +2,12 @@
 #ifndef GLINT_CORE_CPU_H
 #define GLINT_CORE_CPU_H
 
-typedef struct glint_cpu_features {
+typedef struct gli_cpu_features {
   int sse41;  /* SSE4.1 (and SSE2 beneath it) */
   int avx2;   /* AVX2 + FMA, with the OS saving YMM state */
   int avx512; /* AVX-512F (+DQ, VL, BW, CD), with the OS saving ZMM state */
-} glint_cpu_features;
+} gli_cpu_features;
 
-void glint_cpu_detect(glint_cpu_features *features);
+void gli_cpu_detect(gli_cpu_features *features);
 
 #endif

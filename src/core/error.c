@@ -3,7 +3,7 @@
 #include <stdarg.h>
 #include <stdio.h>
 
-glint_status glint_fail(glint_error *error, glint_status status,
+glint_status gli_fail(glint_error *error, glint_status status,
                         const char *format, ...) {
   if (error) {
     va_list args;
@@ -15,7 +15,7 @@ glint_status glint_fail(glint_error *error, glint_status status,
   return status;
 }
 
-void glint_error_clear(glint_error *error) {
+void gli_error_clear(glint_error *error) {
   if (error) {
     error->status = GLINT_OK;
     error->message[0] = '\0';

@@ -1,5 +1,5 @@
 /* Error reporting: every fallible internal function takes a glint_error * that
- * may be NULL and fills it through glint_fail(). */
+ * may be NULL and fills it through gli_fail(). */
 #ifndef GLINT_CORE_ERROR_H
 #define GLINT_CORE_ERROR_H
 
@@ -12,10 +12,10 @@
 #endif
 
 /* Records status and a printf-formatted message; returns status. */
-glint_status glint_fail(glint_error *error, glint_status status,
+glint_status gli_fail(glint_error *error, glint_status status,
                         const char *format, ...) GLINT_PRINTF(3, 4);
 
 /* Clears an error record (status GLINT_OK, empty message). */
-void glint_error_clear(glint_error *error);
+void gli_error_clear(glint_error *error);
 
 #endif

@@ -3,7 +3,7 @@
 #include <stdlib.h>
 #include <string.h>
 
-void *glint_aligned_calloc(size_t count, size_t size) {
+void *gli_aligned_calloc(size_t count, size_t size) {
   if (size != 0 && count > SIZE_MAX / size)
     return NULL;
   size_t bytes = count * size;
@@ -19,9 +19,9 @@ void *glint_aligned_calloc(size_t count, size_t size) {
   return p;
 }
 
-void glint_aligned_free(void *p) { free(p); }
+void gli_aligned_free(void *p) { free(p); }
 
-int glint_grow(void **items, size_t *capacity, size_t needed, size_t size) {
+int gli_grow(void **items, size_t *capacity, size_t needed, size_t size) {
   if (needed <= *capacity)
     return 0;
   size_t cap = *capacity ? *capacity : 8;

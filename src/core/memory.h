@@ -9,17 +9,17 @@
 #define GLINT_ALIGN 64
 
 /* NULL on failure or on size overflow; zero-filled. */
-void *glint_aligned_calloc(size_t count, size_t size);
-void glint_aligned_free(void *p);
+void *gli_aligned_calloc(size_t count, size_t size);
+void gli_aligned_free(void *p);
 
 /* Grows *items (of `size`-byte elements) so that `needed` fit; doubles the
  * capacity. Returns 0 on success, -1 on allocation failure or overflow. */
-int glint_grow(void **items, size_t *capacity, size_t needed, size_t size);
+int gli_grow(void **items, size_t *capacity, size_t needed, size_t size);
 
 /* Appends one element: GLINT_PUSH(array, count, capacity, value) evaluates to
  * 0 on success, -1 when out of memory. */
 #define GLINT_PUSH(arr, count, cap, value)                                     \
-  (glint_grow((void **)&(arr), &(cap), (count) + 1, sizeof *(arr)) == 0        \
+  (gli_grow((void **)&(arr), &(cap), (count) + 1, sizeof *(arr)) == 0        \
        ? ((arr)[(count)++] = (value), 0)                                       \
        : -1)
 

@@ -4,7 +4,7 @@
 #include <time.h>
 
 /* Monotonic wall-clock seconds. */
-static inline double glint_now(void) {
+static inline double gli_now(void) {
   struct timespec ts;
   clock_gettime(CLOCK_MONOTONIC, &ts);
   return (double)ts.tv_sec + 1e-9 * (double)ts.tv_nsec;

@@ -22,7 +22,7 @@ static uint32_t get32(const uint8_t *p) {
   return get16(p) | get16(p + 2) << 16;
 }
 
-int glint_bmp_encode(const glint_image *im, FILE *f) {
+int gli_bmp_encode(const glint_image *im, FILE *f) {
   uint32_t stride = ((uint32_t)im->width * 3 + 3) & ~3u;
   uint32_t data = stride * (uint32_t)im->height;
   uint8_t hdr[54] = {'B', 'M'};
@@ -57,16 +57,16 @@ int glint_bmp_encode(const glint_image *im, FILE *f) {
   return 0;
 }
 
-glint_status glint_bmp_decode(FILE *f, const char *path, glint_image **out,
+glint_status gli_bmp_decode(FILE *f, const char *path, glint_image **out,
                               glint_error *error) {
   uint8_t hdr[54];
   if (fread(hdr, 1, sizeof hdr, f) != sizeof hdr || hdr[0] != 'B' ||
       hdr[1] != 'M')
-    return glint_fail(error, GLINT_E_PARSE, "%s: not a BMP file", path);
+    return gli_fail(error, GLINT_E_PARSE, "%s: not a BMP file", path);
   uint32_t offset = get32(hdr + 10), hsize = get32(hdr + 14);
   int32_t w = (int32_t)get32(hdr + 18), h = (int32_t)get32(hdr + 22);
   if (hsize < 40 || get16(hdr + 28) != 24 || get32(hdr + 30) != 0)
-    return glint_fail(error, GLINT_E_PARSE,
+    return gli_fail(error, GLINT_E_PARSE,
                       "%s: only uncompressed 24-bit BMP is supported", path);
   int top_down = h < 0;
   if (top_down)
@@ -80,13 +80,13 @@ glint_status glint_bmp_decode(FILE *f, const char *path, glint_image **out,
   if (!row || fseek(f, (long)offset, SEEK_SET) != 0) {
     free(row);
     glint_image_destroy(im);
-    return glint_fail(error, GLINT_E_PARSE, "%s: truncated BMP file", path);
+    return gli_fail(error, GLINT_E_PARSE, "%s: truncated BMP file", path);
   }
   for (int i = 0; i < h; i++) {
     if (fread(row, 1, stride, f) != stride) {
       free(row);
       glint_image_destroy(im);
-      return glint_fail(error, GLINT_E_PARSE, "%s: truncated BMP file", path);
+      return gli_fail(error, GLINT_E_PARSE, "%s: truncated BMP file", path);
     }
     int y = top_down ? i : h - 1 - i;
     uint8_t *dst = im->rgb + (size_t)y * w * 3;

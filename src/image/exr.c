@@ -66,7 +66,7 @@ static exr_result_t write_chunks(exr_context_t ctx, const glint_film *film) {
   return rv;
 }
 
-int glint_exr_encode(const glint_film *film, FILE *f) {
+int gli_exr_encode(const glint_film *film, FILE *f) {
   if (fflush(f) != 0)
     return -1;
   exr_context_initializer_t init = EXR_DEFAULT_CONTEXT_INITIALIZER;

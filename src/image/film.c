@@ -13,15 +13,15 @@
 glint_status glint_film_create(int w, int h, glint_film **out,
                                glint_error *error) {
   if (w < 1 || h < 1 || w > GLINT_MAX_DIMENSION || h > GLINT_MAX_DIMENSION)
-    return glint_fail(error, GLINT_E_ARGUMENT,
+    return gli_fail(error, GLINT_E_ARGUMENT,
                       "film size %dx%d is outside 1..%d", w, h,
                       GLINT_MAX_DIMENSION);
   glint_film *film = malloc(sizeof *film);
-  float *rgb = glint_aligned_calloc((size_t)w * (size_t)h * 3, sizeof(float));
+  float *rgb = gli_aligned_calloc((size_t)w * (size_t)h * 3, sizeof(float));
   if (!film || !rgb) {
     free(film);
-    glint_aligned_free(rgb);
-    return glint_fail(error, GLINT_E_MEMORY, "out of memory for a %dx%d film",
+    gli_aligned_free(rgb);
+    return gli_fail(error, GLINT_E_MEMORY, "out of memory for a %dx%d film",
                       w, h);
   }
   film->width = w;
@@ -33,7 +33,7 @@ glint_status glint_film_create(int w, int h, glint_film **out,
 
 void glint_film_destroy(glint_film *film) {
   if (film) {
-    glint_aligned_free(film->rgb);
+    gli_aligned_free(film->rgb);
     free(film);
   }
 }
@@ -53,7 +53,7 @@ static inline uint8_t to_byte(float c) {
   return (uint8_t)(int)(255.0f * v + 0.5f);
 }
 
-void glint_film_span_to_bytes(const float *src, uint8_t *dst, size_t n,
+void gli_film_span_to_bytes(const float *src, uint8_t *dst, size_t n,
                               double gamma) {
   if (gamma == 1) {
     for (size_t i = 0; i < n; i++)
@@ -70,25 +70,25 @@ void glint_film_span_to_bytes(const float *src, uint8_t *dst, size_t n,
 glint_status glint_film_to_image(const glint_film *film, double gamma,
                                  glint_image *image, glint_error *error) {
   if (!(isfinite(gamma) && gamma > 0))
-    return glint_fail(error, GLINT_E_ARGUMENT, "gamma %g must be a number > 0",
+    return gli_fail(error, GLINT_E_ARGUMENT, "gamma %g must be a number > 0",
                       gamma);
   if (image->width != film->width || image->height != film->height)
-    return glint_fail(error, GLINT_E_ARGUMENT,
+    return gli_fail(error, GLINT_E_ARGUMENT,
                       "a %dx%d film does not fit a %dx%d image", film->width,
                       film->height, image->width, image->height);
-  glint_film_span_to_bytes(film->rgb, image->rgb,
+  gli_film_span_to_bytes(film->rgb, image->rgb,
                            (size_t)film->width * (size_t)film->height * 3,
                            gamma);
   return GLINT_OK;
 }
 
 static int write_pfm(const void *film, FILE *f) {
-  return glint_pfm_encode(film, f);
+  return gli_pfm_encode(film, f);
 }
 
 #ifdef GLINT_HAVE_EXR
 static int write_exr(const void *film, FILE *f) {
-  return glint_exr_encode(film, f);
+  return gli_exr_encode(film, f);
 }
 #endif
 
@@ -114,13 +114,13 @@ static glint_status film_writer(const char *path, write_fn *write,
     *write = write_exr;
     return GLINT_OK;
 #else
-    return glint_fail(error, GLINT_E_UNSUPPORTED,
+    return gli_fail(error, GLINT_E_UNSUPPORTED,
                       "%s: this build of glint has no OpenEXR (install "
                       "libopenexr-dev and rebuild, or write .pfm)",
                       path);
 #endif
   default:
-    return glint_fail(error, GLINT_E_ARGUMENT,
+    return gli_fail(error, GLINT_E_ARGUMENT,
                       "%s: unknown film format (use .pfm or .exr)", path);
   }
 }
@@ -128,12 +128,12 @@ static glint_status film_writer(const char *path, write_fn *write,
 glint_status glint_film_check_writable(const char *path, glint_error *error) {
   write_fn write = NULL;
   glint_status st = film_writer(path, &write, error);
-  return st ? st : glint_check_folder_writable(path, error);
+  return st ? st : gli_check_folder_writable(path, error);
 }
 
 glint_status glint_film_write(const glint_film *film, const char *path,
                               glint_error *error) {
   write_fn write = NULL;
   glint_status st = film_writer(path, &write, error);
-  return st ? st : glint_write_atomically(path, write, film, error);
+  return st ? st : gli_write_atomically(path, write, film, error);
 }

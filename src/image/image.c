@@ -18,7 +18,7 @@
 glint_status glint_image_create(int w, int h, glint_image **out,
                                 glint_error *error) {
   if (w < 1 || h < 1 || w > GLINT_MAX_DIMENSION || h > GLINT_MAX_DIMENSION)
-    return glint_fail(error, GLINT_E_ARGUMENT,
+    return gli_fail(error, GLINT_E_ARGUMENT,
                       "image size %dx%d is outside 1..%d", w, h,
                       GLINT_MAX_DIMENSION);
   glint_image *im = malloc(sizeof *im);
@@ -26,7 +26,7 @@ glint_status glint_image_create(int w, int h, glint_image **out,
   if (!im || !rgb) {
     free(im);
     free(rgb);
-    return glint_fail(error, GLINT_E_MEMORY, "out of memory for a %dx%d image",
+    return gli_fail(error, GLINT_E_MEMORY, "out of memory for a %dx%d image",
                       w, h);
   }
   im->width = w;
@@ -65,7 +65,7 @@ glint_image_format glint_image_format_from_path(const char *path) {
 }
 
 static glint_status unknown_format(const char *path, glint_error *error) {
-  return glint_fail(error, GLINT_E_ARGUMENT,
+  return gli_fail(error, GLINT_E_ARGUMENT,
                     "%s: unknown image format (use .png, .bmp or .ppm)", path);
 }
 
@@ -90,17 +90,17 @@ static char *temp_template(const char *path) {
 static int open_temp(const char *path, char **temp, glint_error *error) {
   struct stat sb;
   if (stat(path, &sb) == 0 && S_ISDIR(sb.st_mode)) {
-    glint_fail(error, GLINT_E_IO, "%s: is a directory", path);
+    gli_fail(error, GLINT_E_IO, "%s: is a directory", path);
     return -1;
   }
   *temp = temp_template(path);
   if (!*temp) {
-    glint_fail(error, GLINT_E_MEMORY, "out of memory");
+    gli_fail(error, GLINT_E_MEMORY, "out of memory");
     return -1;
   }
   int fd = mkstemp(*temp);
   if (fd < 0) {
-    glint_fail(error, GLINT_E_IO, "%s: cannot write here: %s", path,
+    gli_fail(error, GLINT_E_IO, "%s: cannot write here: %s", path,
                strerror(errno));
     free(*temp);
     *temp = NULL;
@@ -111,10 +111,10 @@ static int open_temp(const char *path, char **temp, glint_error *error) {
 glint_status glint_image_check_writable(const char *path, glint_error *error) {
   if (glint_image_format_from_path(path) == GLINT_FORMAT_UNKNOWN)
     return unknown_format(path, error);
-  return glint_check_folder_writable(path, error);
+  return gli_check_folder_writable(path, error);
 }
 
-glint_status glint_check_folder_writable(const char *path, glint_error *error) {
+glint_status gli_check_folder_writable(const char *path, glint_error *error) {
   char *temp;
   int fd = open_temp(path, &temp, error);
   if (fd < 0)
@@ -125,7 +125,7 @@ glint_status glint_check_folder_writable(const char *path, glint_error *error) {
   return GLINT_OK;
 }
 
-glint_status glint_write_atomically(const char *path, write_fn write,
+glint_status gli_write_atomically(const char *path, write_fn write,
                                     const void *data, glint_error *error) {
   char *temp;
   int fd = open_temp(path, &temp, error);
@@ -140,7 +140,7 @@ glint_status glint_write_atomically(const char *path, write_fn write,
     close(fd);
     unlink(temp);
     free(temp);
-    return glint_fail(error, GLINT_E_IO, "%s: %s", path, strerror(errno));
+    return gli_fail(error, GLINT_E_IO, "%s: %s", path, strerror(errno));
   }
   int bad = write(data, f);
   int saved = errno;
@@ -155,7 +155,7 @@ glint_status glint_write_atomically(const char *path, write_fn write,
   if (bad) {
     unlink(temp);
     free(temp);
-    return glint_fail(error, GLINT_E_IO, "%s: writing failed: %s", path,
+    return gli_fail(error, GLINT_E_IO, "%s: writing failed: %s", path,
                       saved ? strerror(saved) : "encoder error");
   }
   free(temp);
@@ -164,9 +164,9 @@ glint_status glint_write_atomically(const char *path, write_fn write,
 
 static int encode_image(const void *data, FILE *f) {
   const encode_job *job = data;
-  return job->format == GLINT_FORMAT_PNG   ? glint_png_encode(job->image, f)
-         : job->format == GLINT_FORMAT_BMP ? glint_bmp_encode(job->image, f)
-                                           : glint_ppm_encode(job->image, f);
+  return job->format == GLINT_FORMAT_PNG   ? gli_png_encode(job->image, f)
+         : job->format == GLINT_FORMAT_BMP ? gli_bmp_encode(job->image, f)
+                                           : gli_ppm_encode(job->image, f);
 }
 
 glint_status glint_image_write(const glint_image *im, const char *path,
@@ -175,7 +175,7 @@ glint_status glint_image_write(const glint_image *im, const char *path,
   if (fmt == GLINT_FORMAT_UNKNOWN)
     return unknown_format(path, error);
   encode_job job = {im, fmt};
-  return glint_write_atomically(path, encode_image, &job, error);
+  return gli_write_atomically(path, encode_image, &job, error);
 }
 
 glint_status glint_image_read(const char *path, glint_image **out,
@@ -185,11 +185,11 @@ glint_status glint_image_read(const char *path, glint_image **out,
     return unknown_format(path, error);
   FILE *f = fopen(path, "rb");
   if (!f)
-    return glint_fail(error, GLINT_E_IO, "%s: %s", path, strerror(errno));
+    return gli_fail(error, GLINT_E_IO, "%s: %s", path, strerror(errno));
   glint_status st =
-      fmt == GLINT_FORMAT_PNG   ? glint_png_decode(f, path, out, error)
-      : fmt == GLINT_FORMAT_BMP ? glint_bmp_decode(f, path, out, error)
-                                : glint_ppm_decode(f, path, out, error);
+      fmt == GLINT_FORMAT_PNG   ? gli_png_decode(f, path, out, error)
+      : fmt == GLINT_FORMAT_BMP ? gli_bmp_decode(f, path, out, error)
+                                : gli_ppm_decode(f, path, out, error);
   fclose(f);
   return st;
 }

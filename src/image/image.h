@@ -18,36 +18,36 @@ struct glint_film {
 /* SPEC §4's 8-bit conversion of n linear values: clamp to [0, 1], then
  * c^(1/gamma), then round(255 c). Used for whole films and, while a frame
  * renders, for each finished tile. */
-void glint_film_span_to_bytes(const float *src, uint8_t *dst, size_t n,
+void gli_film_span_to_bytes(const float *src, uint8_t *dst, size_t n,
                               double gamma);
 
 /* Writes `path` atomically: write(data, f) fills a temporary file beside
  * it (returning 0 on success), which is flushed, synced and renamed over
  * `path` only when complete. */
 typedef int (*write_fn)(const void *data, FILE *f);
-/* Whether glint_write_atomically could write `path` now (not a folder, and
+/* Whether gli_write_atomically could write `path` now (not a folder, and
  * its folder takes a new file); leaves nothing behind. */
-glint_status glint_check_folder_writable(const char *path, glint_error *error);
-glint_status glint_write_atomically(const char *path, write_fn write,
+glint_status gli_check_folder_writable(const char *path, glint_error *error);
+glint_status gli_write_atomically(const char *path, write_fn write,
                                     const void *data, glint_error *error);
 
 /* Film encoders: 0 on success. EXR returns -1 with errno 0 on a library
  * error, and is absent (GLINT_HAVE_EXR undefined) in builds without
  * OpenEXR. */
-int glint_pfm_encode(const glint_film *film, FILE *f);
-int glint_exr_encode(const glint_film *film, FILE *f);
+int gli_pfm_encode(const glint_film *film, FILE *f);
+int gli_exr_encode(const glint_film *film, FILE *f);
 
 /* Encoders write the whole image to an open stream; 0 on success. */
-int glint_png_encode(const glint_image *image, FILE *f);
-int glint_bmp_encode(const glint_image *image, FILE *f);
-int glint_ppm_encode(const glint_image *image, FILE *f);
+int gli_png_encode(const glint_image *image, FILE *f);
+int gli_bmp_encode(const glint_image *image, FILE *f);
+int gli_ppm_encode(const glint_image *image, FILE *f);
 
 /* Decoders read a whole image; on failure they fill error naming `path`. */
-glint_status glint_png_decode(FILE *f, const char *path, glint_image **image,
+glint_status gli_png_decode(FILE *f, const char *path, glint_image **image,
                               glint_error *error);
-glint_status glint_bmp_decode(FILE *f, const char *path, glint_image **image,
+glint_status gli_bmp_decode(FILE *f, const char *path, glint_image **image,
                               glint_error *error);
-glint_status glint_ppm_decode(FILE *f, const char *path, glint_image **image,
+glint_status gli_ppm_decode(FILE *f, const char *path, glint_image **image,
                               glint_error *error);
 
 #endif

@@ -6,7 +6,7 @@
 #include <stdlib.h>
 #include <string.h>
 
-int glint_pfm_encode(const glint_film *film, FILE *f) {
+int gli_pfm_encode(const glint_film *film, FILE *f) {
   if (fprintf(f, "PF\n%d %d\n-1.0\n", film->width, film->height) < 0)
     return -1;
   size_t row = (size_t)film->width * 3;

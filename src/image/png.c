@@ -7,7 +7,7 @@
 #include <setjmp.h>
 #include <stdlib.h>
 
-int glint_png_encode(const glint_image *im, FILE *f) {
+int gli_png_encode(const glint_image *im, FILE *f) {
   png_structp png =
       png_create_write_struct(PNG_LIBPNG_VER_STRING, NULL, NULL, NULL);
   if (!png)
@@ -29,18 +29,18 @@ int glint_png_encode(const glint_image *im, FILE *f) {
   return ferror(f) ? -1 : 0;
 }
 
-glint_status glint_png_decode(FILE *f, const char *path, glint_image **out,
+glint_status gli_png_decode(FILE *f, const char *path, glint_image **out,
                               glint_error *error) {
   png_structp png =
       png_create_read_struct(PNG_LIBPNG_VER_STRING, NULL, NULL, NULL);
   if (!png)
-    return glint_fail(error, GLINT_E_MEMORY, "out of memory");
+    return gli_fail(error, GLINT_E_MEMORY, "out of memory");
   png_infop info = png_create_info_struct(png);
   glint_image *volatile im = NULL;
   if (!info || setjmp(png_jmpbuf(png))) {
     png_destroy_read_struct(&png, &info, NULL);
     glint_image_destroy(im);
-    return glint_fail(error, GLINT_E_PARSE, "%s: not a valid PNG file", path);
+    return gli_fail(error, GLINT_E_PARSE, "%s: not a valid PNG file", path);
   }
   png_init_io(png, f);
   png_read_info(png, info);
@@ -56,7 +56,7 @@ glint_status glint_png_decode(FILE *f, const char *path, glint_image **out,
   if (w < 1 || h < 1 || w > GLINT_MAX_DIMENSION || h > GLINT_MAX_DIMENSION ||
       png_get_rowbytes(png, info) != (size_t)w * 3) {
     png_destroy_read_struct(&png, &info, NULL);
-    return glint_fail(error, GLINT_E_PARSE, "%s: unsupported PNG layout", path);
+    return gli_fail(error, GLINT_E_PARSE, "%s: unsupported PNG layout", path);
   }
   glint_image *tmp;
   if (glint_image_create((int)w, (int)h, &tmp, error)) {
@@ -68,7 +68,7 @@ glint_status glint_png_decode(FILE *f, const char *path, glint_image **out,
   if (!rows) {
     png_destroy_read_struct(&png, &info, NULL);
     glint_image_destroy(tmp);
-    return glint_fail(error, GLINT_E_MEMORY, "out of memory");
+    return gli_fail(error, GLINT_E_MEMORY, "out of memory");
   }
   for (png_uint_32 y = 0; y < h; y++)
     rows[y] = tmp->rgb + (size_t)y * w * 3;

@@ -5,7 +5,7 @@
 
 #include <ctype.h>
 
-int glint_ppm_encode(const glint_image *im, FILE *f) {
+int gli_ppm_encode(const glint_image *im, FILE *f) {
   if (fprintf(f, "P6\n%d %d\n255\n", im->width, im->height) < 0)
     return -1;
   size_t n = (size_t)im->width * im->height * 3;
@@ -35,14 +35,14 @@ static long ppm_number(FILE *f) {
   return v; /* the single white-space character after it is consumed */
 }
 
-glint_status glint_ppm_decode(FILE *f, const char *path, glint_image **out,
+glint_status gli_ppm_decode(FILE *f, const char *path, glint_image **out,
                               glint_error *error) {
   if (fgetc(f) != 'P' || fgetc(f) != '6')
-    return glint_fail(error, GLINT_E_PARSE, "%s: not a binary PPM (P6) file",
+    return gli_fail(error, GLINT_E_PARSE, "%s: not a binary PPM (P6) file",
                       path);
   long w = ppm_number(f), h = ppm_number(f), maxval = ppm_number(f);
   if (w < 1 || h < 1 || maxval != 255)
-    return glint_fail(error, GLINT_E_PARSE,
+    return gli_fail(error, GLINT_E_PARSE,
                       "%s: bad PPM header (only 8-bit P6 is supported)", path);
   glint_image *im;
   glint_status st = glint_image_create((int)w, (int)h, &im, error);
@@ -51,7 +51,7 @@ glint_status glint_ppm_decode(FILE *f, const char *path, glint_image **out,
   size_t n = (size_t)w * (size_t)h * 3;
   if (fread(im->rgb, 1, n, f) != n) {
     glint_image_destroy(im);
-    return glint_fail(error, GLINT_E_PARSE, "%s: truncated PPM file", path);
+    return gli_fail(error, GLINT_E_PARSE, "%s: truncated PPM file", path);
   }
   *out = im;
   return GLINT_OK;

@@ -34,12 +34,12 @@ typedef struct data_ops {
   void (*release)(void *data);
   size_t (*bytes)(const void *data);
   /* A view of the data that traverses `bvh` (node_count 0: brute force). */
-  glint_status (*bind)(const void *data, const glint_bvh *bvh, void **view,
+  glint_status (*bind)(const void *data, const gli_bvh *bvh, void **view,
                        glint_error *error);
   void (*unbind)(void *view);
 } data_ops;
 
-typedef struct glint_backend_ops {
+typedef struct gli_backend_ops {
   data_kind data;
   /* Per-thread working memory for frames up to max_depth, allocated by the
    * renderer (aligned, zeroed); NULL: none. */
@@ -53,38 +53,38 @@ typedef struct glint_backend_ops {
    * returns how many hit. */
   uint64_t (*primary_tile)(const void *view, const frame_params *frame,
                            const tile_rect *tile, glint_stats *stats);
-} glint_backend_ops;
+} gli_backend_ops;
 
-extern const data_ops glint_scalar_data_float;
-extern const data_ops glint_scalar_data_double;
-extern const data_ops glint_packet_data_sse;
-extern const data_ops glint_packet_data_avx2;
-extern const data_ops glint_packet_data_avx512;
+extern const data_ops gli_scalar_data_float;
+extern const data_ops gli_scalar_data_double;
+extern const data_ops gli_packet_data_sse;
+extern const data_ops gli_packet_data_avx2;
+extern const data_ops gli_packet_data_avx512;
 
-extern const glint_backend_ops glint_scalar_ops_float;
-extern const glint_backend_ops glint_scalar_ops_double;
-extern const glint_backend_ops glint_beam_ops_sse;
-extern const glint_backend_ops glint_beam_ops_avx2;
-extern const glint_backend_ops glint_beam_ops_avx512;
-extern const glint_backend_ops glint_stream_ops_sse;
-extern const glint_backend_ops glint_stream_ops_avx2;
-extern const glint_backend_ops glint_stream_ops_avx512;
+extern const gli_backend_ops gli_scalar_ops_float;
+extern const gli_backend_ops gli_scalar_ops_double;
+extern const gli_backend_ops gli_beam_ops_sse;
+extern const gli_backend_ops gli_beam_ops_avx2;
+extern const gli_backend_ops gli_beam_ops_avx512;
+extern const gli_backend_ops gli_stream_ops_sse;
+extern const gli_backend_ops gli_stream_ops_avx2;
+extern const gli_backend_ops gli_stream_ops_avx512;
 
 /* Test hooks: the packet nearest hit of one beam of W rays (origins and
  * directions as x[W] y[W] z[W]), per ISA, on a bound packet view. */
-void glint_beam_nearest_hit_sse(const void *view, const float *o,
+void gli_beam_nearest_hit_sse(const void *view, const float *o,
                                 const float *d, int active_bits, float *t,
                                 int *object);
-void glint_beam_nearest_hit_avx2(const void *view, const float *o,
+void gli_beam_nearest_hit_avx2(const void *view, const float *o,
                                  const float *d, int active_bits, float *t,
                                  int *object);
-void glint_beam_nearest_hit_avx512(const void *view, const float *o,
+void gli_beam_nearest_hit_avx512(const void *view, const float *o,
                                    const float *d, int active_bits, float *t,
                                    int *object);
 
 /* The ops of a concrete backend, and of a converted layout (NULL if not
  * built in). */
-const glint_backend_ops *glint_backend_ops_of(glint_backend backend);
-const data_ops *glint_data_ops_of(data_kind kind);
+const gli_backend_ops *gli_backend_ops_of(glint_backend backend);
+const data_ops *gli_data_ops_of(data_kind kind);
 
 #endif

@@ -10,47 +10,47 @@
 typedef struct backend_entry {
   const char *name;
   int width;
-  const glint_backend_ops *ops; /* NULL: not built into this binary */
-  int (*cpu_has)(const glint_cpu_features *f);
+  const gli_backend_ops *ops; /* NULL: not built into this binary */
+  int (*cpu_has)(const gli_cpu_features *f);
 } backend_entry;
 
-static int cpu_any(const glint_cpu_features *f) {
+static int cpu_any(const gli_cpu_features *f) {
   (void)f;
   return 1;
 }
-static int cpu_sse(const glint_cpu_features *f) { return f->sse41; }
-static int cpu_avx2(const glint_cpu_features *f) { return f->avx2; }
-static int cpu_avx512(const glint_cpu_features *f) { return f->avx512; }
+static int cpu_sse(const gli_cpu_features *f) { return f->sse41; }
+static int cpu_avx2(const gli_cpu_features *f) { return f->avx2; }
+static int cpu_avx512(const gli_cpu_features *f) { return f->avx512; }
 
 static const backend_entry backends[GLINT_BACKEND_COUNT] = {
     [GLINT_BACKEND_AUTO] = {"auto", 0, NULL, cpu_any},
-    [GLINT_BACKEND_SCALAR_FLOAT] = {"scalar-float", 1, &glint_scalar_ops_float,
+    [GLINT_BACKEND_SCALAR_FLOAT] = {"scalar-float", 1, &gli_scalar_ops_float,
                                     cpu_any},
     [GLINT_BACKEND_SCALAR_DOUBLE] = {"scalar-double", 1,
-                                     &glint_scalar_ops_double, cpu_any},
-    [GLINT_BACKEND_SSE] = {"sse", 4, &glint_beam_ops_sse, cpu_sse},
-    [GLINT_BACKEND_AVX2] = {"avx2", 8, &glint_beam_ops_avx2, cpu_avx2},
-    [GLINT_BACKEND_AVX512] = {"avx512", 16, &glint_beam_ops_avx512, cpu_avx512},
+                                     &gli_scalar_ops_double, cpu_any},
+    [GLINT_BACKEND_SSE] = {"sse", 4, &gli_beam_ops_sse, cpu_sse},
+    [GLINT_BACKEND_AVX2] = {"avx2", 8, &gli_beam_ops_avx2, cpu_avx2},
+    [GLINT_BACKEND_AVX512] = {"avx512", 16, &gli_beam_ops_avx512, cpu_avx512},
     [GLINT_BACKEND_STREAM] = {"stream", 0, NULL, cpu_any},
-    [GLINT_BACKEND_STREAM_SSE] = {"stream-sse", 4, &glint_stream_ops_sse,
+    [GLINT_BACKEND_STREAM_SSE] = {"stream-sse", 4, &gli_stream_ops_sse,
                                   cpu_sse},
-    [GLINT_BACKEND_STREAM_AVX2] = {"stream-avx2", 8, &glint_stream_ops_avx2,
+    [GLINT_BACKEND_STREAM_AVX2] = {"stream-avx2", 8, &gli_stream_ops_avx2,
                                    cpu_avx2},
     [GLINT_BACKEND_STREAM_AVX512] = {"stream-avx512", 16,
-                                     &glint_stream_ops_avx512, cpu_avx512},
+                                     &gli_stream_ops_avx512, cpu_avx512},
 };
 
-const glint_backend_ops *glint_backend_ops_of(glint_backend b) {
+const gli_backend_ops *gli_backend_ops_of(glint_backend b) {
   return (unsigned)b < GLINT_BACKEND_COUNT ? backends[b].ops : NULL;
 }
 
 /* The converted layouts, in data_kind order; every backend of a family
  * reads its family's layout. */
 static const data_ops *const layouts[DATA_KIND_COUNT] = {
-    &glint_scalar_data_float, &glint_scalar_data_double, &glint_packet_data_sse,
-    &glint_packet_data_avx2, &glint_packet_data_avx512};
+    &gli_scalar_data_float, &gli_scalar_data_double, &gli_packet_data_sse,
+    &gli_packet_data_avx2, &gli_packet_data_avx512};
 
-const data_ops *glint_data_ops_of(data_kind kind) {
+const data_ops *gli_data_ops_of(data_kind kind) {
   return (unsigned)kind < DATA_KIND_COUNT ? layouts[kind] : NULL;
 }
 
@@ -63,8 +63,8 @@ int glint_backend_supported(glint_backend b) {
     return 0;
   if (b == GLINT_BACKEND_AUTO || b == GLINT_BACKEND_STREAM)
     return glint_backend_supported(glint_backend_resolve(b));
-  glint_cpu_features f;
-  glint_cpu_detect(&f);
+  gli_cpu_features f;
+  gli_cpu_detect(&f);
   return backends[b].ops != NULL && backends[b].cpu_has(&f);
 }
 
@@ -106,7 +106,7 @@ static glint_status parse_name(const char *name, const char *const *names,
       strncat(list, i ? ", " : "", sizeof list - strlen(list) - 1);
       strncat(list, names[i], sizeof list - strlen(list) - 1);
     }
-  return glint_fail(error, GLINT_E_ARGUMENT, "unknown %s '%s' (one of: %s)",
+  return gli_fail(error, GLINT_E_ARGUMENT, "unknown %s '%s' (one of: %s)",
                     what, name, list);
 }
 

@@ -220,12 +220,12 @@ static uint64_t primary_tile(const void *view, const frame_params *frame,
 }
 
 /* The beams need no scratch: their state lives on the stack. */
-const glint_backend_ops ISA_NAME(glint_beam_ops) = {ISA_DATA_KIND, NULL,
+const gli_backend_ops ISA_NAME(gli_beam_ops) = {ISA_DATA_KIND, NULL,
                                                     render_tile, primary_tile};
 
 /* For the tests: the packet nearest hit of W rays (SoA arrays of W floats),
  * with the default maths. Writes t and object per lane (-1: no hit). */
-void ISA_NAME(glint_beam_nearest_hit)(const void *view, const float *o,
+void ISA_NAME(gli_beam_nearest_hit)(const void *view, const float *o,
                                       const float *d, int active_bits, float *t,
                                       int *object) {
   const packet_scene *ps = view;

@@ -38,6 +38,6 @@ typedef struct tile_rect {
 /* SPEC §5: the sample positions of a pixel, as offsets from its centre. One
  * sample is the centre; five are the thesis's centre and (±1/4, ±1/4);
  * any other count is a deterministic Hammersley set. */
-void glint_sample_offsets(int spp, float (*offsets)[2]);
+void gli_sample_offsets(int spp, float (*offsets)[2]);
 
 #endif

@@ -54,7 +54,7 @@ static ALWAYS_INLINE void packet_nearest(const packet_scene *ps, vvec3 o,
   count_tests(st, s->plane_count, lanes);
   for (size_t i = 0; i < s->plane_count; i++)
     packet_plane(&ps->planes[i], o, d, active, eps, newton, h);
-  const glint_bvh *bvh = s->bvh;
+  const gli_bvh *bvh = s->bvh;
   if (bvh->node_count == 0) {
     count_tests(st, s->sphere_count + s->triangle_count + s->cone_count, lanes);
     for (size_t i = 0; i < s->sphere_count; i++)
@@ -203,7 +203,7 @@ static ALWAYS_INLINE vvec3 packet_transmission(const packet_scene *ps, vvec3 o,
                      vm_and(vf_gt(t, eps), vf_lt(t, dist)));
     shadow_cross(ps, pl->object, c, t, vf_lt(denom, vf_zero()), &sh);
   }
-  const glint_bvh *bvh = s->bvh;
+  const gli_bvh *bvh = s->bvh;
   if (bvh->node_count == 0) {
     count_tests(st, s->sphere_count + s->triangle_count + s->cone_count, lanes);
     for (size_t i = 0; i < s->sphere_count && vm_any(sh.alive); i++)

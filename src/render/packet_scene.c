@@ -16,27 +16,27 @@ static void put3(vscalar *dst, vec3 v) {
 
 glint_status packet_scene_prepare(const glint_scene *scene, double eps,
                                   packet_scene **out, glint_error *error) {
-  packet_scene *ps = glint_aligned_calloc(1, sizeof *ps);
+  packet_scene *ps = gli_aligned_calloc(1, sizeof *ps);
   if (!ps)
-    return glint_fail(error, GLINT_E_MEMORY, "out of memory");
-  glint_status st = glint_scalar_scene_prepare_float(scene, eps, &ps->s, error);
+    return gli_fail(error, GLINT_E_MEMORY, "out of memory");
+  glint_status st = gli_scalar_scene_prepare_float(scene, eps, &ps->s, error);
   if (st) {
-    glint_aligned_free(ps);
+    gli_aligned_free(ps);
     return st;
   }
   const scene_r *s = ps->s;
   size_t materials = scene->material_count;
-  ps->spheres = glint_aligned_calloc(s->sphere_count, sizeof *ps->spheres);
-  ps->planes = glint_aligned_calloc(s->plane_count, sizeof *ps->planes);
+  ps->spheres = gli_aligned_calloc(s->sphere_count, sizeof *ps->spheres);
+  ps->planes = gli_aligned_calloc(s->plane_count, sizeof *ps->planes);
   ps->triangles =
-      glint_aligned_calloc(s->triangle_count, sizeof *ps->triangles);
-  ps->cones = glint_aligned_calloc(s->cone_count, sizeof *ps->cones);
-  ps->materials = glint_aligned_calloc(materials, sizeof *ps->materials);
-  ps->lights = glint_aligned_calloc(s->light_count, sizeof *ps->lights);
+      gli_aligned_calloc(s->triangle_count, sizeof *ps->triangles);
+  ps->cones = gli_aligned_calloc(s->cone_count, sizeof *ps->cones);
+  ps->materials = gli_aligned_calloc(materials, sizeof *ps->materials);
+  ps->lights = gli_aligned_calloc(s->light_count, sizeof *ps->lights);
   if (!ps->spheres || !ps->planes || !ps->triangles || !ps->cones ||
       !ps->materials || !ps->lights) {
     packet_scene_release(ps);
-    return glint_fail(error, GLINT_E_MEMORY,
+    return gli_fail(error, GLINT_E_MEMORY,
                       "out of memory preparing the scene");
   }
   for (size_t i = 0; i < s->sphere_count; i++) {
@@ -100,14 +100,14 @@ glint_status packet_scene_prepare(const glint_scene *scene, double eps,
 void packet_scene_release(packet_scene *ps) {
   if (!ps)
     return;
-  glint_scalar_scene_release_float(ps->s);
-  glint_aligned_free(ps->spheres);
-  glint_aligned_free(ps->planes);
-  glint_aligned_free(ps->triangles);
-  glint_aligned_free(ps->cones);
-  glint_aligned_free(ps->materials);
-  glint_aligned_free(ps->lights);
-  glint_aligned_free(ps);
+  gli_scalar_scene_release_float(ps->s);
+  gli_aligned_free(ps->spheres);
+  gli_aligned_free(ps->planes);
+  gli_aligned_free(ps->triangles);
+  gli_aligned_free(ps->cones);
+  gli_aligned_free(ps->materials);
+  gli_aligned_free(ps->lights);
+  gli_aligned_free(ps);
 }
 
 /* ---- the world's conversion and a renderer's view (render/backend.h) ---- */
@@ -125,7 +125,7 @@ static void release(void *data) { packet_scene_release(data); }
 static size_t bytes(const void *data) {
   const packet_scene *ps = data;
   const scene_r *s = ps->s;
-  return glint_scalar_scene_bytes_float(s) + sizeof *ps +
+  return gli_scalar_scene_bytes_float(s) + sizeof *ps +
          s->sphere_count * sizeof *ps->spheres +
          s->plane_count * sizeof *ps->planes +
          s->triangle_count * sizeof *ps->triangles +
@@ -140,11 +140,11 @@ typedef struct packet_view {
   scene_r s;
 } packet_view;
 
-static glint_status bind(const void *data, const glint_bvh *bvh, void **view,
+static glint_status bind(const void *data, const gli_bvh *bvh, void **view,
                          glint_error *error) {
-  packet_view *v = glint_aligned_calloc(1, sizeof *v);
+  packet_view *v = gli_aligned_calloc(1, sizeof *v);
   if (!v)
-    return glint_fail(error, GLINT_E_MEMORY, "out of memory");
+    return gli_fail(error, GLINT_E_MEMORY, "out of memory");
   const packet_scene *ps = data;
   v->ps = *ps;
   v->s = *ps->s;
@@ -154,7 +154,7 @@ static glint_status bind(const void *data, const glint_bvh *bvh, void **view,
   return GLINT_OK;
 }
 
-static void unbind(void *view) { glint_aligned_free(view); }
+static void unbind(void *view) { gli_aligned_free(view); }
 
-const data_ops ISA_NAME(glint_packet_data) = {convert, release, bytes, bind,
+const data_ops ISA_NAME(gli_packet_data) = {convert, release, bytes, bind,
                                               unbind};

@@ -72,8 +72,8 @@ typedef struct packet_scene {
 #define ISA_DATA_KIND DATA_PACKET_AVX512
 #endif
 
-#define packet_scene_prepare ISA_NAME(glint_packet_scene_prepare)
-#define packet_scene_release ISA_NAME(glint_packet_scene_release)
+#define packet_scene_prepare ISA_NAME(gli_packet_scene_prepare)
+#define packet_scene_release ISA_NAME(gli_packet_scene_release)
 
 glint_status packet_scene_prepare(const glint_scene *scene, double eps,
                                   packet_scene **out, glint_error *error);

@@ -33,13 +33,13 @@ static glint_status render_once(const glint_scene *scene,
     settings = &defaults;
   }
   if (!scene)
-    return glint_fail(error, GLINT_E_ARGUMENT, "no scene to render");
+    return gli_fail(error, GLINT_E_ARGUMENT, "no scene to render");
   glint_status st =
       render_settings_check(settings, scene->width, scene->height, error);
   if (st)
     return st;
 
-  double t0 = glint_now();
+  double t0 = gli_now();
   glint_world *world = NULL;
   glint_renderer *renderer = NULL;
   if ((st = world_create(scene, &world, error)))
@@ -48,7 +48,7 @@ static glint_status render_once(const glint_scene *scene,
   world_release(world); /* the renderer holds its own reference */
   if (st)
     return st;
-  double prepare = glint_now() - t0;
+  double prepare = gli_now() - t0;
 
   int w = settings->width ? settings->width : scene->width;
   int h = settings->height ? settings->height : scene->height;

@@ -55,9 +55,9 @@ struct glint_renderer {
   glint_world *world;
   glint_render_settings settings; /* the defaults of each frame */
   glint_backend backend;
-  const glint_backend_ops *ops;
+  const gli_backend_ops *ops;
   const data_ops *layout;
-  glint_bvh no_bvh; /* what --accel none traverses: nothing */
+  gli_bvh no_bvh; /* what --accel none traverses: nothing */
   void *view;
   thread_pool *pool;
   int workers;
@@ -75,21 +75,21 @@ struct glint_renderer {
 static glint_status frame_check(int w, int h, int depth, int spp, int rx,
                                 int ry, int rw, int rh, glint_error *e) {
   if (w < 1 || w > GLINT_MAX_DIMENSION)
-    return glint_fail(e, GLINT_E_ARGUMENT, "width %d is outside 1..%d", w,
+    return gli_fail(e, GLINT_E_ARGUMENT, "width %d is outside 1..%d", w,
                       GLINT_MAX_DIMENSION);
   if (h < 1 || h > GLINT_MAX_DIMENSION)
-    return glint_fail(e, GLINT_E_ARGUMENT, "height %d is outside 1..%d", h,
+    return gli_fail(e, GLINT_E_ARGUMENT, "height %d is outside 1..%d", h,
                       GLINT_MAX_DIMENSION);
   if (depth < 1 || depth > GLINT_MAX_DEPTH)
-    return glint_fail(e, GLINT_E_ARGUMENT, "depth %d is outside 1..%d", depth,
+    return gli_fail(e, GLINT_E_ARGUMENT, "depth %d is outside 1..%d", depth,
                       GLINT_MAX_DEPTH);
   if (spp < 1 || spp > GLINT_MAX_SPP)
-    return glint_fail(e, GLINT_E_ARGUMENT,
+    return gli_fail(e, GLINT_E_ARGUMENT,
                       "samples per pixel %d is outside 1..%d", spp,
                       GLINT_MAX_SPP);
   if ((rw != 0 || rh != 0) &&
       (rw < 1 || rh < 1 || rx < 0 || ry < 0 || rx > w - rw || ry > h - rh))
-    return glint_fail(e, GLINT_E_ARGUMENT,
+    return gli_fail(e, GLINT_E_ARGUMENT,
                       "region %d,%d %dx%d is not inside the %dx%d image", rx,
                       ry, rw, rh, w, h);
   return GLINT_OK;
@@ -105,19 +105,19 @@ glint_status render_settings_check(const glint_render_settings *s,
   if (st)
     return st;
   if (s->threads < 0 || s->threads > GLINT_MAX_THREADS)
-    return glint_fail(e, GLINT_E_ARGUMENT, "threads %d is outside 0..%d",
+    return gli_fail(e, GLINT_E_ARGUMENT, "threads %d is outside 0..%d",
                       s->threads, GLINT_MAX_THREADS);
   if (!(isfinite(s->gamma) && s->gamma > 0))
-    return glint_fail(e, GLINT_E_ARGUMENT, "gamma %g must be a number > 0",
+    return gli_fail(e, GLINT_E_ARGUMENT, "gamma %g must be a number > 0",
                       s->gamma);
   if ((unsigned)s->math >= GLINT_MATH_COUNT)
-    return glint_fail(e, GLINT_E_ARGUMENT, "unknown math variant %d",
+    return gli_fail(e, GLINT_E_ARGUMENT, "unknown math variant %d",
                       (int)s->math);
   if ((unsigned)s->accel > GLINT_ACCEL_NONE)
-    return glint_fail(e, GLINT_E_ARGUMENT, "unknown acceleration %d",
+    return gli_fail(e, GLINT_E_ARGUMENT, "unknown acceleration %d",
                       (int)s->accel);
   if ((unsigned)s->backend >= GLINT_BACKEND_COUNT)
-    return glint_fail(e, GLINT_E_ARGUMENT, "unknown backend %d",
+    return gli_fail(e, GLINT_E_ARGUMENT, "unknown backend %d",
                       (int)s->backend);
   return GLINT_OK;
 }
@@ -132,11 +132,11 @@ static glint_status grow_scratch(glint_renderer *r, int depth,
     return GLINT_OK;
   size_t bytes = r->ops->scratch_bytes(depth);
   for (int i = 0; i < r->workers; i++) {
-    glint_aligned_free(r->worker[i].scratch);
-    r->worker[i].scratch = glint_aligned_calloc(1, bytes);
+    gli_aligned_free(r->worker[i].scratch);
+    r->worker[i].scratch = gli_aligned_calloc(1, bytes);
     if (!r->worker[i].scratch) {
       r->scratch_depth = 0;
-      return glint_fail(error, GLINT_E_MEMORY,
+      return gli_fail(error, GLINT_E_MEMORY,
                         "out of memory for %d threads' ray streams",
                         r->workers);
     }
@@ -149,7 +149,7 @@ glint_status glint_renderer_create(glint_world *world,
                                    const glint_render_settings *settings,
                                    glint_renderer **out, glint_error *error) {
   if (!world)
-    return glint_fail(error, GLINT_E_ARGUMENT, "no world to render");
+    return gli_fail(error, GLINT_E_ARGUMENT, "no world to render");
   glint_render_settings defaults;
   if (!settings) {
     glint_render_settings_default(&defaults);
@@ -161,23 +161,23 @@ glint_status glint_renderer_create(glint_world *world,
     return st;
   glint_backend backend = glint_backend_resolve(settings->backend);
   if (!glint_backend_supported(backend))
-    return glint_fail(error, GLINT_E_UNSUPPORTED,
+    return gli_fail(error, GLINT_E_UNSUPPORTED,
                       "backend '%s' is not supported by this CPU or build",
                       glint_backend_name(backend));
 
   glint_renderer *r = calloc(1, sizeof *r);
   if (!r)
-    return glint_fail(error, GLINT_E_MEMORY, "out of memory");
+    return gli_fail(error, GLINT_E_MEMORY, "out of memory");
   world_retain(world);
   r->world = world;
   r->settings = *settings;
   r->backend = backend;
-  r->ops = glint_backend_ops_of(backend);
-  r->layout = glint_data_ops_of(r->ops->data);
+  r->ops = gli_backend_ops_of(backend);
+  r->layout = gli_data_ops_of(r->ops->data);
   pthread_mutex_init(&r->job.report_lock, NULL);
 
   const void *data = NULL;
-  const glint_bvh *bvh = &r->no_bvh;
+  const gli_bvh *bvh = &r->no_bvh;
   if ((st = world_data(world, r->ops->data, &data, error)) ||
       (settings->accel == GLINT_ACCEL_BVH &&
        (st = world_bvh(world, &bvh, error))) ||
@@ -192,17 +192,17 @@ glint_status glint_renderer_create(glint_world *world,
     return st;
   }
   r->workers = thread_pool_size(r->pool);
-  r->worker = glint_aligned_calloc((size_t)r->workers, sizeof *r->worker);
+  r->worker = gli_aligned_calloc((size_t)r->workers, sizeof *r->worker);
   r->samples = malloc(sizeof *r->samples * GLINT_MAX_SPP);
   int ok = r->worker && r->samples;
   for (int i = 0; ok && i < r->workers; i++) {
-    r->worker[i].rgb = glint_aligned_calloc(
+    r->worker[i].rgb = gli_aligned_calloc(
         (size_t)GLINT_TILE_SIZE * GLINT_TILE_SIZE * 3, sizeof(float));
     ok = r->worker[i].rgb != NULL;
   }
   if (!ok) {
     glint_renderer_destroy(r);
-    return glint_fail(error, GLINT_E_MEMORY,
+    return gli_fail(error, GLINT_E_MEMORY,
                       "out of memory for %d threads' buffers", threads);
   }
   if ((st = grow_scratch(r, settings->max_depth, error))) {
@@ -218,10 +218,10 @@ void glint_renderer_destroy(glint_renderer *r) {
     return;
   thread_pool_destroy(r->pool);
   for (int i = 0; r->worker && i < r->workers; i++) {
-    glint_aligned_free(r->worker[i].rgb);
-    glint_aligned_free(r->worker[i].scratch);
+    gli_aligned_free(r->worker[i].rgb);
+    gli_aligned_free(r->worker[i].scratch);
   }
-  glint_aligned_free(r->worker);
+  gli_aligned_free(r->worker);
   free(r->samples);
   if (r->view)
     r->layout->unbind(r->view);
@@ -273,7 +273,7 @@ static void store_tile(const frame_job *job, const tile_rect *t,
     }
     if (job->out->image) {
       glint_image *im = job->out->image;
-      glint_film_span_to_bytes(src,
+      gli_film_span_to_bytes(src,
                                im->rgb + (row * (size_t)im->width + col) * 3,
                                tw * 3, job->out->gamma);
     }
@@ -387,19 +387,19 @@ glint_status renderer_render(glint_renderer *r,
   if (!rw)
     rx = 0, ry = 0, rw = width, rh = height;
   const glint_camera *camera = frame->camera ? frame->camera : &scene->camera;
-  if (frame->camera && (st = glint_camera_check(camera, error)))
+  if (frame->camera && (st = gli_camera_check(camera, error)))
     return st;
   if (out->film && (out->film->width != rw || out->film->height != rh))
-    return glint_fail(error, GLINT_E_ARGUMENT,
+    return gli_fail(error, GLINT_E_ARGUMENT,
                       "a %dx%d film cannot hold a %dx%d frame",
                       out->film->width, out->film->height, rw, rh);
   if (frame->tile && !out->film)
-    return glint_fail(error, GLINT_E_ARGUMENT,
+    return gli_fail(error, GLINT_E_ARGUMENT,
                       "a tile callback needs a film to hand out");
   if (!out->primary_only && (st = grow_scratch(r, depth, error)))
     return st;
   if (spp != r->samples_spp) {
-    glint_sample_offsets(spp, r->samples);
+    gli_sample_offsets(spp, r->samples);
     r->samples_spp = spp;
   }
 
@@ -432,9 +432,9 @@ glint_status renderer_render(glint_renderer *r,
     memset(&r->worker[i].stats, 0, sizeof r->worker[i].stats);
     r->worker[i].hits = 0;
   }
-  double t0 = glint_now();
+  double t0 = gli_now();
   thread_pool_run(r->pool, workers, work, r);
-  double seconds = glint_now() - t0;
+  double seconds = gli_now() - t0;
 
   glint_stats stats;
   memset(&stats, 0, sizeof stats);
@@ -444,7 +444,7 @@ glint_status renderer_render(glint_renderer *r,
     out->hits += r->worker[i].hits;
   }
   if (atomic_load(&job->cancelled))
-    return glint_fail(error, GLINT_E_CANCELLED, "render cancelled");
+    return gli_fail(error, GLINT_E_CANCELLED, "render cancelled");
   if (stats_out) {
     world_stats(r->world, &stats);
     stats.prepare_seconds = 0; /* a frame prepares nothing */
@@ -467,7 +467,7 @@ glint_status glint_renderer_render(glint_renderer *r,
                                    glint_film *film, glint_stats *stats,
                                    glint_error *error) {
   if (!r || !film)
-    return glint_fail(error, GLINT_E_ARGUMENT,
+    return gli_fail(error, GLINT_E_ARGUMENT,
                       r ? "no film to render into" : "no renderer");
   frame_output out = {film, NULL, 1, 0, 0};
   return renderer_render(r, frame, &out, stats, error);

@@ -9,7 +9,7 @@ static double radical_inverse2(unsigned i) {
   return r;
 }
 
-void glint_sample_offsets(int spp, float (*o)[2]) {
+void gli_sample_offsets(int spp, float (*o)[2]) {
   if (spp == 1) {
     o[0][0] = o[0][1] = 0;
     return;

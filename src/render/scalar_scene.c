@@ -27,13 +27,13 @@ static void planar_axes(glint_vec3 n, int *u, int *v) {
 }
 
 /* The view of a world converted without a BVH, and of --accel none. */
-static const glint_bvh no_bvh;
+static const gli_bvh no_bvh;
 
 glint_status scalar_scene_prepare(const glint_scene *g, double eps,
                                   scene_r **out, glint_error *error) {
   scene_r *s = calloc(1, sizeof *s);
   if (!s)
-    return glint_fail(error, GLINT_E_MEMORY, "out of memory");
+    return gli_fail(error, GLINT_E_MEMORY, "out of memory");
   s->sphere_count = g->sphere_count;
   s->plane_count = g->plane_count;
   s->triangle_count = g->triangle_count;
@@ -41,34 +41,34 @@ glint_status scalar_scene_prepare(const glint_scene *g, double eps,
   s->normal_count = g->tri_normal_count;
   s->object_count = g->object_count;
   s->material_count = g->material_count;
-  s->spheres = glint_aligned_calloc(g->sphere_count, sizeof *s->spheres);
-  s->planes = glint_aligned_calloc(g->plane_count, sizeof *s->planes);
-  s->triangles = glint_aligned_calloc(g->triangle_count, sizeof *s->triangles);
+  s->spheres = gli_aligned_calloc(g->sphere_count, sizeof *s->spheres);
+  s->planes = gli_aligned_calloc(g->plane_count, sizeof *s->planes);
+  s->triangles = gli_aligned_calloc(g->triangle_count, sizeof *s->triangles);
   s->cone_count = g->cone_count;
-  s->cones = glint_aligned_calloc(g->cone_count, sizeof *s->cones);
-  s->normals = glint_aligned_calloc(g->tri_normal_count, sizeof *s->normals);
-  s->objects = glint_aligned_calloc(g->object_count, sizeof *s->objects);
-  s->materials = glint_aligned_calloc(g->material_count, sizeof *s->materials);
-  s->lights = glint_aligned_calloc(g->light_count, sizeof *s->lights);
+  s->cones = gli_aligned_calloc(g->cone_count, sizeof *s->cones);
+  s->normals = gli_aligned_calloc(g->tri_normal_count, sizeof *s->normals);
+  s->objects = gli_aligned_calloc(g->object_count, sizeof *s->objects);
+  s->materials = gli_aligned_calloc(g->material_count, sizeof *s->materials);
+  s->lights = gli_aligned_calloc(g->light_count, sizeof *s->lights);
   if (!s->spheres || !s->planes || !s->triangles || !s->cones || !s->normals ||
       !s->objects || !s->materials || !s->lights) {
     scalar_scene_release(s);
-    return glint_fail(error, GLINT_E_MEMORY,
+    return gli_fail(error, GLINT_E_MEMORY,
                       "out of memory preparing the "
                       "scene");
   }
 
   for (size_t i = 0; i < g->sphere_count; i++) {
-    const glint_sphere_prim *p = &g->spheres[i];
+    const gli_sphere_prim *p = &g->spheres[i];
     s->spheres[i] =
         (sphere_r){from_d(p->center), (real)(p->radius * p->radius), p->object};
   }
   for (size_t i = 0; i < g->plane_count; i++) {
-    const glint_plane_prim *p = &g->planes[i];
+    const gli_plane_prim *p = &g->planes[i];
     s->planes[i] = (plane_r){from_d(p->normal), (real)p->d, p->object};
   }
   for (size_t i = 0; i < g->triangle_count; i++) {
-    const glint_triangle_prim *p = &g->triangles[i];
+    const gli_triangle_prim *p = &g->triangles[i];
     /* Edges and normal in double, then rounded once. */
     glint_vec3 a = p->v[0], b = p->v[1], c = p->v[2];
     glint_vec3 e1 = {b.x - a.x, b.y - a.y, b.z - a.z};
@@ -88,7 +88,7 @@ glint_status scalar_scene_prepare(const glint_scene *g, double eps,
     t->normals = p->normals;
   }
   for (size_t i = 0; i < g->cone_count; i++) {
-    const glint_cone_prim *c = &g->cones[i];
+    const gli_cone_prim *c = &g->cones[i];
     glint_vec3 a = {c->apex.x - c->base.x, c->apex.y - c->base.y,
                     c->apex.z - c->base.z};
     double h = sqrt(a.x * a.x + a.y * a.y + a.z * a.z);
@@ -117,7 +117,7 @@ glint_status scalar_scene_prepare(const glint_scene *g, double eps,
     r->absorbs = m->absorb.x != 0 || m->absorb.y != 0 || m->absorb.z != 0;
   }
   for (size_t i = 0; i < g->object_count; i++) {
-    const glint_object *o = &g->objects[i];
+    const gli_object *o = &g->objects[i];
     object_r *r = &s->objects[i];
     r->material = o->material;
     r->shape = o->shape;
@@ -157,14 +157,14 @@ size_t scalar_scene_bytes(const scene_r *s) {
 void scalar_scene_release(scene_r *s) {
   if (!s)
     return;
-  glint_aligned_free(s->spheres);
-  glint_aligned_free(s->planes);
-  glint_aligned_free(s->triangles);
-  glint_aligned_free(s->cones);
-  glint_aligned_free(s->normals);
-  glint_aligned_free(s->objects);
-  glint_aligned_free(s->materials);
-  glint_aligned_free(s->lights);
+  gli_aligned_free(s->spheres);
+  gli_aligned_free(s->planes);
+  gli_aligned_free(s->triangles);
+  gli_aligned_free(s->cones);
+  gli_aligned_free(s->normals);
+  gli_aligned_free(s->objects);
+  gli_aligned_free(s->materials);
+  gli_aligned_free(s->lights);
   free(s);
 }
 
@@ -381,11 +381,11 @@ static void release(void *data) { scalar_scene_release(data); }
 
 static size_t bytes(const void *data) { return scalar_scene_bytes(data); }
 
-static glint_status bind(const void *data, const glint_bvh *bvh, void **view,
+static glint_status bind(const void *data, const gli_bvh *bvh, void **view,
                          glint_error *error) {
   scene_r *v = malloc(sizeof *v);
   if (!v)
-    return glint_fail(error, GLINT_E_MEMORY, "out of memory");
+    return gli_fail(error, GLINT_E_MEMORY, "out of memory");
   *v = *(const scene_r *)data;
   v->bvh = bvh;
   *view = v;
@@ -394,5 +394,5 @@ static glint_status bind(const void *data, const glint_bvh *bvh, void **view,
 
 static void unbind(void *view) { free(view); }
 
-const data_ops REAL_NAME(glint_scalar_data) = {convert, release, bytes, bind,
+const data_ops REAL_NAME(gli_scalar_data) = {convert, release, bytes, bind,
                                                unbind};

@@ -71,7 +71,7 @@ typedef struct scene_r {
   size_t normal_count, object_count, material_count;
   /* The world's BVH, bound per renderer (render/backend.h); node_count 0:
    * every primitive is tested (--accel none). */
-  const glint_bvh *bvh;
+  const gli_bvh *bvh;
   vec3 background, ambient;
   real eps;
 } scene_r;
@@ -79,17 +79,17 @@ typedef struct scene_r {
 /* What the nearest-hit query returns. */
 typedef struct hit_r {
   real t;
-  uint32_t shape; /* glint_shape */
+  uint32_t shape; /* gli_shape */
   uint32_t prim;
   int inside; /* spheres: the ray started inside */
   real u, v;  /* triangles: barycentrics of v[1], v[2] */
 } hit_r;
 
-#define scalar_scene_prepare REAL_NAME(glint_scalar_scene_prepare)
-#define scalar_scene_release REAL_NAME(glint_scalar_scene_release)
-#define scalar_scene_bytes REAL_NAME(glint_scalar_scene_bytes)
-#define scalar_nearest_hit REAL_NAME(glint_scalar_nearest_hit)
-#define scalar_transmission REAL_NAME(glint_scalar_transmission)
+#define scalar_scene_prepare REAL_NAME(gli_scalar_scene_prepare)
+#define scalar_scene_release REAL_NAME(gli_scalar_scene_release)
+#define scalar_scene_bytes REAL_NAME(gli_scalar_scene_bytes)
+#define scalar_nearest_hit REAL_NAME(gli_scalar_nearest_hit)
+#define scalar_transmission REAL_NAME(gli_scalar_transmission)
 
 /* Converts the scene (no BVH: s->bvh is an empty one until bound). */
 glint_status scalar_scene_prepare(const glint_scene *scene, double eps,

@@ -213,6 +213,6 @@ static uint64_t primary_tile(const void *view, const frame_params *frame,
   return hits;
 }
 
-const glint_backend_ops REAL_NAME(glint_scalar_ops) = {
+const gli_backend_ops REAL_NAME(gli_scalar_ops) = {
     REAL_IS_DOUBLE ? DATA_SCALAR_DOUBLE : DATA_SCALAR_FLOAT, NULL, render_tile,
     primary_tile};

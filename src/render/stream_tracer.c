@@ -474,7 +474,7 @@ static ALWAYS_INLINE void render_tile_body(const packet_scene *ps,
               {0, 0, 0, 0}};
   int tw = tile->x1 - tile->x0;
   int npix = tw * (tile->y1 - tile->y0);
-  double tile_start = glint_now();
+  double tile_start = gli_now();
   memset(t.sc->accum, 0, (size_t)npix * 4 * sizeof(float));
   t.sc->log_count = 0;
   for (int l = 0; l < 2 * levels; l++)
@@ -525,7 +525,7 @@ static ALWAYS_INLINE void render_tile_body(const packet_scene *ps,
   /* The tile's time, shared among the stages in the proportions the timed
    * packets show (their own timer reads make them slower than the rest):
    * the time-stamp counter gives the proportions, the clock the seconds. */
-  double tile_seconds = glint_now() - tile_start;
+  double tile_seconds = gli_now() - tile_start;
   uint64_t sampled =
       t.stage_ticks[0] + t.stage_ticks[1] + t.stage_ticks[2] + t.stage_ticks[3];
   for (int k = 0; k < 4 && sampled; k++)
@@ -547,8 +547,8 @@ static void render_tile(const void *view, const frame_params *frame,
 static uint64_t primary_tile(const void *view, const frame_params *frame,
                              const tile_rect *tile, glint_stats *st) {
   /* The primary generation alone is the beam tracer's primary beams. */
-  return ISA_NAME(glint_beam_ops).primary_tile(view, frame, tile, st);
+  return ISA_NAME(gli_beam_ops).primary_tile(view, frame, tile, st);
 }
 
-const glint_backend_ops ISA_NAME(glint_stream_ops) = {
+const gli_backend_ops ISA_NAME(gli_stream_ops) = {
     ISA_DATA_KIND, scratch_bytes, render_tile, primary_tile};

@@ -59,7 +59,7 @@ glint_status thread_pool_create(int threads, thread_pool **out,
   if (!pool || (threads > 1 && !t)) {
     free(pool);
     free(t);
-    return glint_fail(error, GLINT_E_MEMORY, "out of memory");
+    return gli_fail(error, GLINT_E_MEMORY, "out of memory");
   }
   pthread_mutex_init(&pool->lock, NULL);
   pthread_cond_init(&pool->wake, NULL);

@@ -10,17 +10,17 @@
 glint_status world_create(const glint_scene *scene, glint_world **out,
                           glint_error *error) {
   if (!scene)
-    return glint_fail(error, GLINT_E_ARGUMENT, "no scene to commit");
+    return gli_fail(error, GLINT_E_ARGUMENT, "no scene to commit");
   glint_world *w = calloc(1, sizeof *w);
   if (!w)
-    return glint_fail(error, GLINT_E_MEMORY, "out of memory");
-  glint_status st = glint_scene_copy(scene, &w->scene, error);
+    return gli_fail(error, GLINT_E_MEMORY, "out of memory");
+  glint_status st = gli_scene_copy(scene, &w->scene, error);
   if (st) {
     free(w);
     return st;
   }
   atomic_init(&w->refs, 1);
-  w->epsilon = glint_scene_epsilon(w->scene);
+  w->epsilon = gli_scene_epsilon(w->scene);
   pthread_mutex_init(&w->lock, NULL);
   *out = w;
   return GLINT_OK;
@@ -33,23 +33,23 @@ void world_release(glint_world *w) {
     return;
   for (int k = 0; k < DATA_KIND_COUNT; k++)
     if (w->data[k])
-      glint_data_ops_of((data_kind)k)->release(w->data[k]);
+      gli_data_ops_of((data_kind)k)->release(w->data[k]);
   if (w->bvh_built)
-    glint_bvh_free(&w->bvh);
+    gli_bvh_free(&w->bvh);
   pthread_mutex_destroy(&w->lock);
   glint_scene_destroy(w->scene);
   free(w);
 }
 
-glint_status world_bvh(glint_world *w, const glint_bvh **bvh,
+glint_status world_bvh(glint_world *w, const gli_bvh **bvh,
                        glint_error *error) {
   glint_status st = GLINT_OK;
   pthread_mutex_lock(&w->lock);
   if (!w->bvh_built) {
-    double t0 = glint_now();
-    st = glint_bvh_build(w->scene, &w->bvh, error);
+    double t0 = gli_now();
+    st = gli_bvh_build(w->scene, &w->bvh, error);
     w->bvh_built = st == GLINT_OK;
-    w->prepare_seconds += glint_now() - t0;
+    w->prepare_seconds += gli_now() - t0;
   }
   pthread_mutex_unlock(&w->lock);
   *bvh = &w->bvh;
@@ -58,16 +58,16 @@ glint_status world_bvh(glint_world *w, const glint_bvh **bvh,
 
 glint_status world_data(glint_world *w, data_kind kind, const void **data,
                         glint_error *error) {
-  const data_ops *ops = glint_data_ops_of(kind);
+  const data_ops *ops = gli_data_ops_of(kind);
   if (!ops)
-    return glint_fail(error, GLINT_E_UNSUPPORTED,
+    return gli_fail(error, GLINT_E_UNSUPPORTED,
                       "this build has no converter for layout %d", (int)kind);
   glint_status st = GLINT_OK;
   pthread_mutex_lock(&w->lock);
   if (!w->data[kind]) {
-    double t0 = glint_now();
+    double t0 = gli_now();
     st = ops->convert(w->scene, w->epsilon, &w->data[kind], error);
-    w->prepare_seconds += glint_now() - t0;
+    w->prepare_seconds += gli_now() - t0;
   }
   pthread_mutex_unlock(&w->lock);
   *data = w->data[kind];
@@ -78,12 +78,12 @@ void world_stats(glint_world *w, glint_stats *stats) {
   pthread_mutex_lock(&w->lock);
   stats->prepare_seconds = w->prepare_seconds;
   stats->bvh_nodes = w->bvh_built ? w->bvh.node_count : 0;
-  stats->bvh_bytes = w->bvh_built ? glint_bvh_bytes(&w->bvh) : 0;
+  stats->bvh_bytes = w->bvh_built ? gli_bvh_bytes(&w->bvh) : 0;
   stats->bvh_build_seconds = w->bvh_built ? w->bvh.build_seconds : 0;
   stats->scene_bytes = stats->bvh_bytes;
   for (int k = 0; k < DATA_KIND_COUNT; k++)
     if (w->data[k])
-      stats->scene_bytes += glint_data_ops_of((data_kind)k)->bytes(w->data[k]);
+      stats->scene_bytes += gli_data_ops_of((data_kind)k)->bytes(w->data[k]);
   pthread_mutex_unlock(&w->lock);
 }
 
@@ -95,15 +95,15 @@ glint_status glint_world_commit(const glint_scene *scene, glint_world **out,
   glint_status st = world_create(scene, &w, error);
   if (st)
     return st;
-  const glint_bvh *bvh;
+  const gli_bvh *bvh;
   if ((st = world_bvh(w, &bvh, error))) {
     world_release(w);
     return st;
   }
   /* The layout of the default backend now; the others on first use by a
    * renderer that needs them. */
-  const glint_backend_ops *ops =
-      glint_backend_ops_of(glint_backend_resolve(GLINT_BACKEND_AUTO));
+  const gli_backend_ops *ops =
+      gli_backend_ops_of(glint_backend_resolve(GLINT_BACKEND_AUTO));
   const void *data;
   if ((st = world_data(w, ops->data, &data, error))) {
     world_release(w);

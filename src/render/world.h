@@ -18,7 +18,7 @@ struct glint_world {
   double epsilon; /* SPEC §3, fixed at commit */
   pthread_mutex_t lock;
   int bvh_built;
-  glint_bvh bvh;
+  gli_bvh bvh;
   void *data[DATA_KIND_COUNT];
   double prepare_seconds; /* conversions and BVH build so far */
 };
@@ -31,7 +31,7 @@ void world_retain(glint_world *world);
 void world_release(glint_world *world);
 
 /* The BVH, built on first use. */
-glint_status world_bvh(glint_world *world, const glint_bvh **bvh,
+glint_status world_bvh(glint_world *world, const gli_bvh **bvh,
                        glint_error *error);
 /* The scene converted for one family of backends, on first use. */
 glint_status world_data(glint_world *world, data_kind kind, const void **data,

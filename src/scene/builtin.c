@@ -235,7 +235,7 @@ glint_status glint_scene_builtin(const char *name, glint_scene **out,
       *out = s;
       return GLINT_OK;
     }
-  return glint_fail(e, GLINT_E_ARGUMENT,
+  return gli_fail(e, GLINT_E_ARGUMENT,
                     "unknown scene '%s' (built-in scenes: whitted, giza, "
                     "billiard, phong)",
                     name);

@@ -23,11 +23,11 @@ static int copy_array(void **dst, const void *src, size_t count, size_t size,
   return 1;
 }
 
-glint_status glint_scene_copy(const glint_scene *src, glint_scene **out,
+glint_status gli_scene_copy(const glint_scene *src, glint_scene **out,
                               glint_error *error) {
   glint_scene *s = calloc(1, sizeof *s);
   if (!s)
-    return glint_fail(error, GLINT_E_MEMORY, "out of memory copying the scene");
+    return gli_fail(error, GLINT_E_MEMORY, "out of memory copying the scene");
   *s = *src;
   /* Bitwise & so that every call runs and replaces its pointer (with a
    * copy or NULL): none of src's arrays may be left for destroy to free. */
@@ -51,7 +51,7 @@ glint_status glint_scene_copy(const glint_scene *src, glint_scene **out,
                  sizeof *s->cones, &s->cone_cap);
   if (!ok) {
     glint_scene_destroy(s);
-    return glint_fail(error, GLINT_E_MEMORY, "out of memory copying the scene");
+    return gli_fail(error, GLINT_E_MEMORY, "out of memory copying the scene");
   }
   *out = s;
   return GLINT_OK;

@@ -15,15 +15,15 @@ static glint_status io_fail(glint_error *e, const char *path, const char *what,
   char buf[256];
   if (strerror_r(err, buf, sizeof buf) != 0)
     snprintf(buf, sizeof buf, "error %d", err);
-  return glint_fail(e, GLINT_E_IO, "%s: %s%s", path, what, buf);
+  return gli_fail(e, GLINT_E_IO, "%s: %s%s", path, what, buf);
 }
 
 static glint_status too_large(glint_error *e, const char *path,
                               size_t max_bytes) {
   if (max_bytes >= (size_t)1 << 30 && max_bytes % ((size_t)1 << 30) == 0)
-    return glint_fail(e, GLINT_E_IO, "%s: larger than %zu GiB", path,
+    return gli_fail(e, GLINT_E_IO, "%s: larger than %zu GiB", path,
                       max_bytes >> 30);
-  return glint_fail(e, GLINT_E_IO, "%s: larger than %zu bytes", path,
+  return gli_fail(e, GLINT_E_IO, "%s: larger than %zu bytes", path,
                     max_bytes);
 }
 
@@ -33,12 +33,12 @@ glint_status file_read_all(const char *path, size_t max_bytes, char **out,
   if (stat(path, &sb) != 0)
     return io_fail(e, path, "", errno);
   if (!S_ISREG(sb.st_mode))
-    return glint_fail(e, GLINT_E_IO, "%s: not a regular file", path);
+    return gli_fail(e, GLINT_E_IO, "%s: not a regular file", path);
   errno = 0;
   gzFile f = gzopen(path, "rb");
   if (!f)
     return errno ? io_fail(e, path, "", errno)
-                 : glint_fail(e, GLINT_E_MEMORY, "%s: out of memory", path);
+                 : gli_fail(e, GLINT_E_MEMORY, "%s: out of memory", path);
   gzbuffer(f, 1 << 17);
   /* A plain file fits exactly; a compressed one grows by doubling. */
   size_t cap = (size_t)sb.st_size + 1, size = 0;
@@ -50,7 +50,7 @@ glint_status file_read_all(const char *path, size_t max_bytes, char **out,
   for (;;) {
     if (!data) {
       gzclose(f);
-      return glint_fail(e, GLINT_E_MEMORY, "%s: out of memory", path);
+      return gli_fail(e, GLINT_E_MEMORY, "%s: out of memory", path);
     }
     size_t want = cap - size;
     int n =
@@ -65,7 +65,7 @@ glint_status file_read_all(const char *path, size_t max_bytes, char **out,
       glint_status st =
           zerr == Z_ERRNO
               ? io_fail(e, path, "cannot read: ", errno ? errno : EIO)
-              : glint_fail(e, GLINT_E_PARSE, "%s: damaged compressed file: %s",
+              : gli_fail(e, GLINT_E_PARSE, "%s: damaged compressed file: %s",
                            path, msg);
       gzclose(f);
       free(data);
@@ -93,12 +93,12 @@ glint_status file_read_all(const char *path, size_t max_bytes, char **out,
   if (zst != Z_OK) {
     free(data);
     if (zst == Z_BUF_ERROR)
-      return glint_fail(e, GLINT_E_PARSE,
+      return gli_fail(e, GLINT_E_PARSE,
                         "%s: the compressed file is truncated", path);
     /* Only the system failing to read is I/O; bad data is the file's. */
     return zst == Z_ERRNO
                ? io_fail(e, path, "cannot read: ", errno ? errno : EIO)
-               : glint_fail(e, GLINT_E_PARSE, "%s: damaged compressed file",
+               : gli_fail(e, GLINT_E_PARSE, "%s: damaged compressed file",
                             path);
   }
   data[size] = '\0';
@@ -115,6 +115,6 @@ glint_status file_check_text(const char *path, const char *data, size_t size,
   size_t line = first_line;
   for (const char *p = data; p < nul; p++)
     line += *p == '\n';
-  return glint_fail(e, GLINT_E_PARSE,
+  return gli_fail(e, GLINT_E_PARSE,
                     "%s:%zu: binary data where text was expected", path, line);
 }

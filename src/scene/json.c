@@ -121,8 +121,8 @@ static glint_status fail(json_reader *r, glint_status st, const char *format,
   vsnprintf(msg, sizeof msg, format, args);
   va_end(args);
   if (r->path_len)
-    return glint_fail(r->error, st, "%s: %s: %s", r->file, r->path, msg);
-  return glint_fail(r->error, st, "%s: %s", r->file, msg);
+    return gli_fail(r->error, st, "%s: %s: %s", r->file, r->path, msg);
+  return gli_fail(r->error, st, "%s: %s", r->file, msg);
 }
 
 /* A library call's failure, placed at the current path. What the library
@@ -799,13 +799,13 @@ static glint_status parse_text(const char *path, char *data, size_t size,
   const unsigned char *u = (const unsigned char *)data;
   if (size >= 2 &&
       ((u[0] == 0xFF && u[1] == 0xFE) || (u[0] == 0xFE && u[1] == 0xFF)))
-    return glint_fail(e, GLINT_E_PARSE,
+    return gli_fail(e, GLINT_E_PARSE,
                       "%s: UTF-16 text; glint reads JSON in UTF-8", path);
   const char *nul = memchr(data, '\0', size);
   size_t line, column;
   if (nul) {
     line_column(data, nul, &line, &column);
-    return glint_fail(e, GLINT_E_PARSE,
+    return gli_fail(e, GLINT_E_PARSE,
                       "%s:%zu:%zu: a NUL byte: binary data where JSON text "
                       "was expected",
                       path, line, column);
@@ -823,11 +823,11 @@ static glint_status parse_text(const char *path, char *data, size_t size,
   char hint[160];
   syntax_hint(data, &end, hint, sizeof hint);
   line_column(data, end, &line, &column);
-  return glint_fail(e, GLINT_E_PARSE, "%s:%zu:%zu: JSON syntax error: %s", path,
+  return gli_fail(e, GLINT_E_PARSE, "%s:%zu:%zu: JSON syntax error: %s", path,
                     line, column, hint);
 }
 
-glint_status glint_json_load(const char *path, glint_scene **out,
+glint_status gli_json_load(const char *path, glint_scene **out,
                              glint_error *error) {
   char *data = NULL;
   size_t size = 0;

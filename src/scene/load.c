@@ -10,10 +10,10 @@ glint_status glint_scene_load(const char *path, glint_scene **out,
   const char *slash = strrchr(path, '/');
   const char *dot = strrchr(slash ? slash : path, '.');
   if (dot && strcasecmp(dot, ".nff") == 0)
-    return glint_nff_load(path, out, error);
+    return gli_nff_load(path, out, error);
   if (dot && strcasecmp(dot, ".json") == 0)
-    return glint_json_load(path, out, error);
-  return glint_fail(error, GLINT_E_ARGUMENT,
+    return gli_json_load(path, out, error);
+  return gli_fail(error, GLINT_E_ARGUMENT,
                     "%s: not a built-in scene nor a scene file (.nff or "
                     ".json)",
                     path);

@@ -85,7 +85,7 @@ static void mesh_free(mesh_data *m) {
 }
 
 static glint_status oom(const char *path, glint_error *e) {
-  return glint_fail(e, GLINT_E_MEMORY, "%s: out of memory", path);
+  return gli_fail(e, GLINT_E_MEMORY, "%s: out of memory", path);
 }
 
 typedef struct face_emit {
@@ -115,9 +115,9 @@ static int emit_corners(void *user, size_t a, size_t b, size_t c) {
  * memory) or GLINT_TRIANGULATE_TOO_COMPLEX. */
 static int emit_face(mesh_data *m, int obj, int with_normals) {
   size_t n = m->ncorners, add = n - 2;
-  if (glint_grow((void **)&m->tri, &m->tri_cap, m->ntri + add, sizeof(tri3)))
+  if (gli_grow((void **)&m->tri, &m->tri_cap, m->ntri + add, sizeof(tri3)))
     return -1;
-  if (obj && glint_grow((void **)&m->tri_nrm, &m->tri_nrm_cap, m->ntri + add,
+  if (obj && gli_grow((void **)&m->tri_nrm, &m->tri_nrm_cap, m->ntri + add,
                         sizeof(tri3)))
     return -1;
   face_emit fe = {m, obj, with_normals};
@@ -131,14 +131,14 @@ static int emit_face(mesh_data *m, int obj, int with_normals) {
     return -1;
   for (size_t i = 0; known && i < n; i++)
     v[i] = m->pos[m->corners[i].v];
-  if (!known || glint_polygon_is_convex(v, n)) {
+  if (!known || gli_polygon_is_convex(v, n)) {
     for (size_t i = 1; i + 1 < n; i++)
       emit_corners(&fe, 0, i, i + 1);
     if (v != small)
       free(v);
     return 0;
   }
-  int r = glint_triangulate(v, n, emit_corners, &fe);
+  int r = gli_triangulate(v, n, emit_corners, &fe);
   if (v != small)
     free(v);
   return r;
@@ -241,7 +241,7 @@ static glint_status obj_number(obj_reader *r, const char *what, double *out,
   const char *t = obj_token(r, &len);
   char q[48];
   if (len == 0)
-    return glint_fail(e, GLINT_E_PARSE,
+    return gli_fail(e, GLINT_E_PARSE,
                       "%s:%zu: expected a number for %s, found the end of "
                       "the line",
                       r->path, r->line, what);
@@ -250,11 +250,11 @@ static glint_status obj_number(obj_reader *r, const char *what, double *out,
   double v;
   int parsed = number_parse(t, len, &v);
   if (parsed == NUMBER_BAD)
-    return glint_fail(e, GLINT_E_PARSE,
+    return gli_fail(e, GLINT_E_PARSE,
                       "%s:%zu: expected a number for %s, found '%s'", r->path,
                       r->line, what, quote(q, sizeof q, t, len));
   if (parsed == NUMBER_NOT_FINITE)
-    return glint_fail(e, GLINT_E_PARSE,
+    return gli_fail(e, GLINT_E_PARSE,
                       "%s:%zu: %s is '%s', not a finite number", r->path,
                       r->line, what, quote(q, sizeof q, t, len));
   *out = v;
@@ -268,7 +268,7 @@ static glint_status obj_line_end(obj_reader *r, const char *statement,
   size_t len;
   const char *t = obj_token(r, &len);
   char q[48];
-  return glint_fail(e, GLINT_E_PARSE, "%s:%zu: unexpected '%s' after the %s",
+  return gli_fail(e, GLINT_E_PARSE, "%s:%zu: unexpected '%s' after the %s",
                     r->path, r->line, quote(q, sizeof q, t, len), statement);
 }
 
@@ -290,7 +290,7 @@ static glint_status obj_vertex(obj_reader *r, glint_error *e) {
     return st;
   mesh_data *m = r->m;
   if (m->npos >= MAX_ITEMS)
-    return glint_fail(e, GLINT_E_PARSE, "%s:%zu: too many vertices", r->path,
+    return gli_fail(e, GLINT_E_PARSE, "%s:%zu: too many vertices", r->path,
                       r->line);
   if (GLINT_PUSH(m->pos, m->npos, m->pos_cap, ((glint_vec3){v[0], v[1], v[2]})))
     return oom(r->path, e);
@@ -309,7 +309,7 @@ static glint_status obj_normal(obj_reader *r, glint_error *e) {
     return st;
   mesh_data *m = r->m;
   if (m->nnrm >= MAX_ITEMS)
-    return glint_fail(e, GLINT_E_PARSE, "%s:%zu: too many normals", r->path,
+    return gli_fail(e, GLINT_E_PARSE, "%s:%zu: too many normals", r->path,
                       r->line);
   if (GLINT_PUSH(m->nrm, m->nnrm, m->nrm_cap, ((glint_vec3){v[0], v[1], v[2]})))
     return oom(r->path, e);
@@ -320,7 +320,7 @@ static glint_status obj_normal(obj_reader *r, glint_error *e) {
 static glint_status obj_resolve(obj_reader *r, const char *what, long long i,
                                 size_t count, uint32_t *out, glint_error *e) {
   if (i == 0)
-    return glint_fail(e, GLINT_E_PARSE,
+    return gli_fail(e, GLINT_E_PARSE,
                       "%s:%zu: face refers to %s 0, but OBJ counts from 1",
                       r->path, r->line, what);
   if (i > 0 && (unsigned long long)i <= count) {
@@ -331,7 +331,7 @@ static glint_status obj_resolve(obj_reader *r, const char *what, long long i,
     *out = (uint32_t)((long long)count + i);
     return GLINT_OK;
   }
-  return glint_fail(e, GLINT_E_PARSE,
+  return gli_fail(e, GLINT_E_PARSE,
                     "%s:%zu: face refers to %s %lld%s, but only %zu %s "
                     "defined",
                     r->path, r->line, what, i,
@@ -367,7 +367,7 @@ static glint_status obj_face(obj_reader *r, glint_error *e) {
       }
     }
     if (bad || s != end)
-      return glint_fail(e, GLINT_E_PARSE,
+      return gli_fail(e, GLINT_E_PARSE,
                         "%s:%zu: bad face vertex '%s' (expected i, i/t, i//n "
                         "or i/t/n)",
                         r->path, r->line, quote(q, sizeof q, t, len));
@@ -381,23 +381,23 @@ static glint_status obj_face(obj_reader *r, glint_error *e) {
       return st;
     smooth &= has_n;
     if (m->ncorners >= MAX_FACE_VERTICES)
-      return glint_fail(e, GLINT_E_PARSE,
+      return gli_fail(e, GLINT_E_PARSE,
                         "%s:%zu: a face with more than %d vertices", r->path,
                         r->line, MAX_FACE_VERTICES);
     if (GLINT_PUSH(m->corners, m->ncorners, m->corners_cap, c))
       return oom(r->path, e);
   }
   if (m->ncorners < 3)
-    return glint_fail(e, GLINT_E_PARSE,
+    return gli_fail(e, GLINT_E_PARSE,
                       "%s:%zu: a face needs at least 3 vertices, found %zu",
                       r->path, r->line, m->ncorners);
   if (m->ntri + m->ncorners - 2 > MAX_ITEMS)
-    return glint_fail(e, GLINT_E_PARSE, "%s:%zu: too many triangles", r->path,
+    return gli_fail(e, GLINT_E_PARSE, "%s:%zu: too many triangles", r->path,
                       r->line);
   switch (emit_face(m, 1, smooth)) {
   case 0: return GLINT_OK;
   case GLINT_TRIANGULATE_TOO_COMPLEX:
-    return glint_fail(e, GLINT_E_PARSE,
+    return gli_fail(e, GLINT_E_PARSE,
                       "%s:%zu: the face of %zu vertices has too many inward "
                       "corners to triangulate",
                       r->path, r->line, m->ncorners);
@@ -446,7 +446,7 @@ static glint_status obj_parse(const char *path, const char *data, size_t size,
       while (!obj_at_eol(&r))
         obj_token(&r, &len);
     } else
-      st = glint_fail(e, GLINT_E_PARSE, "%s:%zu: unknown keyword '%s'", path,
+      st = gli_fail(e, GLINT_E_PARSE, "%s:%zu: unknown keyword '%s'", path,
                       r.line, quote(q, sizeof q, kw, len));
     if (st)
       return st;
@@ -456,9 +456,9 @@ static glint_status obj_parse(const char *path, const char *data, size_t size,
     }
   }
   if (size == 0)
-    return glint_fail(e, GLINT_E_PARSE, "%s: the file is empty", path);
+    return gli_fail(e, GLINT_E_PARSE, "%s: the file is empty", path);
   if (m->ntri == 0)
-    return glint_fail(e, GLINT_E_PARSE,
+    return gli_fail(e, GLINT_E_PARSE,
                       "%s: no faces (the file has %zu vertices and no 'f' "
                       "statement)",
                       path, m->npos);
@@ -557,7 +557,7 @@ static glint_status ply_truncated(const ply_reader *r, glint_error *e) {
     snprintf(w, sizeof w, "%s:%zu", r->path, r->line);
   else
     snprintf(w, sizeof w, "%s", r->path);
-  return glint_fail(e, GLINT_E_PARSE, "%s: the file ends after %zu of %zu %s",
+  return gli_fail(e, GLINT_E_PARSE, "%s: the file ends after %zu of %zu %s",
                     w, r->index, r->el->count,
                     ply_plural(r->el, pl, sizeof pl));
 }
@@ -595,7 +595,7 @@ static glint_status ply_missing(ply_reader *r, const ply_property *p, int count,
   if (r->pos >= r->size) /* the last line is cut short */
     return ply_truncated(r, e);
   char w[1100], what[128];
-  return glint_fail(e, GLINT_E_PARSE,
+  return gli_fail(e, GLINT_E_PARSE,
                     "%s: expected a number for %s, found the end of the line",
                     ply_where(r, w, sizeof w),
                     ply_what(r, p, count, what, sizeof what));
@@ -652,7 +652,7 @@ static glint_status ply_number(ply_reader *r, const ply_property *p,
       return ply_truncated(r, e);
     double v = ply_binary_value(r, type);
     if (!isfinite(v))
-      return glint_fail(e, GLINT_E_PARSE, "%s: %s is %g, not a finite number",
+      return gli_fail(e, GLINT_E_PARSE, "%s: %s is %g, not a finite number",
                         ply_where(r, w, sizeof w), what, v);
     *out = v;
     return GLINT_OK;
@@ -664,11 +664,11 @@ static glint_status ply_number(ply_reader *r, const ply_property *p,
   double v;
   int parsed = number_parse(t, len, &v);
   if (parsed == NUMBER_BAD)
-    return glint_fail(
+    return gli_fail(
         e, GLINT_E_PARSE, "%s: expected a number for %s, found '%s'",
         ply_where(r, w, sizeof w), what, quote(q, sizeof q, t, len));
   if (parsed == NUMBER_NOT_FINITE)
-    return glint_fail(e, GLINT_E_PARSE, "%s: %s is '%s', not a finite number",
+    return gli_fail(e, GLINT_E_PARSE, "%s: %s is '%s', not a finite number",
                       ply_where(r, w, sizeof w), what,
                       quote(q, sizeof q, t, len));
   *out = v;
@@ -692,7 +692,7 @@ static glint_status ply_whole(ply_reader *r, const ply_property *p, int count,
     return ply_missing(r, p, count, e);
   if (parse_whole(&s, t + len, out) || s != t + len) {
     char w[1100], q[48], what[128];
-    return glint_fail(
+    return gli_fail(
         e, GLINT_E_PARSE, "%s: expected a whole number for %s, found '%s'",
         ply_where(r, w, sizeof w), ply_what(r, p, count, what, sizeof what),
         quote(q, sizeof q, t, len));
@@ -727,11 +727,11 @@ static glint_status ply_face(ply_reader *r, const ply_property *p, long long n,
   char w[1100];
   mesh_data *m = r->m;
   if (n < 3)
-    return glint_fail(e, GLINT_E_PARSE,
+    return gli_fail(e, GLINT_E_PARSE,
                       "%s: a face needs at least 3 vertices, found %lld",
                       ply_where(r, w, sizeof w), n);
   if (n > MAX_FACE_VERTICES)
-    return glint_fail(e, GLINT_E_PARSE,
+    return gli_fail(e, GLINT_E_PARSE,
                       "%s: a face with %lld vertices (at most %d; the list "
                       "count is probably damaged)",
                       ply_where(r, w, sizeof w), n, MAX_FACE_VERTICES);
@@ -739,9 +739,9 @@ static glint_status ply_face(ply_reader *r, const ply_property *p, long long n,
       (unsigned long long)n > (r->size - r->pos) / ply_size[p->type])
     return ply_truncated(r, e);
   if (m->ntri + (size_t)n - 2 > MAX_ITEMS)
-    return glint_fail(e, GLINT_E_PARSE, "%s: too many triangles",
+    return gli_fail(e, GLINT_E_PARSE, "%s: too many triangles",
                       ply_where(r, w, sizeof w));
-  if (glint_grow((void **)&m->corners, &m->corners_cap, (size_t)n,
+  if (gli_grow((void **)&m->corners, &m->corners_cap, (size_t)n,
                  sizeof *m->corners))
     return oom(r->path, e);
   m->ncorners = (size_t)n;
@@ -751,7 +751,7 @@ static glint_status ply_face(ply_reader *r, const ply_property *p, long long n,
     if (st)
       return st;
     if (v < 0 || (unsigned long long)v >= r->vertex_count)
-      return glint_fail(e, GLINT_E_PARSE,
+      return gli_fail(e, GLINT_E_PARSE,
                         "%s: face refers to vertex %lld, but only %zu %s "
                         "defined",
                         ply_where(r, w, sizeof w), v, r->vertex_count,
@@ -761,7 +761,7 @@ static glint_status ply_face(ply_reader *r, const ply_property *p, long long n,
   switch (emit_face(m, 0, 0)) {
   case 0: return GLINT_OK;
   case GLINT_TRIANGULATE_TOO_COMPLEX:
-    return glint_fail(e, GLINT_E_PARSE,
+    return gli_fail(e, GLINT_E_PARSE,
                       "%s: the face of %zu vertices has too many inward "
                       "corners to triangulate",
                       ply_where(r, w, sizeof w), m->ncorners);
@@ -789,7 +789,7 @@ static glint_status ply_ascii_end(ply_reader *r, glint_error *e) {
   const char *t = ply_token(r, &len);
   if (len) {
     char w[1100], q[48];
-    return glint_fail(e, GLINT_E_PARSE,
+    return gli_fail(e, GLINT_E_PARSE,
                       "%s: unexpected '%s' after the %zu properties of the "
                       "%s",
                       ply_where(r, w, sizeof w), quote(q, sizeof q, t, len),
@@ -822,7 +822,7 @@ static glint_status ply_element_body(ply_reader *r, glint_error *e) {
       break;
     if (n < 0) {
       char w[1100], what[128];
-      return glint_fail(e, GLINT_E_PARSE, "%s: %s is %lld, less than 0",
+      return gli_fail(e, GLINT_E_PARSE, "%s: %s is %lld, less than 0",
                         ply_where(r, w, sizeof w),
                         ply_what(r, p, 1, what, sizeof what), n);
     }
@@ -871,13 +871,13 @@ static glint_status ply_read_element(ply_reader *r, const ply_element *el,
   size_t left = r->size - r->pos;
   if (el->kind == 1) {
     size_t want = el->count < left / 3 + 1 ? el->count : left / 3 + 1;
-    if (glint_grow((void **)&m->pos, &m->pos_cap, want, sizeof *m->pos) ||
+    if (gli_grow((void **)&m->pos, &m->pos_cap, want, sizeof *m->pos) ||
         (m->vertex_normals &&
-         glint_grow((void **)&m->nrm, &m->nrm_cap, want, sizeof *m->nrm)))
+         gli_grow((void **)&m->nrm, &m->nrm_cap, want, sizeof *m->nrm)))
       return oom(r->path, e);
   } else if (el->kind == 2) {
     size_t want = el->count < left / 4 + 1 ? el->count : left / 4 + 1;
-    if (glint_grow((void **)&m->tri, &m->tri_cap, m->ntri + want,
+    if (gli_grow((void **)&m->tri, &m->tri_cap, m->ntri + want,
                    sizeof *m->tri))
       return oom(r->path, e);
   }
@@ -947,29 +947,29 @@ static glint_status ply_property_line(ply_reader *r, size_t line,
                                       glint_error *e) {
   char q[48];
   if (r->nelements == 0)
-    return glint_fail(e, GLINT_E_PARSE,
+    return gli_fail(e, GLINT_E_PARSE,
                       "%s:%zu: 'property' before any 'element'", r->path, line);
   ply_element *el = &r->elements[r->nelements - 1];
   ply_property p;
   memset(&p, 0, sizeof p);
   p.is_list = ntok >= 2 && span_is(tok[1], "list");
   if (ntok != (p.is_list ? 5u : 3u))
-    return glint_fail(e, GLINT_E_PARSE,
+    return gli_fail(e, GLINT_E_PARSE,
                       "%s:%zu: expected 'property TYPE NAME' or 'property "
                       "list COUNTTYPE ITEMTYPE NAME'",
                       r->path, line);
   span name = tok[ntok - 1];
   quote(p.label, sizeof p.label, name.s, name.n);
   if (p.is_list && ply_parse_type(tok[2], &p.count_type))
-    return glint_fail(e, GLINT_E_PARSE,
+    return gli_fail(e, GLINT_E_PARSE,
                       "%s:%zu: unsupported property type '%s'", r->path, line,
                       quote(q, sizeof q, tok[2].s, tok[2].n));
   if (ply_parse_type(tok[ntok - 2], &p.type))
-    return glint_fail(e, GLINT_E_PARSE,
+    return gli_fail(e, GLINT_E_PARSE,
                       "%s:%zu: unsupported property type '%s'", r->path, line,
                       quote(q, sizeof q, tok[ntok - 2].s, tok[ntok - 2].n));
   if (p.is_list && !ply_integer_type(p.count_type))
-    return glint_fail(e, GLINT_E_PARSE,
+    return gli_fail(e, GLINT_E_PARSE,
                       "%s:%zu: the count of the list '%s' must have an "
                       "integer type",
                       r->path, line, p.label);
@@ -984,15 +984,15 @@ static glint_status ply_property_line(ply_reader *r, size_t line,
   if (p.role != ROLE_NONE) {
     for (size_t i = 0; i < el->prop_count; i++)
       if (r->props[el->first_prop + i].role == p.role)
-        return glint_fail(e, GLINT_E_PARSE,
+        return gli_fail(e, GLINT_E_PARSE,
                           "%s:%zu: a second '%s' property in the %s element",
                           r->path, line, p.label, el->label);
     if (p.role == ROLE_INDICES && (!p.is_list || !ply_integer_type(p.type)))
-      return glint_fail(e, GLINT_E_PARSE,
+      return gli_fail(e, GLINT_E_PARSE,
                         "%s:%zu: the face's '%s' must be a list of integers",
                         r->path, line, p.label);
     if (p.role != ROLE_INDICES && p.is_list)
-      return glint_fail(e, GLINT_E_PARSE,
+      return gli_fail(e, GLINT_E_PARSE,
                         "%s:%zu: the vertex's '%s' must be a number, not a "
                         "list",
                         r->path, line, p.label);
@@ -1008,7 +1008,7 @@ static glint_status ply_element_line(ply_reader *r, size_t line,
                                      glint_error *e) {
   char q[48];
   if (ntok != 3)
-    return glint_fail(e, GLINT_E_PARSE, "%s:%zu: expected 'element NAME COUNT'",
+    return gli_fail(e, GLINT_E_PARSE, "%s:%zu: expected 'element NAME COUNT'",
                       r->path, line);
   ply_element el;
   memset(&el, 0, sizeof el);
@@ -1018,17 +1018,17 @@ static glint_status ply_element_line(ply_reader *r, size_t line,
   long long count;
   if (parse_whole(&s, tok[2].s + tok[2].n, &count) ||
       s != tok[2].s + tok[2].n || count < 0)
-    return glint_fail(
+    return gli_fail(
         e, GLINT_E_PARSE, "%s:%zu: expected a count of %s elements, found '%s'",
         r->path, line, el.label, quote(q, sizeof q, tok[2].s, tok[2].n));
   if (el.kind == 1 && (unsigned long long)count > MAX_ITEMS)
-    return glint_fail(e, GLINT_E_PARSE, "%s:%zu: %lld vertices are too many",
+    return gli_fail(e, GLINT_E_PARSE, "%s:%zu: %lld vertices are too many",
                       r->path, line, count);
   el.count = (size_t)count;
   el.first_prop = r->nprops;
   for (size_t i = 0; i < r->nelements; i++)
     if (el.kind && r->elements[i].kind == el.kind)
-      return glint_fail(e, GLINT_E_PARSE, "%s:%zu: a second '%s' element",
+      return gli_fail(e, GLINT_E_PARSE, "%s:%zu: a second '%s' element",
                         r->path, line, el.label);
   if (el.kind == 1)
     r->vertex_count = el.count;
@@ -1045,10 +1045,10 @@ static glint_status ply_header(ply_reader *r, glint_error *e) {
   int has_format = 0;
   char q[48];
   if (r->size == 0)
-    return glint_fail(e, GLINT_E_PARSE, "%s: the file is empty", r->path);
+    return gli_fail(e, GLINT_E_PARSE, "%s: the file is empty", r->path);
   for (;; line++) {
     if (b >= end)
-      return glint_fail(e, GLINT_E_PARSE,
+      return gli_fail(e, GLINT_E_PARSE,
                         "%s:%zu: the file ends inside the header (no "
                         "'end_header')",
                         r->path, line - 1);
@@ -1059,7 +1059,7 @@ static glint_status ply_header(ply_reader *r, glint_error *e) {
       if (t > b && t[-1] == '\r')
         t--;
       if (t - b != 3 || memcmp(b, "ply", 3) != 0)
-        return glint_fail(e, GLINT_E_PARSE,
+        return gli_fail(e, GLINT_E_PARSE,
                           "%s:1: not a PLY file (it does not start with a "
                           "'ply' line)",
                           r->path);
@@ -1083,7 +1083,7 @@ static glint_status ply_header(ply_reader *r, glint_error *e) {
     }
     if (span_is(tok[0], "format")) {
       if (ntok != 3)
-        return glint_fail(e, GLINT_E_PARSE,
+        return gli_fail(e, GLINT_E_PARSE,
                           "%s:%zu: expected 'format TYPE 1.0'", r->path, line);
       if (span_is(tok[1], "ascii"))
         r->format = PLY_ASCII;
@@ -1092,11 +1092,11 @@ static glint_status ply_header(ply_reader *r, glint_error *e) {
       else if (span_is(tok[1], "binary_big_endian"))
         r->format = PLY_BE;
       else
-        return glint_fail(e, GLINT_E_PARSE,
+        return gli_fail(e, GLINT_E_PARSE,
                           "%s:%zu: unsupported PLY format '%s'", r->path, line,
                           quote(q, sizeof q, tok[1].s, tok[1].n));
       if (!span_is(tok[2], "1.0"))
-        return glint_fail(e, GLINT_E_PARSE,
+        return gli_fail(e, GLINT_E_PARSE,
                           "%s:%zu: unsupported PLY version '%s'", r->path, line,
                           quote(q, sizeof q, tok[2].s, tok[2].n));
       has_format = 1;
@@ -1107,12 +1107,12 @@ static glint_status ply_header(ply_reader *r, glint_error *e) {
       if ((st = ply_property_line(r, line, tok, ntok < 6 ? ntok : 6, e)))
         return st;
     } else {
-      return glint_fail(e, GLINT_E_PARSE, "%s:%zu: unknown header keyword '%s'",
+      return gli_fail(e, GLINT_E_PARSE, "%s:%zu: unknown header keyword '%s'",
                         r->path, line, quote(q, sizeof q, tok[0].s, tok[0].n));
     }
   }
   if (!has_format)
-    return glint_fail(e, GLINT_E_PARSE, "%s: the header has no 'format' line",
+    return gli_fail(e, GLINT_E_PARSE, "%s: the header has no 'format' line",
                       r->path);
   /* What a mesh needs: vertices with x, y, z and faces with indices. */
   const ply_element *vertex = NULL, *face = NULL;
@@ -1123,10 +1123,10 @@ static glint_status ply_header(ply_reader *r, glint_error *e) {
       face = &r->elements[i];
   }
   if (!vertex)
-    return glint_fail(e, GLINT_E_PARSE,
+    return gli_fail(e, GLINT_E_PARSE,
                       "%s: the header has no 'vertex' element", r->path);
   if (!face)
-    return glint_fail(e, GLINT_E_PARSE,
+    return gli_fail(e, GLINT_E_PARSE,
                       "%s: the header has no 'face' element (a point cloud is "
                       "not a mesh)",
                       r->path);
@@ -1135,7 +1135,7 @@ static glint_status ply_header(ply_reader *r, glint_error *e) {
     roles |= 1 << r->props[vertex->first_prop + i].role;
   for (int k = ROLE_X; k <= ROLE_Z; k++)
     if (!(roles & 1 << k))
-      return glint_fail(e, GLINT_E_PARSE,
+      return gli_fail(e, GLINT_E_PARSE,
                         "%s: the vertex element has no '%s' property", r->path,
                         role_what[k] + strlen("the vertex's "));
   int normal_roles = 1 << ROLE_NX | 1 << ROLE_NY | 1 << ROLE_NZ;
@@ -1144,7 +1144,7 @@ static glint_status ply_header(ply_reader *r, glint_error *e) {
   for (size_t i = 0; i < face->prop_count; i++)
     has_indices |= r->props[face->first_prop + i].role == ROLE_INDICES;
   if (!has_indices)
-    return glint_fail(e, GLINT_E_PARSE,
+    return gli_fail(e, GLINT_E_PARSE,
                       "%s: the face element has no 'vertex_indices' list",
                       r->path);
   if (r->format == PLY_ASCII)
@@ -1168,14 +1168,14 @@ static glint_status ply_parse(const char *path, const char *data, size_t size,
     char q[48];
     size_t len;
     const char *t = ply_token(&r, &len);
-    st = glint_fail(e, GLINT_E_PARSE,
+    st = gli_fail(e, GLINT_E_PARSE,
                     "%s:%zu: unexpected '%s' after the last element (the "
                     "header's counts are too small)",
                     path, r.line, quote(q, sizeof q, t, len));
   }
   /* Binary files may carry padding after the last element: ignored. */
   if (!st && m->ntri == 0)
-    st = glint_fail(e, GLINT_E_PARSE,
+    st = gli_fail(e, GLINT_E_PARSE,
                     "%s: no faces (the face element is "
                     "empty)",
                     path);
@@ -1199,7 +1199,7 @@ static glint_status add_to_scene(glint_scene *s, const char *path, mesh_data *m,
   size_t obj0 = s->object_count, tri0 = s->triangle_count,
          nrm0 = s->tri_normal_count;
   glint_status st =
-      glint_scene_begin_object(s, GLINT_SHAPE_TRIANGLE, material, e);
+      gli_scene_begin_object(s, GLINT_SHAPE_TRIANGLE, material, e);
   if (st)
     goto fail;
   /* One allocation up front instead of a doubling per power of two. */
@@ -1207,9 +1207,9 @@ static glint_status add_to_scene(glint_scene *s, const char *path, mesh_data *m,
   for (size_t i = 0; i < m->ntri; i++)
     smooth +=
         m->vertex_normals || (m->tri_nrm && m->tri_nrm[i].v[0] != NO_INDEX);
-  if (glint_grow((void **)&s->triangles, &s->triangle_cap, tri0 + m->ntri,
+  if (gli_grow((void **)&s->triangles, &s->triangle_cap, tri0 + m->ntri,
                  sizeof *s->triangles) ||
-      (smooth && glint_grow((void **)&s->tri_normals, &s->tri_normal_cap,
+      (smooth && gli_grow((void **)&s->tri_normals, &s->tri_normal_cap,
                             nrm0 + 3 * smooth, sizeof *s->tri_normals))) {
     st = oom(path, e);
     goto fail;
@@ -1227,13 +1227,13 @@ static glint_status add_to_scene(glint_scene *s, const char *path, mesh_data *m,
         n[k] = m->nrm[m->tri_nrm[i].v[k]];
       normals = n;
     }
-    st = glint_scene_push_triangle(s, m->pos[v[0]], m->pos[v[1]], m->pos[v[2]],
+    st = gli_scene_push_triangle(s, m->pos[v[0]], m->pos[v[1]], m->pos[v[2]],
                                    normals, e);
     if (st) {
       /* Only scaling can make a finite file's coordinates infinite. */
       char msg[sizeof e->message];
       snprintf(msg, sizeof msg, "%s", e ? e->message : "");
-      st = glint_fail(e, st, "%s: triangle %zu, scaled by %g: %s", path, i,
+      st = gli_fail(e, st, "%s: triangle %zu, scaled by %g: %s", path, i,
                       scale, msg);
       goto fail;
     }
@@ -1270,22 +1270,22 @@ glint_status glint_scene_add_mesh_file(glint_scene *scene, const char *path,
                                        uint32_t material_id,
                                        glint_error *error) {
   if (!scene || !path)
-    return glint_fail(error, GLINT_E_ARGUMENT, "mesh file: missing argument");
+    return gli_fail(error, GLINT_E_ARGUMENT, "mesh file: missing argument");
   /* Checked before reading so that a bad call costs no parse. A negative
    * scale would mirror the mesh and turn its faces inside out. */
   if (!isfinite(scale) || !(scale > 0))
-    return glint_fail(error, GLINT_E_ARGUMENT,
+    return gli_fail(error, GLINT_E_ARGUMENT,
                       "%s: scale %g must be a finite number > 0", path, scale);
-  if (!glint_vec3_finite(translate))
-    return glint_fail(error, GLINT_E_ARGUMENT,
+  if (!gli_vec3_finite(translate))
+    return gli_fail(error, GLINT_E_ARGUMENT,
                       "%s: the translation must be finite", path);
   if (material_id >= scene->material_count)
-    return glint_fail(error, GLINT_E_ARGUMENT,
+    return gli_fail(error, GLINT_E_ARGUMENT,
                       "%s: material %u does not exist (the scene has %zu)",
                       path, material_id, scene->material_count);
   int kind = mesh_kind(path);
   if (kind == MESH_UNKNOWN)
-    return glint_fail(error, GLINT_E_ARGUMENT,
+    return gli_fail(error, GLINT_E_ARGUMENT,
                       "%s: not a mesh file (.obj or .ply, optionally .gz)",
                       path);
   char *data = NULL;

@@ -51,11 +51,11 @@ static glint_status expect_word(nff_reader *r, const char *word,
   char buf[64];
   const char *tok = text_token(&r->t, buf, sizeof buf);
   if (!tok)
-    return glint_fail(e, GLINT_E_PARSE,
+    return gli_fail(e, GLINT_E_PARSE,
                       "%s:%d: the file ends where '%s' was expected", r->t.path,
                       r->t.line, word);
   if (strcmp(tok, word) != 0)
-    return glint_fail(e, GLINT_E_PARSE, "%s:%d: expected '%s', found '%s'",
+    return gli_fail(e, GLINT_E_PARSE, "%s:%d: expected '%s', found '%s'",
                       r->t.path, r->t.token_line, word, tok);
   return GLINT_OK;
 }
@@ -69,7 +69,7 @@ static glint_status at_line(nff_reader *r, int line, glint_status st,
   if (st && e) {
     char msg[sizeof e->message];
     snprintf(msg, sizeof msg, "%.900s", e->message);
-    glint_fail(e, st, "%s:%d: %s", r->t.path, line, msg);
+    gli_fail(e, st, "%s:%d: %s", r->t.path, line, msg);
   }
   return st;
 }
@@ -97,7 +97,7 @@ static glint_status read_view(nff_reader *r, glint_error *e) {
                      &h, e)))
     return st;
   if (!(angle > 0 && angle < 180))
-    return glint_fail(e, GLINT_E_PARSE,
+    return gli_fail(e, GLINT_E_PARSE,
                       "%s:%d: view angle %g is not between 0 and 180",
                       r->t.path, line, angle);
   double half = tan(angle * 3.14159265358979323846 / 360.0);
@@ -164,7 +164,7 @@ static glint_status need_material(nff_reader *r, const char *entity,
                                   glint_error *e) {
   if (r->has_material)
     return GLINT_OK;
-  return glint_fail(e, GLINT_E_PARSE,
+  return gli_fail(e, GLINT_E_PARSE,
                     "%s:%d: '%s' before any 'f' material line", r->t.path,
                     r->t.token_line, entity);
 }
@@ -195,7 +195,7 @@ static glint_status read_cone(nff_reader *r, glint_error *e) {
       (st = text_number(&r->t, "the cone's apex radius", &ra, e)))
     return st;
   if ((rb < 0) != (ra < 0) && rb != 0 && ra != 0)
-    return glint_fail(e, GLINT_E_PARSE,
+    return gli_fail(e, GLINT_E_PARSE,
                       "%s:%d: the cone's radii %g and %g have different "
                       "signs",
                       r->t.path, line, rb, ra);
@@ -215,11 +215,11 @@ static int emit_triangle(void *user, size_t a, size_t b, size_t c) {
   polygon_emit *pe = user;
   const glint_vec3 *v = pe->r->verts;
   if (!pe->patch)
-    return (int)glint_scene_push_triangle(pe->r->scene, v[a], v[b], v[c], NULL,
+    return (int)gli_scene_push_triangle(pe->r->scene, v[a], v[b], v[c], NULL,
                                           pe->e);
   const glint_vec3 *n = pe->r->norms;
   glint_vec3 nrm[3] = {n[a], n[b], n[c]};
-  return (int)glint_scene_push_triangle(pe->r->scene, v[a], v[b], v[c], nrm,
+  return (int)gli_scene_push_triangle(pe->r->scene, v[a], v[b], v[c], nrm,
                                         pe->e);
 }
 
@@ -241,7 +241,7 @@ static glint_status read_polygon(nff_reader *r, int patch, glint_error *e) {
     if (m)
       r->norms = m;
     if (!v || !m)
-      return glint_fail(e, GLINT_E_MEMORY, "%s:%d: out of memory", r->t.path,
+      return gli_fail(e, GLINT_E_MEMORY, "%s:%d: out of memory", r->t.path,
                         line);
     r->vert_cap = (size_t)n;
   }
@@ -255,21 +255,21 @@ static glint_status read_polygon(nff_reader *r, int patch, glint_error *e) {
         snprintf(msg, sizeof msg,
                  "%.900s (vertex %ld of %ld of the %s on line %d)", e->message,
                  i + 1, n, patch ? "patch" : "polygon", line);
-        glint_fail(e, st, "%s", msg);
+        gli_fail(e, st, "%s", msg);
       }
       return st;
     }
   }
-  if ((st = glint_scene_begin_object(r->scene, GLINT_SHAPE_TRIANGLE,
+  if ((st = gli_scene_begin_object(r->scene, GLINT_SHAPE_TRIANGLE,
                                      r->material, e)))
     return at_line(r, line, st, e);
   polygon_emit pe = {r, patch, e};
-  int res = glint_triangulate(r->verts, (size_t)n, emit_triangle, &pe);
+  int res = gli_triangulate(r->verts, (size_t)n, emit_triangle, &pe);
   if (res == GLINT_TRIANGULATE_NO_MEMORY)
-    return glint_fail(e, GLINT_E_MEMORY, "%s:%d: out of memory", r->t.path,
+    return gli_fail(e, GLINT_E_MEMORY, "%s:%d: out of memory", r->t.path,
                       line);
   if (res == GLINT_TRIANGULATE_TOO_COMPLEX)
-    return glint_fail(e, GLINT_E_PARSE,
+    return gli_fail(e, GLINT_E_PARSE,
                       "%s:%d: %s: the polygon of %ld vertices has too many "
                       "inward corners to triangulate",
                       r->t.path, line, entity, n);
@@ -303,7 +303,7 @@ static glint_status read_nff(nff_reader *r, glint_error *e) {
     else if (strcmp(tok, "pp") == 0)
       st = read_polygon(r, 1, e);
     else
-      st = glint_fail(e, GLINT_E_PARSE, "%s:%d: unknown entity '%s'", r->t.path,
+      st = gli_fail(e, GLINT_E_PARSE, "%s:%d: unknown entity '%s'", r->t.path,
                       r->t.token_line, tok);
   }
   if (st)
@@ -317,7 +317,7 @@ static glint_status read_nff(nff_reader *r, glint_error *e) {
   return GLINT_OK;
 }
 
-glint_status glint_nff_load(const char *path, glint_scene **out,
+glint_status gli_nff_load(const char *path, glint_scene **out,
                             glint_error *e) {
   nff_reader r;
   memset(&r, 0, sizeof r);

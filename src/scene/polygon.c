@@ -69,7 +69,7 @@ static int blocks(glint_vec3 p, glint_vec3 a, glint_vec3 b, glint_vec3 c,
 /* A convex polygon idx[0..n): cut by the diagonal idx[0]-idx[n/2] and each
  * half the same way (depth log n). */
 static int bisect(const size_t *idx, size_t n, size_t *tmp,
-                  glint_polygon_emit emit, void *user) {
+                  gli_polygon_emit emit, void *user) {
   if (n == 3)
     return emit(user, idx[0], idx[1], idx[2]);
   size_t k = n / 2;
@@ -113,7 +113,7 @@ static void update_corner(ring *g, size_t i) {
   g->reflex[i] = (unsigned char)now;
 }
 
-int glint_polygon_is_convex(const glint_vec3 *v, size_t n) {
+int gli_polygon_is_convex(const glint_vec3 *v, size_t n) {
   glint_vec3 nrm = newell(v, NULL, n);
   for (size_t i = 0; i < n; i++) {
     glint_vec3 a = v[i], b = v[(i + 1) % n], c = v[(i + 2) % n];
@@ -133,7 +133,7 @@ static size_t first_vertex(const ring *g, size_t b, size_t m) {
   return first;
 }
 
-int glint_triangulate(const glint_vec3 *v, size_t n, glint_polygon_emit emit,
+int gli_triangulate(const glint_vec3 *v, size_t n, gli_polygon_emit emit,
                       void *user) {
   if (n < 3)
     return GLINT_TRIANGULATE_NO_MEMORY;

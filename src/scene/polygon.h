@@ -8,12 +8,12 @@
 
 /* Called once per triangle with three vertex indices; a non-zero return
  * stops and is returned. */
-typedef int (*glint_polygon_emit)(void *user, size_t a, size_t b, size_t c);
+typedef int (*gli_polygon_emit)(void *user, size_t a, size_t b, size_t c);
 
 /* 1 if no corner of the polygon v[0..n) turns against its (Newell) normal:
  * a fan from any corner then covers it exactly. Straight corners count as
  * convex. */
-int glint_polygon_is_convex(const glint_vec3 *v, size_t n);
+int gli_polygon_is_convex(const glint_vec3 *v, size_t n);
 
 #define GLINT_TRIANGULATE_NO_MEMORY (-1) /* or n < 3 */
 #define GLINT_TRIANGULATE_TOO_COMPLEX (-2)
@@ -23,7 +23,7 @@ int glint_polygon_is_convex(const glint_vec3 *v, size_t n);
  * GLINT_TRIANGULATE_NO_MEMORY, or GLINT_TRIANGULATE_TOO_COMPLEX when ear
  * clipping would take more than about 2^27 point-in-triangle tests (a
  * polygon with tens of thousands of inward corners) rather than hang. */
-int glint_triangulate(const glint_vec3 *v, size_t n, glint_polygon_emit emit,
+int gli_triangulate(const glint_vec3 *v, size_t n, gli_polygon_emit emit,
                       void *user);
 
 #endif

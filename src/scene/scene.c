@@ -9,7 +9,7 @@
 #include <stdlib.h>
 #include <string.h>
 
-int glint_vec3_finite(glint_vec3 v) {
+int gli_vec3_finite(glint_vec3 v) {
   return isfinite(v.x) && isfinite(v.y) && isfinite(v.z);
 }
 
@@ -41,7 +41,7 @@ void glint_material_default(glint_material *m) {
 glint_status glint_scene_create(glint_scene **out, glint_error *error) {
   glint_scene *s = calloc(1, sizeof *s);
   if (!s)
-    return glint_fail(error, GLINT_E_MEMORY, "out of memory creating a scene");
+    return gli_fail(error, GLINT_E_MEMORY, "out of memory creating a scene");
   s->camera = (glint_camera){{0, 0, 10}, {0, 0, 0}, {0, 1, 0}, 60};
   s->width = 640;
   s->height = 480;
@@ -65,26 +65,26 @@ void glint_scene_destroy(glint_scene *s) {
 }
 
 static glint_status oom(glint_error *error) {
-  return glint_fail(error, GLINT_E_MEMORY, "out of memory building the scene");
+  return gli_fail(error, GLINT_E_MEMORY, "out of memory building the scene");
 }
 
-glint_status glint_camera_check(const glint_camera *c, glint_error *error) {
-  if (!glint_vec3_finite(c->from) || !glint_vec3_finite(c->at) ||
-      !glint_vec3_finite(c->up) || !isfinite(c->fov_x_degrees))
-    return glint_fail(error, GLINT_E_ARGUMENT,
+glint_status gli_camera_check(const glint_camera *c, glint_error *error) {
+  if (!gli_vec3_finite(c->from) || !gli_vec3_finite(c->at) ||
+      !gli_vec3_finite(c->up) || !isfinite(c->fov_x_degrees))
+    return gli_fail(error, GLINT_E_ARGUMENT,
                       "camera: coordinates must be finite numbers");
   if (!(c->fov_x_degrees > 0 && c->fov_x_degrees < 180))
-    return glint_fail(error, GLINT_E_ARGUMENT,
+    return gli_fail(error, GLINT_E_ARGUMENT,
                       "camera: field of view %g is not between 0 and 180 "
                       "degrees",
                       c->fov_x_degrees);
   glint_vec3 d = vsub(c->at, c->from);
   if (vlen(d) == 0)
-    return glint_fail(error, GLINT_E_ARGUMENT,
+    return gli_fail(error, GLINT_E_ARGUMENT,
                       "camera: 'from' and 'at' are the same point");
   double dl = vlen(d), ul = vlen(c->up);
   if (ul == 0 || vlen(vcross(d, c->up)) <= 1e-9 * dl * ul)
-    return glint_fail(error, GLINT_E_ARGUMENT,
+    return gli_fail(error, GLINT_E_ARGUMENT,
                       "camera: 'up' is zero or parallel to the view "
                       "direction");
   return GLINT_OK;
@@ -92,7 +92,7 @@ glint_status glint_camera_check(const glint_camera *c, glint_error *error) {
 
 glint_status glint_scene_set_camera(glint_scene *s, const glint_camera *c,
                                     glint_error *error) {
-  glint_status st = glint_camera_check(c, error);
+  glint_status st = gli_camera_check(c, error);
   if (st)
     return st;
   s->camera = *c;
@@ -102,7 +102,7 @@ glint_status glint_scene_set_camera(glint_scene *s, const glint_camera *c,
 glint_status glint_scene_set_resolution(glint_scene *s, int w, int h,
                                         glint_error *error) {
   if (w < 1 || h < 1 || w > GLINT_MAX_DIMENSION || h > GLINT_MAX_DIMENSION)
-    return glint_fail(error, GLINT_E_ARGUMENT,
+    return gli_fail(error, GLINT_E_ARGUMENT,
                       "resolution %dx%d is outside 1..%d", w, h,
                       GLINT_MAX_DIMENSION);
   s->width = w;
@@ -112,10 +112,10 @@ glint_status glint_scene_set_resolution(glint_scene *s, int w, int h,
 
 static glint_status check_color(glint_vec3 c, const char *what,
                                 glint_error *error) {
-  if (!glint_vec3_finite(c))
-    return glint_fail(error, GLINT_E_ARGUMENT, "%s must be finite", what);
+  if (!gli_vec3_finite(c))
+    return gli_fail(error, GLINT_E_ARGUMENT, "%s must be finite", what);
   if (c.x < 0 || c.y < 0 || c.z < 0)
-    return glint_fail(error, GLINT_E_ARGUMENT, "%s must not be negative", what);
+    return gli_fail(error, GLINT_E_ARGUMENT, "%s must not be negative", what);
   return GLINT_OK;
 }
 
@@ -137,12 +137,12 @@ glint_status glint_scene_set_ambient(glint_scene *s, glint_vec3 c,
 
 glint_status glint_scene_add_light(glint_scene *s, glint_vec3 p, glint_vec3 c,
                                    glint_error *error) {
-  if (!glint_vec3_finite(p))
-    return glint_fail(error, GLINT_E_ARGUMENT, "light position must be finite");
+  if (!gli_vec3_finite(p))
+    return gli_fail(error, GLINT_E_ARGUMENT, "light position must be finite");
   glint_status st = check_color(c, "light colour", error);
   if (st != GLINT_OK)
     return st;
-  glint_light l = {p, c};
+  gli_light l = {p, c};
   return GLINT_PUSH(s->lights, s->light_count, s->light_cap, l) ? oom(error)
                                                                 : GLINT_OK;
 }
@@ -159,24 +159,24 @@ glint_status glint_scene_add_material(glint_scene *s, const glint_material *m,
   const char *names[] = {"ka", "kd", "ks", "h", "kr", "kt"};
   for (int i = 0; i < 6; i++)
     if (!isfinite(k[i]) || k[i] < 0)
-      return glint_fail(error, GLINT_E_ARGUMENT,
+      return gli_fail(error, GLINT_E_ARGUMENT,
                         "material %s = %g must be a finite number >= 0",
                         names[i], k[i]);
   if (!isfinite(m->ior) || m->ior <= 0)
-    return glint_fail(error, GLINT_E_ARGUMENT,
+    return gli_fail(error, GLINT_E_ARGUMENT,
                       "material ior = %g must be a finite number > 0", m->ior);
   if (m->texture != GLINT_TEXTURE_NONE &&
       m->texture != GLINT_TEXTURE_CHECKER_PLANAR &&
       m->texture != GLINT_TEXTURE_CHECKER_SOLID)
-    return glint_fail(error, GLINT_E_ARGUMENT, "unknown texture kind %d",
+    return gli_fail(error, GLINT_E_ARGUMENT, "unknown texture kind %d",
                       (int)m->texture);
   if (m->texture != GLINT_TEXTURE_NONE &&
       !(isfinite(m->checker_size) && m->checker_size > 0))
-    return glint_fail(error, GLINT_E_ARGUMENT,
+    return gli_fail(error, GLINT_E_ARGUMENT,
                       "checker size %g must be a finite number > 0",
                       m->checker_size);
   if (s->material_count >= UINT32_MAX)
-    return glint_fail(error, GLINT_E_ARGUMENT, "too many materials");
+    return gli_fail(error, GLINT_E_ARGUMENT, "too many materials");
   if (GLINT_PUSH(s->materials, s->material_count, s->material_cap, *m))
     return oom(error);
   if (id)
@@ -184,14 +184,14 @@ glint_status glint_scene_add_material(glint_scene *s, const glint_material *m,
   return GLINT_OK;
 }
 
-glint_status glint_scene_begin_object(glint_scene *s, glint_shape shape,
+glint_status gli_scene_begin_object(glint_scene *s, gli_shape shape,
                                       uint32_t material, glint_error *error) {
   if (material >= s->material_count)
-    return glint_fail(error, GLINT_E_ARGUMENT,
+    return gli_fail(error, GLINT_E_ARGUMENT,
                       "material %u does not exist (the scene has %zu)",
                       material, s->material_count);
   if (s->object_count >= UINT32_MAX - 1)
-    return glint_fail(error, GLINT_E_ARGUMENT, "too many objects");
+    return gli_fail(error, GLINT_E_ARGUMENT, "too many objects");
   size_t first = 0;
   switch (shape) {
   case GLINT_SHAPE_SPHERE: first = s->sphere_count; break;
@@ -200,26 +200,26 @@ glint_status glint_scene_begin_object(glint_scene *s, glint_shape shape,
   case GLINT_SHAPE_PLANE: first = s->plane_count; break;
   }
   if (first >= UINT32_MAX)
-    return glint_fail(error, GLINT_E_ARGUMENT, "too many primitives");
-  glint_object o = {material, (uint32_t)shape, (uint32_t)first, 0, {0, 0, 0}};
+    return gli_fail(error, GLINT_E_ARGUMENT, "too many primitives");
+  gli_object o = {material, (uint32_t)shape, (uint32_t)first, 0, {0, 0, 0}};
   return GLINT_PUSH(s->objects, s->object_count, s->object_cap, o) ? oom(error)
                                                                    : GLINT_OK;
 }
 
 glint_status glint_scene_add_sphere(glint_scene *s, glint_vec3 c, double r,
                                     uint32_t material, glint_error *error) {
-  if (!glint_vec3_finite(c) || !isfinite(r))
-    return glint_fail(error, GLINT_E_ARGUMENT,
+  if (!gli_vec3_finite(c) || !isfinite(r))
+    return gli_fail(error, GLINT_E_ARGUMENT,
                       "sphere: coordinates must be finite numbers");
   if (!(r > 0))
-    return glint_fail(error, GLINT_E_ARGUMENT, "sphere: radius %g must be > 0",
+    return gli_fail(error, GLINT_E_ARGUMENT, "sphere: radius %g must be > 0",
                       r);
   glint_status st =
-      glint_scene_begin_object(s, GLINT_SHAPE_SPHERE, material, error);
+      gli_scene_begin_object(s, GLINT_SHAPE_SPHERE, material, error);
   if (st)
     return st;
-  glint_object *o = &s->objects[s->object_count - 1];
-  glint_sphere_prim p = {c, r, (uint32_t)(s->object_count - 1)};
+  gli_object *o = &s->objects[s->object_count - 1];
+  gli_sphere_prim p = {c, r, (uint32_t)(s->object_count - 1)};
   if (GLINT_PUSH(s->spheres, s->sphere_count, s->sphere_cap, p)) {
     s->object_count--;
     return oom(error);
@@ -231,19 +231,19 @@ glint_status glint_scene_add_sphere(glint_scene *s, glint_vec3 c, double r,
 
 glint_status glint_scene_add_plane(glint_scene *s, glint_vec3 n, glint_vec3 p,
                                    uint32_t material, glint_error *error) {
-  if (!glint_vec3_finite(n) || !glint_vec3_finite(p))
-    return glint_fail(error, GLINT_E_ARGUMENT,
+  if (!gli_vec3_finite(n) || !gli_vec3_finite(p))
+    return gli_fail(error, GLINT_E_ARGUMENT,
                       "plane: coordinates must be finite numbers");
   double len = vlen(n);
   if (!(len > 0) || !isfinite(len))
-    return glint_fail(error, GLINT_E_ARGUMENT,
+    return gli_fail(error, GLINT_E_ARGUMENT,
                       "plane: the normal must not be zero");
   glint_status st =
-      glint_scene_begin_object(s, GLINT_SHAPE_PLANE, material, error);
+      gli_scene_begin_object(s, GLINT_SHAPE_PLANE, material, error);
   if (st)
     return st;
   glint_vec3 u = {n.x / len, n.y / len, n.z / len};
-  glint_plane_prim pl = {u, -(u.x * p.x + u.y * p.y + u.z * p.z),
+  gli_plane_prim pl = {u, -(u.x * p.x + u.y * p.y + u.z * p.z),
                          (uint32_t)(s->object_count - 1)};
   if (GLINT_PUSH(s->planes, s->plane_count, s->plane_cap, pl)) {
     s->object_count--;
@@ -253,26 +253,26 @@ glint_status glint_scene_add_plane(glint_scene *s, glint_vec3 n, glint_vec3 p,
   return GLINT_OK;
 }
 
-glint_status glint_scene_push_triangle(glint_scene *s, glint_vec3 a,
+glint_status gli_scene_push_triangle(glint_scene *s, glint_vec3 a,
                                        glint_vec3 b, glint_vec3 c,
                                        const glint_vec3 normals[3],
                                        glint_error *error) {
-  if (!glint_vec3_finite(a) || !glint_vec3_finite(b) || !glint_vec3_finite(c))
-    return glint_fail(error, GLINT_E_ARGUMENT,
+  if (!gli_vec3_finite(a) || !gli_vec3_finite(b) || !gli_vec3_finite(c))
+    return gli_fail(error, GLINT_E_ARGUMENT,
                       "triangle: coordinates must be finite numbers");
-  glint_object *o = &s->objects[s->object_count - 1];
+  gli_object *o = &s->objects[s->object_count - 1];
   if (s->triangle_count >= UINT32_MAX - 1)
-    return glint_fail(error, GLINT_E_ARGUMENT, "too many triangles");
-  glint_triangle_prim t = {
+    return gli_fail(error, GLINT_E_ARGUMENT, "too many triangles");
+  gli_triangle_prim t = {
       {a, b, c}, (uint32_t)(s->object_count - 1), GLINT_NO_NORMALS};
   if (normals) {
     for (int i = 0; i < 3; i++)
-      if (!glint_vec3_finite(normals[i]))
-        return glint_fail(error, GLINT_E_ARGUMENT,
+      if (!gli_vec3_finite(normals[i]))
+        return gli_fail(error, GLINT_E_ARGUMENT,
                           "triangle: normals must be finite numbers");
     if (s->tri_normal_count >= UINT32_MAX - 3)
-      return glint_fail(error, GLINT_E_ARGUMENT, "too many normals");
-    if (glint_grow((void **)&s->tri_normals, &s->tri_normal_cap,
+      return gli_fail(error, GLINT_E_ARGUMENT, "too many normals");
+    if (gli_grow((void **)&s->tri_normals, &s->tri_normal_cap,
                    s->tri_normal_count + 3, sizeof *s->tri_normals))
       return oom(error);
     t.normals = (uint32_t)s->tri_normal_count;
@@ -293,14 +293,14 @@ glint_status glint_scene_push_triangle(glint_scene *s, glint_vec3 a,
 glint_status glint_scene_add_triangle(glint_scene *s, glint_vec3 a,
                                       glint_vec3 b, glint_vec3 c,
                                       uint32_t material, glint_error *error) {
-  if (!glint_vec3_finite(a) || !glint_vec3_finite(b) || !glint_vec3_finite(c))
-    return glint_fail(error, GLINT_E_ARGUMENT,
+  if (!gli_vec3_finite(a) || !gli_vec3_finite(b) || !gli_vec3_finite(c))
+    return gli_fail(error, GLINT_E_ARGUMENT,
                       "triangle: coordinates must be finite numbers");
   glint_status st =
-      glint_scene_begin_object(s, GLINT_SHAPE_TRIANGLE, material, error);
+      gli_scene_begin_object(s, GLINT_SHAPE_TRIANGLE, material, error);
   if (st)
     return st;
-  st = glint_scene_push_triangle(s, a, b, c, NULL, error);
+  st = gli_scene_push_triangle(s, a, b, c, NULL, error);
   if (st)
     s->object_count--;
   return st;
@@ -309,22 +309,22 @@ glint_status glint_scene_add_triangle(glint_scene *s, glint_vec3 a,
 glint_status glint_scene_add_cone(glint_scene *s, glint_vec3 base, double rb,
                                   glint_vec3 apex, double ra, uint32_t material,
                                   glint_error *error) {
-  if (!glint_vec3_finite(base) || !glint_vec3_finite(apex) || !isfinite(rb) ||
+  if (!gli_vec3_finite(base) || !gli_vec3_finite(apex) || !isfinite(rb) ||
       !isfinite(ra))
-    return glint_fail(error, GLINT_E_ARGUMENT,
+    return gli_fail(error, GLINT_E_ARGUMENT,
                       "cone: coordinates must be finite numbers");
   if (rb < 0 || ra < 0 || (rb == 0 && ra == 0))
-    return glint_fail(error, GLINT_E_ARGUMENT,
+    return gli_fail(error, GLINT_E_ARGUMENT,
                       "cone: radii %g and %g must be >= 0 and not both 0", rb,
                       ra);
   if (vlen(vsub(apex, base)) == 0)
-    return glint_fail(error, GLINT_E_ARGUMENT,
+    return gli_fail(error, GLINT_E_ARGUMENT,
                       "cone: base and apex are the same point");
   glint_status st =
-      glint_scene_begin_object(s, GLINT_SHAPE_CONE, material, error);
+      gli_scene_begin_object(s, GLINT_SHAPE_CONE, material, error);
   if (st)
     return st;
-  glint_cone_prim p = {base, apex, rb, ra, (uint32_t)(s->object_count - 1)};
+  gli_cone_prim p = {base, apex, rb, ra, (uint32_t)(s->object_count - 1)};
   if (GLINT_PUSH(s->cones, s->cone_count, s->cone_cap, p)) {
     s->object_count--;
     return oom(error);
@@ -336,15 +336,15 @@ glint_status glint_scene_add_cone(glint_scene *s, glint_vec3 base, double rb,
 glint_status glint_scene_add_mesh(glint_scene *s, const glint_mesh *m,
                                   uint32_t material, glint_error *error) {
   if (!m || !m->positions || (!m->indices && m->triangle_count))
-    return glint_fail(error, GLINT_E_ARGUMENT, "mesh: missing arrays");
+    return gli_fail(error, GLINT_E_ARGUMENT, "mesh: missing arrays");
   for (size_t i = 0; i < 3 * m->triangle_count; i++)
     if (m->indices[i] >= m->vertex_count)
-      return glint_fail(error, GLINT_E_ARGUMENT,
+      return gli_fail(error, GLINT_E_ARGUMENT,
                         "mesh: triangle %zu refers to vertex %u, but the "
                         "mesh has %zu",
                         i / 3, m->indices[i], m->vertex_count);
   glint_status st =
-      glint_scene_begin_object(s, GLINT_SHAPE_TRIANGLE, material, error);
+      gli_scene_begin_object(s, GLINT_SHAPE_TRIANGLE, material, error);
   if (st)
     return st;
   size_t tri0 = s->triangle_count, nrm0 = s->tri_normal_count;
@@ -354,7 +354,7 @@ glint_status glint_scene_add_mesh(glint_scene *s, const glint_mesh *m,
     if (m->normals)
       for (int k = 0; k < 3; k++)
         n[k] = m->normals[ix[k]];
-    st = glint_scene_push_triangle(s, m->positions[ix[0]], m->positions[ix[1]],
+    st = gli_scene_push_triangle(s, m->positions[ix[0]], m->positions[ix[1]],
                                    m->positions[ix[2]], m->normals ? n : NULL,
                                    error);
   }
@@ -408,7 +408,7 @@ static double absmax3(glint_vec3 v, double m) {
   return fmax(m, fabs(v.z));
 }
 
-double glint_scene_epsilon(const glint_scene *s) {
+double gli_scene_epsilon(const glint_scene *s) {
   double m = absmax3(s->camera.from, 0);
   for (size_t i = 0; i < s->sphere_count; i++)
     m = fmax(m, absmax3(s->spheres[i].center, 0) + s->spheres[i].radius);
@@ -416,7 +416,7 @@ double glint_scene_epsilon(const glint_scene *s) {
     for (int k = 0; k < 3; k++)
       m = absmax3(s->triangles[i].v[k], m);
   for (size_t i = 0; i < s->cone_count; i++) {
-    const glint_cone_prim *c = &s->cones[i];
+    const gli_cone_prim *c = &s->cones[i];
     double r = fmax(c->base_radius, c->apex_radius);
     m = fmax(m, absmax3(c->base, 0) + r);
     m = fmax(m, absmax3(c->apex, 0) + r);

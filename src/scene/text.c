@@ -86,16 +86,16 @@ glint_status text_number(text_file *t, const char *what, double *out,
   char buf[128];
   const char *tok = text_token(t, buf, sizeof buf);
   if (!tok)
-    return glint_fail(error, GLINT_E_PARSE,
+    return gli_fail(error, GLINT_E_PARSE,
                       "%s:%d: the file ends where %s was expected", t->path,
                       t->line, what);
   int r = number_parse(tok, strlen(tok), out);
   if (r == NUMBER_BAD)
-    return glint_fail(error, GLINT_E_PARSE,
+    return gli_fail(error, GLINT_E_PARSE,
                       "%s:%d: expected a number for %s, found '%s'", t->path,
                       t->token_line, what, tok);
   if (r == NUMBER_NOT_FINITE)
-    return glint_fail(error, GLINT_E_PARSE,
+    return gli_fail(error, GLINT_E_PARSE,
                       "%s:%d: %s is '%s', not a finite number", t->path,
                       t->token_line, what, tok);
   return GLINT_OK;
@@ -116,18 +116,18 @@ glint_status text_int(text_file *t, const char *what, long min, long max,
   char buf[128];
   const char *tok = text_token(t, buf, sizeof buf);
   if (!tok)
-    return glint_fail(error, GLINT_E_PARSE,
+    return gli_fail(error, GLINT_E_PARSE,
                       "%s:%d: the file ends where %s was expected", t->path,
                       t->line, what);
   char *end;
   errno = 0;
   long v = strtol(tok, &end, 10);
   if (end == tok || *end != '\0' || errno == ERANGE)
-    return glint_fail(error, GLINT_E_PARSE,
+    return gli_fail(error, GLINT_E_PARSE,
                       "%s:%d: expected a whole number for %s, found '%s'",
                       t->path, t->token_line, what, tok);
   if (v < min || v > max)
-    return glint_fail(error, GLINT_E_PARSE,
+    return gli_fail(error, GLINT_E_PARSE,
                       "%s:%d: %s is %ld, outside %ld..%ld", t->path,
                       t->token_line, what, v, min, max);
   *out = v;

@@ -148,7 +148,7 @@ static inline vfloat vf_gather(const float *base, vint idx) {
 /* The permutation that moves the lanes set in an 8-bit mask to the front,
  * as 8 indices of 3 bits packed in a 32-bit word: built once, at first use
  * by the compiler (a constant table of 256 words). */
-static inline __m256i glint_compress_perm(int bits) {
+static inline __m256i gli_compress_perm(int bits) {
   /* Generated: for each mask, the indices of its set bits in order. */
   static const uint32_t table[256] = {
 #define P(x) x,
@@ -167,7 +167,7 @@ static inline __m256i glint_compress_perm(int bits) {
  * has no compress instruction: a table permutation does it. */
 static inline int vf_compress_store(float *p, vmask m, vfloat a) {
   int bits = vm_bits(m);
-  _mm256_storeu_ps(p, _mm256_permutevar8x32_ps(a, glint_compress_perm(bits)));
+  _mm256_storeu_ps(p, _mm256_permutevar8x32_ps(a, gli_compress_perm(bits)));
   return _mm_popcnt_u32((unsigned)bits);
 }
 

@@ -51,9 +51,9 @@ static inline vfloat vm_pow2i(vfloat k) {
 
 /* Taylor coefficients: log2(1+x)/x = (1 - x/2 + x^2/3 - x^3/4 + x^4/5)/ln 2
  * and 2^f = e^(f ln 2) = sum (f ln 2)^k / k!, k <= 3. */
-static const float glint_taylor_log2[5] = {
+static const float gli_taylor_log2[5] = {
     1.442695041f, -0.7213475204f, 0.4808983469f, -0.3606737602f, 0.2885390082f};
-static const float glint_taylor_exp2[4] = {1.0f, 0.6931471806f, 0.2402265070f,
+static const float gli_taylor_exp2[4] = {1.0f, 0.6931471806f, 0.2402265070f,
                                            0.05550410866f};
 
 /* log2 for positive normal x; other inputs give -126 (pow then gives 0). */
@@ -69,8 +69,8 @@ static inline vfloat vm_log2(vfloat x, glint_math math) {
   } else {
     vfloat e, t = vm_split(x, &e);
     vfloat p = math == GLINT_MATH_TAYLOR
-                   ? vm_horner(glint_taylor_log2, 4, t)
-                   : vm_horner(glint_log2_coeffs, GLINT_LOG2_DEGREE, t);
+                   ? vm_horner(gli_taylor_log2, 4, t)
+                   : vm_horner(gli_log2_coeffs, GLINT_LOG2_DEGREE, t);
     r = vf_fmadd(t, p, e);
   }
   return vf_select(tiny, vf_set1(-126.0f), r);
@@ -88,8 +88,8 @@ static inline vfloat vm_exp2(vfloat x, glint_math math) {
   vfloat k = vf_floor(vf_add(x, vf_set1(0.5f)));
   vfloat f = vf_sub(x, k); /* [-1/2, 1/2] */
   vfloat p = math == GLINT_MATH_TAYLOR
-                 ? vm_horner(glint_taylor_exp2, 3, f)
-                 : vm_horner(glint_exp2_coeffs, GLINT_EXP2_DEGREE, f);
+                 ? vm_horner(gli_taylor_exp2, 3, f)
+                 : vm_horner(gli_exp2_coeffs, GLINT_EXP2_DEGREE, f);
   vfloat s = vm_pow2i(vf_max(k, vf_set1(-126.0f)));
   return vf_mul(p, s);
 }

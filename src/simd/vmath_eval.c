@@ -4,7 +4,7 @@
 
 #include <string.h>
 
-void ISA_NAME(glint_vmath_pow)(const float *x, const float *y, float *out,
+void ISA_NAME(gli_vmath_pow)(const float *x, const float *y, float *out,
                                size_t n, glint_math math) {
   for (size_t i = 0; i < n; i += W) {
     SIMD_ALIGN float a[W], b[W], r[W];
@@ -18,7 +18,7 @@ void ISA_NAME(glint_vmath_pow)(const float *x, const float *y, float *out,
   }
 }
 
-void ISA_NAME(glint_vmath_exp)(const float *x, float *out, size_t n,
+void ISA_NAME(gli_vmath_exp)(const float *x, float *out, size_t n,
                                glint_math math) {
   for (size_t i = 0; i < n; i += W) {
     SIMD_ALIGN float a[W], r[W];
@@ -32,7 +32,7 @@ void ISA_NAME(glint_vmath_exp)(const float *x, float *out, size_t n,
 
 /* 1/x as the packet tracers divide (eq. 3.1), with or without the Newton
  * step. */
-void ISA_NAME(glint_vmath_rcp)(const float *x, float *out, size_t n,
+void ISA_NAME(gli_vmath_rcp)(const float *x, float *out, size_t n,
                                int newton) {
   for (size_t i = 0; i < n; i += W) {
     SIMD_ALIGN float a[W], r[W];

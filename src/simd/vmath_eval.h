@@ -7,11 +7,11 @@
 #include <stddef.h>
 
 #define GLINT_VMATH_DECLARE(isa)                                               \
-  void glint_vmath_pow_##isa(const float *x, const float *y, float *out,       \
+  void gli_vmath_pow_##isa(const float *x, const float *y, float *out,       \
                              size_t n, glint_math math);                       \
-  void glint_vmath_exp_##isa(const float *x, float *out, size_t n,             \
+  void gli_vmath_exp_##isa(const float *x, float *out, size_t n,             \
                              glint_math math);                                 \
-  void glint_vmath_rcp_##isa(const float *x, float *out, size_t n, int newton);
+  void gli_vmath_rcp_##isa(const float *x, float *out, size_t n, int newton);
 GLINT_VMATH_DECLARE(sse)
 GLINT_VMATH_DECLARE(avx2)
 GLINT_VMATH_DECLARE(avx512)
