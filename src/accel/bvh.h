@@ -42,7 +42,7 @@ typedef struct gli_bvh {
 /* Builds over the scene's spheres, triangles and cones. A scene with at most
  * GLINT_BVH_MIN_PRIMS of them gives node_count = 0: test them all. */
 glint_status gli_bvh_build(const glint_scene *scene, gli_bvh *bvh,
-                             glint_error *error);
+                           glint_error *error);
 void gli_bvh_free(gli_bvh *bvh);
 
 /* Bytes the built hierarchy occupies (nodes and references). */

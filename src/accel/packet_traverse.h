@@ -39,7 +39,7 @@ static ALWAYS_INLINE packet_inv packet_inverse(vvec3 o, vvec3 d, vmask active,
   r.inv.y = vf_rcp(vf_nonzero(d.y), newton);
   r.inv.z = vf_rcp(vf_nonzero(d.z), newton);
   r.neg_o_inv = vv_neg(vv_mul(o, r.inv));
-  SIMD_ALIGN float dx[W], dy[W], dz[W];
+  SIMD_ALIGN float dx[LANES], dy[LANES], dz[LANES];
   vf_store(dx, d.x);
   vf_store(dy, d.y);
   vf_store(dz, d.z);

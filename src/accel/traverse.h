@@ -28,8 +28,8 @@ static inline vec3 safe_inverse(vec3 d) {
  * REAL_MAX: a ray without a hit yet has tmax = REAL_MAX, and every missed
  * box would pass entry <= tmax.) The far distance is widened by a few ulps
  * so rounding cannot cull a hit on the box's surface. */
-static inline real box_entry(const gli_bvh_node *n, vec3 o, vec3 inv,
-                             real tmin, real tmax) {
+static inline real box_entry(const gli_bvh_node *n, vec3 o, vec3 inv, real tmin,
+                             real tmax) {
   real t0x = ((real)n->lo[0] - o.x) * inv.x,
        t1x = ((real)n->hi[0] - o.x) * inv.x;
   real t0y = ((real)n->lo[1] - o.y) * inv.y,

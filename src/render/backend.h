@@ -72,15 +72,13 @@ extern const gli_backend_ops gli_stream_ops_avx512;
 
 /* Test hooks: the packet nearest hit of one beam of W rays (origins and
  * directions as x[W] y[W] z[W]), per ISA, on a bound packet view. */
-void gli_beam_nearest_hit_sse(const void *view, const float *o,
-                                const float *d, int active_bits, float *t,
-                                int *object);
-void gli_beam_nearest_hit_avx2(const void *view, const float *o,
+void gli_beam_nearest_hit_sse(const void *view, const float *o, const float *d,
+                              int active_bits, float *t, int *object);
+void gli_beam_nearest_hit_avx2(const void *view, const float *o, const float *d,
+                               int active_bits, float *t, int *object);
+void gli_beam_nearest_hit_avx512(const void *view, const float *o,
                                  const float *d, int active_bits, float *t,
                                  int *object);
-void gli_beam_nearest_hit_avx512(const void *view, const float *o,
-                                   const float *d, int active_bits, float *t,
-                                   int *object);
 
 /* The ops of a concrete backend, and of a converted layout (NULL if not
  * built in). */

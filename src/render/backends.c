@@ -26,8 +26,8 @@ static const backend_entry backends[GLINT_BACKEND_COUNT] = {
     [GLINT_BACKEND_AUTO] = {"auto", 0, NULL, cpu_any},
     [GLINT_BACKEND_SCALAR_FLOAT] = {"scalar-float", 1, &gli_scalar_ops_float,
                                     cpu_any},
-    [GLINT_BACKEND_SCALAR_DOUBLE] = {"scalar-double", 1,
-                                     &gli_scalar_ops_double, cpu_any},
+    [GLINT_BACKEND_SCALAR_DOUBLE] = {"scalar-double", 1, &gli_scalar_ops_double,
+                                     cpu_any},
     [GLINT_BACKEND_SSE] = {"sse", 4, &gli_beam_ops_sse, cpu_sse},
     [GLINT_BACKEND_AVX2] = {"avx2", 8, &gli_beam_ops_avx2, cpu_avx2},
     [GLINT_BACKEND_AVX512] = {"avx512", 16, &gli_beam_ops_avx512, cpu_avx512},
@@ -106,8 +106,8 @@ static glint_status parse_name(const char *name, const char *const *names,
       strncat(list, i ? ", " : "", sizeof list - strlen(list) - 1);
       strncat(list, names[i], sizeof list - strlen(list) - 1);
     }
-  return gli_fail(error, GLINT_E_ARGUMENT, "unknown %s '%s' (one of: %s)",
-                    what, name, list);
+  return gli_fail(error, GLINT_E_ARGUMENT, "unknown %s '%s' (one of: %s)", what,
+                  name, list);
 }
 
 glint_status glint_backend_parse(const char *name, glint_backend *b,

@@ -89,10 +89,10 @@ static ALWAYS_INLINE void trace_beam_body(const beam_ctx *c, vvec3 o, vvec3 d,
     return;
 
   /* Split, and per sub-beam: surface, colour and coefficients. */
-  int sub_object[W];
-  vmask sub_mask[W];
+  int sub_object[LANES];
+  vmask sub_mask[LANES];
   int nsub = 0, any_highlight = 0;
-  SIMD_ALIGN int objects[W];
+  SIMD_ALIGN int objects[LANES];
   vi_store(objects, h.object);
   packet_surface f;
   vvec3 base = {vf_zero(), vf_zero(), vf_zero()}, ambient = base;
@@ -155,8 +155,8 @@ static ALWAYS_INLINE void render_tile_body(const packet_scene *ps,
   primary_beams pb = primary_beams_init(&cam);
   vfloat inv_spp = vf_set1(1.0f / (float)frame->spp);
   int tw = tile->x1 - tile->x0;
-  for (int by = tile->y0; by < tile->y1; by += BH)
-    for (int bx = tile->x0; bx < tile->x1; bx += BW) {
+  for (int by = tile->y0; by < tile->y1; by += BLOCK_H)
+    for (int bx = tile->x0; bx < tile->x1; bx += BLOCK_W) {
       vfloat px, py;
       vmask valid = primary_block(&pb, tile, bx, by, &px, &py);
       vvec3 sum = {vf_zero(), vf_zero(), vf_zero()};
@@ -167,14 +167,14 @@ static ALWAYS_INLINE void render_tile_body(const packet_scene *ps,
         sum = vv_add(sum, color);
       }
       st->primary_rays += (uint64_t)vm_count(valid) * (uint64_t)frame->spp;
-      SIMD_ALIGN float r[W], g[W], bl[W];
+      SIMD_ALIGN float r[LANES], g[LANES], bl[LANES];
       vf_store(r, vf_mul(sum.x, inv_spp));
       vf_store(g, vf_mul(sum.y, inv_spp));
       vf_store(bl, vf_mul(sum.z, inv_spp));
       int bits = vm_bits(valid);
-      for (int i = 0; i < W; i++)
+      for (int i = 0; i < LANES; i++)
         if (bits >> i & 1) {
-          int x = bx + i % BW - tile->x0, y = by + i / BW - tile->y0;
+          int x = bx + i % BLOCK_W - tile->x0, y = by + i / BLOCK_W - tile->y0;
           float *out = rgb + ((size_t)y * tw + x) * 3;
           out[0] = r[i];
           out[1] = g[i];
@@ -203,8 +203,8 @@ static uint64_t primary_tile(const void *view, const frame_params *frame,
   camera_from_basis(&cam, &frame->camera);
   primary_beams pb = primary_beams_init(&cam);
   uint64_t hits = 0;
-  for (int by = tile->y0; by < tile->y1; by += BH)
-    for (int bx = tile->x0; bx < tile->x1; bx += BW) {
+  for (int by = tile->y0; by < tile->y1; by += BLOCK_H)
+    for (int bx = tile->x0; bx < tile->x1; bx += BLOCK_W) {
       vfloat px, py;
       vmask valid = primary_block(&pb, tile, bx, by, &px, &py);
       for (int k = 0; k < frame->spp; k++) {
@@ -221,24 +221,24 @@ static uint64_t primary_tile(const void *view, const frame_params *frame,
 
 /* The beams need no scratch: their state lives on the stack. */
 const gli_backend_ops ISA_NAME(gli_beam_ops) = {ISA_DATA_KIND, NULL,
-                                                    render_tile, primary_tile};
+                                                render_tile, primary_tile};
 
 /* For the tests: the packet nearest hit of W rays (SoA arrays of W floats),
  * with the default maths. Writes t and object per lane (-1: no hit). */
 void ISA_NAME(gli_beam_nearest_hit)(const void *view, const float *o,
-                                      const float *d, int active_bits, float *t,
-                                      int *object) {
+                                    const float *d, int active_bits, float *t,
+                                    int *object) {
   const packet_scene *ps = view;
   glint_stats st = {0};
-  vvec3 vo = {vf_loadu(o), vf_loadu(o + W), vf_loadu(o + 2 * W)};
-  vvec3 vd = {vf_loadu(d), vf_loadu(d + W), vf_loadu(d + 2 * W)};
+  vvec3 vo = {vf_loadu(o), vf_loadu(o + LANES), vf_loadu(o + 2 * LANES)};
+  vvec3 vd = {vf_loadu(d), vf_loadu(d + LANES), vf_loadu(d + 2 * LANES)};
   packet_hit h;
   packet_nearest(ps, vo, vd, vm_from_bits(active_bits), 1, &h, &st);
-  SIMD_ALIGN float tt[W];
-  SIMD_ALIGN int ob[W];
+  SIMD_ALIGN float tt[LANES];
+  SIMD_ALIGN int ob[LANES];
   vf_store(tt, h.t);
   vi_store(ob, h.object);
-  for (int i = 0; i < W; i++) {
+  for (int i = 0; i < LANES; i++) {
     t[i] = tt[i];
     object[i] = ob[i];
   }

@@ -154,9 +154,9 @@ static ALWAYS_INLINE void packet_cross_prim(const packet_scene *ps,
     }
     for (int k = 0; k < 2 && vm_any(k ? m1 : m0); k++) {
       vfloat t = k ? t1 : t0;
-      vvec3 n = packet_cone_normal(vv_get(c->base), vv_get(c->axis),
-                                   vs_get(&c->rb), vs_get(&c->k),
-                                   vv_madd(o, t, d));
+      vvec3 n =
+          packet_cone_normal(vv_get(c->base), vv_get(c->axis), vs_get(&c->rb),
+                             vs_get(&c->k), vv_madd(o, t, d));
       shadow_cross(ps, c->object, k ? m1 : m0, t,
                    vf_lt(vv_dot(n, d), vf_zero()), sh);
     }

@@ -28,16 +28,14 @@ glint_status packet_scene_prepare(const glint_scene *scene, double eps,
   size_t materials = scene->material_count;
   ps->spheres = gli_aligned_calloc(s->sphere_count, sizeof *ps->spheres);
   ps->planes = gli_aligned_calloc(s->plane_count, sizeof *ps->planes);
-  ps->triangles =
-      gli_aligned_calloc(s->triangle_count, sizeof *ps->triangles);
+  ps->triangles = gli_aligned_calloc(s->triangle_count, sizeof *ps->triangles);
   ps->cones = gli_aligned_calloc(s->cone_count, sizeof *ps->cones);
   ps->materials = gli_aligned_calloc(materials, sizeof *ps->materials);
   ps->lights = gli_aligned_calloc(s->light_count, sizeof *ps->lights);
   if (!ps->spheres || !ps->planes || !ps->triangles || !ps->cones ||
       !ps->materials || !ps->lights) {
     packet_scene_release(ps);
-    return gli_fail(error, GLINT_E_MEMORY,
-                      "out of memory preparing the scene");
+    return gli_fail(error, GLINT_E_MEMORY, "out of memory preparing the scene");
   }
   for (size_t i = 0; i < s->sphere_count; i++) {
     put3(ps->spheres[i].center, s->spheres[i].center);
@@ -157,4 +155,4 @@ static glint_status bind(const void *data, const gli_bvh *bvh, void **view,
 static void unbind(void *view) { gli_aligned_free(view); }
 
 const data_ops ISA_NAME(gli_packet_data) = {convert, release, bytes, bind,
-                                              unbind};
+                                            unbind};

@@ -73,7 +73,7 @@ static ALWAYS_INLINE lane_material lane_material_uniform(const packet_scene *ps,
  * broadcast when they all hit one material, gathered otherwise. */
 static ALWAYS_INLINE lane_material lane_material_gather(const packet_scene *ps,
                                                         vint mi, vmask hits) {
-  SIMD_ALIGN int32_t ids[W];
+  SIMD_ALIGN int32_t ids[LANES];
   vi_store(ids, mi);
   int id = ids[vm_first(hits)];
   if (vm_none(vm_andnot(hits, vi_eq(mi, vi_set1(id)))))

@@ -11,11 +11,11 @@
 
 /* Block shapes: 2x2 for SSE, 4x2 for AVX2, 4x4 for AVX-512 (issue 3). */
 #if GLINT_SIMD_WIDTH == 4
-#define BW 2
+#define BLOCK_W 2
 #else
-#define BW 4
+#define BLOCK_W 4
 #endif
-#define BH (W / BW)
+#define BLOCK_H (LANES / BLOCK_W)
 
 typedef struct primary_beams {
   vfloat lane_x, lane_y; /* each lane's pixel offset in its block */
@@ -25,10 +25,10 @@ typedef struct primary_beams {
 
 static ALWAYS_INLINE primary_beams primary_beams_init(const camera *cam) {
   primary_beams pb;
-  SIMD_ALIGN float lx[W], ly[W];
-  for (int i = 0; i < W; i++) {
-    lx[i] = (float)(i % BW);
-    ly[i] = (float)(i / BW);
+  SIMD_ALIGN float lx[LANES], ly[LANES];
+  for (int i = 0; i < LANES; i++) {
+    lx[i] = (float)(i % BLOCK_W);
+    ly[i] = (float)(i / BLOCK_W);
   }
   pb.lane_x = vf_load(lx);
   pb.lane_y = vf_load(ly);

@@ -76,22 +76,22 @@ static glint_status frame_check(int w, int h, int depth, int spp, int rx,
                                 int ry, int rw, int rh, glint_error *e) {
   if (w < 1 || w > GLINT_MAX_DIMENSION)
     return gli_fail(e, GLINT_E_ARGUMENT, "width %d is outside 1..%d", w,
-                      GLINT_MAX_DIMENSION);
+                    GLINT_MAX_DIMENSION);
   if (h < 1 || h > GLINT_MAX_DIMENSION)
     return gli_fail(e, GLINT_E_ARGUMENT, "height %d is outside 1..%d", h,
-                      GLINT_MAX_DIMENSION);
+                    GLINT_MAX_DIMENSION);
   if (depth < 1 || depth > GLINT_MAX_DEPTH)
     return gli_fail(e, GLINT_E_ARGUMENT, "depth %d is outside 1..%d", depth,
-                      GLINT_MAX_DEPTH);
+                    GLINT_MAX_DEPTH);
   if (spp < 1 || spp > GLINT_MAX_SPP)
     return gli_fail(e, GLINT_E_ARGUMENT,
-                      "samples per pixel %d is outside 1..%d", spp,
-                      GLINT_MAX_SPP);
+                    "samples per pixel %d is outside 1..%d", spp,
+                    GLINT_MAX_SPP);
   if ((rw != 0 || rh != 0) &&
       (rw < 1 || rh < 1 || rx < 0 || ry < 0 || rx > w - rw || ry > h - rh))
     return gli_fail(e, GLINT_E_ARGUMENT,
-                      "region %d,%d %dx%d is not inside the %dx%d image", rx,
-                      ry, rw, rh, w, h);
+                    "region %d,%d %dx%d is not inside the %dx%d image", rx, ry,
+                    rw, rh, w, h);
   return GLINT_OK;
 }
 
@@ -106,19 +106,18 @@ glint_status render_settings_check(const glint_render_settings *s,
     return st;
   if (s->threads < 0 || s->threads > GLINT_MAX_THREADS)
     return gli_fail(e, GLINT_E_ARGUMENT, "threads %d is outside 0..%d",
-                      s->threads, GLINT_MAX_THREADS);
+                    s->threads, GLINT_MAX_THREADS);
   if (!(isfinite(s->gamma) && s->gamma > 0))
     return gli_fail(e, GLINT_E_ARGUMENT, "gamma %g must be a number > 0",
-                      s->gamma);
+                    s->gamma);
   if ((unsigned)s->math >= GLINT_MATH_COUNT)
     return gli_fail(e, GLINT_E_ARGUMENT, "unknown math variant %d",
-                      (int)s->math);
+                    (int)s->math);
   if ((unsigned)s->accel > GLINT_ACCEL_NONE)
     return gli_fail(e, GLINT_E_ARGUMENT, "unknown acceleration %d",
-                      (int)s->accel);
+                    (int)s->accel);
   if ((unsigned)s->backend >= GLINT_BACKEND_COUNT)
-    return gli_fail(e, GLINT_E_ARGUMENT, "unknown backend %d",
-                      (int)s->backend);
+    return gli_fail(e, GLINT_E_ARGUMENT, "unknown backend %d", (int)s->backend);
   return GLINT_OK;
 }
 
@@ -137,8 +136,7 @@ static glint_status grow_scratch(glint_renderer *r, int depth,
     if (!r->worker[i].scratch) {
       r->scratch_depth = 0;
       return gli_fail(error, GLINT_E_MEMORY,
-                        "out of memory for %d threads' ray streams",
-                        r->workers);
+                      "out of memory for %d threads' ray streams", r->workers);
     }
   }
   r->scratch_depth = depth;
@@ -162,8 +160,8 @@ glint_status glint_renderer_create(glint_world *world,
   glint_backend backend = glint_backend_resolve(settings->backend);
   if (!glint_backend_supported(backend))
     return gli_fail(error, GLINT_E_UNSUPPORTED,
-                      "backend '%s' is not supported by this CPU or build",
-                      glint_backend_name(backend));
+                    "backend '%s' is not supported by this CPU or build",
+                    glint_backend_name(backend));
 
   glint_renderer *r = calloc(1, sizeof *r);
   if (!r)
@@ -203,7 +201,7 @@ glint_status glint_renderer_create(glint_world *world,
   if (!ok) {
     glint_renderer_destroy(r);
     return gli_fail(error, GLINT_E_MEMORY,
-                      "out of memory for %d threads' buffers", threads);
+                    "out of memory for %d threads' buffers", threads);
   }
   if ((st = grow_scratch(r, settings->max_depth, error))) {
     glint_renderer_destroy(r);
@@ -273,9 +271,8 @@ static void store_tile(const frame_job *job, const tile_rect *t,
     }
     if (job->out->image) {
       glint_image *im = job->out->image;
-      gli_film_span_to_bytes(src,
-                               im->rgb + (row * (size_t)im->width + col) * 3,
-                               tw * 3, job->out->gamma);
+      gli_film_span_to_bytes(src, im->rgb + (row * (size_t)im->width + col) * 3,
+                             tw * 3, job->out->gamma);
     }
   }
 }
@@ -391,11 +388,11 @@ glint_status renderer_render(glint_renderer *r,
     return st;
   if (out->film && (out->film->width != rw || out->film->height != rh))
     return gli_fail(error, GLINT_E_ARGUMENT,
-                      "a %dx%d film cannot hold a %dx%d frame",
-                      out->film->width, out->film->height, rw, rh);
+                    "a %dx%d film cannot hold a %dx%d frame", out->film->width,
+                    out->film->height, rw, rh);
   if (frame->tile && !out->film)
     return gli_fail(error, GLINT_E_ARGUMENT,
-                      "a tile callback needs a film to hand out");
+                    "a tile callback needs a film to hand out");
   if (!out->primary_only && (st = grow_scratch(r, depth, error)))
     return st;
   if (spp != r->samples_spp) {
@@ -468,7 +465,7 @@ glint_status glint_renderer_render(glint_renderer *r,
                                    glint_error *error) {
   if (!r || !film)
     return gli_fail(error, GLINT_E_ARGUMENT,
-                      r ? "no film to render into" : "no renderer");
+                    r ? "no film to render into" : "no renderer");
   frame_output out = {film, NULL, 1, 0, 0};
   return renderer_render(r, frame, &out, stats, error);
 }

@@ -54,8 +54,8 @@ glint_status scalar_scene_prepare(const glint_scene *g, double eps,
       !s->objects || !s->materials || !s->lights) {
     scalar_scene_release(s);
     return gli_fail(error, GLINT_E_MEMORY,
-                      "out of memory preparing the "
-                      "scene");
+                    "out of memory preparing the "
+                    "scene");
   }
 
   for (size_t i = 0; i < g->sphere_count; i++) {
@@ -395,4 +395,4 @@ static glint_status bind(const void *data, const gli_bvh *bvh, void **view,
 static void unbind(void *view) { free(view); }
 
 const data_ops REAL_NAME(gli_scalar_data) = {convert, release, bytes, bind,
-                                               unbind};
+                                             unbind};

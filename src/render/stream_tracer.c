@@ -196,19 +196,19 @@ static void fold_log(stream_scratch *sc) {
 
 static ALWAYS_INLINE void accumulate(stream_scratch *sc, vmask m, vint pixel,
                                      vvec3 c) {
-  if (sc->log_count > LOG_CAPACITY - W)
+  if (sc->log_count > LOG_CAPACITY - LANES)
     fold_log(sc);
   int n = sc->log_count;
   /* inactive lanes bring nothing, to pixel 0 */
   vf_store_quads(sc->log + 4 * n, vf_keep(m, c.x), vf_keep(m, c.y),
                  vf_keep(m, c.z), vi_as_vf(vi_select(m, pixel, vi_set1(0))));
-  sc->log_count = n + W;
+  sc->log_count = n + LANES;
 }
 
 /* Whether level's two streams can take one more packet's children each. */
 static ALWAYS_INLINE int room(const tracer *t, int level) {
-  return STREAM(t->sc, level, TRANSMITTED)->count <= STREAM_CAPACITY - W &&
-         STREAM(t->sc, level, REFLECTED)->count <= STREAM_CAPACITY - W;
+  return STREAM(t->sc, level, TRANSMITTED)->count <= STREAM_CAPACITY - LANES &&
+         STREAM(t->sc, level, REFLECTED)->count <= STREAM_CAPACITY - LANES;
 }
 
 /* Whether any level from `level` down holds rays (chains of full packets
@@ -237,7 +237,7 @@ typedef struct packet_child {
 static ALWAYS_INLINE void emit_child(tracer *t, int level, int kind, vmask m,
                                      vvec3 o, vvec3 d, vvec3 w, vint pixel,
                                      packet_child *next) {
-  if (!next->taken && vm_count(m) == W &&
+  if (!next->taken && vm_count(m) == LANES &&
       (level + 2 >= t->max_depth || room(t, level + 2))) {
     next->o = o;
     next->d = d;
@@ -335,7 +335,7 @@ static ALWAYS_INLINE vvec3 shade_packet(tracer *t, int level, vmask active,
   /* The surface and the materials: when every lane hit one object
    * (coherent packets, as a beam's sub-beam), as the beams compute them;
    * otherwise lane by lane. */
-  SIMD_ALIGN int32_t objs[W];
+  SIMD_ALIGN int32_t objs[LANES];
   vi_store(objs, h.object);
   int obj0 = objs[vm_first(hits)];
   if (vm_none(vm_andnot(hits, vi_eq(h.object, vi_set1(obj0))))) {
@@ -368,9 +368,9 @@ static ALWAYS_INLINE vvec3 shade_chain(tracer *t, int level, vmask active,
     int g = level < GLINT_STATS_MAX_GENERATIONS
                 ? level
                 : GLINT_STATS_MAX_GENERATIONS - 1;
-    t->st->gen_rays[g] += W;
+    t->st->gen_rays[g] += LANES;
     t->st->gen_packets[g]++;
-    t->st->gen_active_lanes[g] += W;
+    t->st->gen_active_lanes[g] += LANES;
     if (level + 1 > t->st->generations)
       t->st->generations = level + 1;
     sum = vv_add(sum, shade_packet(t, level, vm_true(), next.o, next.d, next.w,
@@ -416,15 +416,15 @@ static ALWAYS_INLINE void drain(tracer *t, int floor, glint_math math,
             STREAM_CAPACITY - STREAM(t->sc, level + 1, TRANSMITTED)->count;
         int free_r =
             STREAM_CAPACITY - STREAM(t->sc, level + 1, REFLECTED)->count;
-        int budget = (free_t < free_r ? free_t : free_r) / W * W;
+        int budget = (free_t < free_r ? free_t : free_r) / LANES * LANES;
         if (end - r->cursor > budget)
           end = r->cursor + budget;
       }
       int g = level < GLINT_STATS_MAX_GENERATIONS
                   ? level
                   : GLINT_STATS_MAX_GENERATIONS - 1;
-      for (int i = r->cursor; i < end; i += W) {
-        int n = end - i < W ? end - i : W;
+      for (int i = r->cursor; i < end; i += LANES) {
+        int n = end - i < LANES ? end - i : LANES;
         t->timing = t->packets++ % TIMED_EVERY == 0;
         t->timed += (uint64_t)t->timing;
         vmask m = vm_from_bits(n == 32 ? -1 : (int)((1u << n) - 1));
@@ -486,8 +486,8 @@ static ALWAYS_INLINE void render_tile_body(const packet_scene *ps,
   vvec3 one = {vf_set1(1), vf_set1(1), vf_set1(1)};
   /* Block by block, its samples innermost: their contributions are summed
    * in registers and written once per block. */
-  for (int by = tile->y0; by < tile->y1; by += BH)
-    for (int bx = tile->x0; bx < tile->x1; bx += BW) {
+  for (int by = tile->y0; by < tile->y1; by += BLOCK_H)
+    for (int bx = tile->x0; bx < tile->x1; bx += BLOCK_W) {
       vfloat px, py;
       vmask valid = primary_block(&pb, tile, bx, by, &px, &py);
       vint pix = vi_add(
@@ -550,5 +550,5 @@ static uint64_t primary_tile(const void *view, const frame_params *frame,
   return ISA_NAME(gli_beam_ops).primary_tile(view, frame, tile, st);
 }
 
-const gli_backend_ops ISA_NAME(gli_stream_ops) = {
-    ISA_DATA_KIND, scratch_bytes, render_tile, primary_tile};
+const gli_backend_ops ISA_NAME(gli_stream_ops) = {ISA_DATA_KIND, scratch_bytes,
+                                                  render_tile, primary_tile};

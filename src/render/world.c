@@ -61,7 +61,7 @@ glint_status world_data(glint_world *w, data_kind kind, const void **data,
   const data_ops *ops = gli_data_ops_of(kind);
   if (!ops)
     return gli_fail(error, GLINT_E_UNSUPPORTED,
-                      "this build has no converter for layout %d", (int)kind);
+                    "this build has no converter for layout %d", (int)kind);
   glint_status st = GLINT_OK;
   pthread_mutex_lock(&w->lock);
   if (!w->data[kind]) {

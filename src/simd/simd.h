@@ -28,7 +28,7 @@
 #define ISA_GLUE(a, b) ISA_GLUE2(a, b)
 #define ISA_NAME(name) ISA_GLUE(name, ISA_SUFFIX)
 
-#define W GLINT_SIMD_WIDTH
+#define LANES GLINT_SIMD_WIDTH
 #define SIMD_ALIGN __attribute__((aligned(64)))
 
 /* ---- derived operations, the same for every ISA ------------------------ */
@@ -77,8 +77,8 @@ static inline vfloat vf_rsqrt(vfloat a, int newton) {
 
 /* Lane i holds i. */
 static inline vint vi_lane_index(void) {
-  SIMD_ALIGN int idx[W];
-  for (int i = 0; i < W; i++)
+  SIMD_ALIGN int idx[LANES];
+  for (int i = 0; i < LANES; i++)
     idx[i] = i;
   return vi_load(idx);
 }

@@ -151,9 +151,9 @@ static inline vfloat vf_gather(const float *base, vint idx) {
 static inline __m256i gli_compress_perm(int bits) {
   /* Generated: for each mask, the indices of its set bits in order. */
   static const uint32_t table[256] = {
-#define P(x) x,
+#define COMPRESS_ENTRY(x) x,
 #include "simd/compress8.inc"
-#undef P
+#undef COMPRESS_ENTRY
   };
   uint32_t packed = table[bits];
   __m256i shifts = _mm256_setr_epi32(0, 3, 6, 9, 12, 15, 18, 21);

@@ -137,17 +137,25 @@ static inline vfloat vf_gather(const float *base, vint idx) {
  * caller leaves room for W floats past the count); returns how many. A byte
  * shuffle (pshufb, SSSE3) from a table of the 16 masks moves them. */
 static inline int vf_compress_store(float *p, vmask m, vfloat a) {
-#define L(i) (4 * (i)), (4 * (i) + 1), (4 * (i) + 2), (4 * (i) + 3)
+#define LANE_BYTES(i) (4 * (i)), (4 * (i) + 1), (4 * (i) + 2), (4 * (i) + 3)
   static const unsigned char table[16][16] __attribute__((aligned(16))) = {
-      {L(0), L(0), L(0), L(0)}, {L(0), L(0), L(0), L(0)},
-      {L(1), L(0), L(0), L(0)}, {L(0), L(1), L(0), L(0)},
-      {L(2), L(0), L(0), L(0)}, {L(0), L(2), L(0), L(0)},
-      {L(1), L(2), L(0), L(0)}, {L(0), L(1), L(2), L(0)},
-      {L(3), L(0), L(0), L(0)}, {L(0), L(3), L(0), L(0)},
-      {L(1), L(3), L(0), L(0)}, {L(0), L(1), L(3), L(0)},
-      {L(2), L(3), L(0), L(0)}, {L(0), L(2), L(3), L(0)},
-      {L(1), L(2), L(3), L(0)}, {L(0), L(1), L(2), L(3)}};
-#undef L
+      {LANE_BYTES(0), LANE_BYTES(0), LANE_BYTES(0), LANE_BYTES(0)},
+      {LANE_BYTES(0), LANE_BYTES(0), LANE_BYTES(0), LANE_BYTES(0)},
+      {LANE_BYTES(1), LANE_BYTES(0), LANE_BYTES(0), LANE_BYTES(0)},
+      {LANE_BYTES(0), LANE_BYTES(1), LANE_BYTES(0), LANE_BYTES(0)},
+      {LANE_BYTES(2), LANE_BYTES(0), LANE_BYTES(0), LANE_BYTES(0)},
+      {LANE_BYTES(0), LANE_BYTES(2), LANE_BYTES(0), LANE_BYTES(0)},
+      {LANE_BYTES(1), LANE_BYTES(2), LANE_BYTES(0), LANE_BYTES(0)},
+      {LANE_BYTES(0), LANE_BYTES(1), LANE_BYTES(2), LANE_BYTES(0)},
+      {LANE_BYTES(3), LANE_BYTES(0), LANE_BYTES(0), LANE_BYTES(0)},
+      {LANE_BYTES(0), LANE_BYTES(3), LANE_BYTES(0), LANE_BYTES(0)},
+      {LANE_BYTES(1), LANE_BYTES(3), LANE_BYTES(0), LANE_BYTES(0)},
+      {LANE_BYTES(0), LANE_BYTES(1), LANE_BYTES(3), LANE_BYTES(0)},
+      {LANE_BYTES(2), LANE_BYTES(3), LANE_BYTES(0), LANE_BYTES(0)},
+      {LANE_BYTES(0), LANE_BYTES(2), LANE_BYTES(3), LANE_BYTES(0)},
+      {LANE_BYTES(1), LANE_BYTES(2), LANE_BYTES(3), LANE_BYTES(0)},
+      {LANE_BYTES(0), LANE_BYTES(1), LANE_BYTES(2), LANE_BYTES(3)}};
+#undef LANE_BYTES
   int bits = vm_bits(m);
   __m128i shuffled = _mm_shuffle_epi8(
       _mm_castps_si128(a), _mm_load_si128((const __m128i *)table[bits]));

@@ -54,7 +54,7 @@ static inline vfloat vm_pow2i(vfloat k) {
 static const float gli_taylor_log2[5] = {
     1.442695041f, -0.7213475204f, 0.4808983469f, -0.3606737602f, 0.2885390082f};
 static const float gli_taylor_exp2[4] = {1.0f, 0.6931471806f, 0.2402265070f,
-                                           0.05550410866f};
+                                         0.05550410866f};
 
 /* log2 for positive normal x; other inputs give -126 (pow then gives 0). */
 static inline vfloat vm_log2(vfloat x, glint_math math) {
@@ -96,18 +96,18 @@ static inline vfloat vm_exp2(vfloat x, glint_math math) {
 
 /* libm lane by lane. */
 static inline vfloat vm_exact_pow(vfloat x, vfloat y) {
-  SIMD_ALIGN float a[W], b[W];
+  SIMD_ALIGN float a[LANES], b[LANES];
   vf_store(a, x);
   vf_store(b, y);
-  for (int i = 0; i < W; i++)
+  for (int i = 0; i < LANES; i++)
     a[i] = powf(a[i], b[i]);
   return vf_load(a);
 }
 
 static inline vfloat vm_exact_exp(vfloat x) {
-  SIMD_ALIGN float a[W];
+  SIMD_ALIGN float a[LANES];
   vf_store(a, x);
-  for (int i = 0; i < W; i++)
+  for (int i = 0; i < LANES; i++)
     a[i] = expf(a[i]);
   return vf_load(a);
 }

@@ -7,10 +7,10 @@
 #include <stddef.h>
 
 #define GLINT_VMATH_DECLARE(isa)                                               \
-  void gli_vmath_pow_##isa(const float *x, const float *y, float *out,       \
-                             size_t n, glint_math math);                       \
-  void gli_vmath_exp_##isa(const float *x, float *out, size_t n,             \
-                             glint_math math);                                 \
+  void gli_vmath_pow_##isa(const float *x, const float *y, float *out,         \
+                           size_t n, glint_math math);                         \
+  void gli_vmath_exp_##isa(const float *x, float *out, size_t n,               \
+                           glint_math math);                                   \
   void gli_vmath_rcp_##isa(const float *x, float *out, size_t n, int newton);
 GLINT_VMATH_DECLARE(sse)
 GLINT_VMATH_DECLARE(avx2)
