@@ -61,33 +61,44 @@ static inline int plane_hit(vec3 n, real d, vec3 o, vec3 dir, real tmin,
   return 1;
 }
 
-/* Triangle A, A+e1, A+e2 by Möller–Trumbore: the barycentric test of eq.
- * 2.6–2.8 (u >= 0, v >= 0, u + v <= 1, edges and vertices included) solved
- * without first intersecting the plane. A degenerate triangle (e1 x e2 = 0)
- * gives det = 0 and never hits. */
-static inline int triangle_hit(vec3 a, vec3 e1, vec3 e2, vec3 o, vec3 d,
-                               real tmin, real tmax, real *t, real *u,
-                               real *v) {
-  vec3 p = v3_cross(d, e2);
-  real det = v3_dot(e1, p);
-  if (det == 0)
+/* Triangle A, B, C, watertight (eq. 2.6-2.8's barycentric test, edges and
+ * vertices included): each edge PQ gets the Plücker side of the ray,
+ *   E = D·M + e·L,  with e = Q - P, M = (P - R) x (Q - R), L = (O - R) x D,
+ * R the scene's triangle origin (close to the triangles, for precision). An
+ * edge that two triangles share is the same P, Q in both, the other way
+ * round, so its e and M are exact negations, and so is E (rounding is
+ * symmetric): a ray can pass on one side of it or the other, never between
+ * the two triangles. The ray hits where the three sides agree in sign (zero
+ * counts as either); E over their sum is the barycentric weight of the
+ * vertex opposite the edge. Then t from the plane through A with normal
+ * N = (B - A) x (C - A). A degenerate triangle (N = 0) never hits. */
+static inline int triangle_hit(vec3 a, const vec3 edge[3], const vec3 moment[3],
+                               vec3 n, vec3 o, vec3 d, vec3 l, real tmin,
+                               real tmax, real *t, real *u, real *v) {
+  real side_ab = v3_dot(d, moment[0]) + v3_dot(edge[0], l);
+  real side_bc = v3_dot(d, moment[1]) + v3_dot(edge[1], l);
+  if ((side_ab < 0 && side_bc > 0) || (side_ab > 0 && side_bc < 0))
+    return 0; /* most misses are known after two edges */
+  real side_ca = v3_dot(d, moment[2]) + v3_dot(edge[2], l);
+  if ((side_ab < 0 || side_bc < 0 || side_ca < 0) &&
+      (side_ab > 0 || side_bc > 0 || side_ca > 0))
     return 0;
-  real inv = (real)1 / det;
-  vec3 s = v3_sub(o, a);
-  real uu = v3_dot(s, p) * inv;
-  if (!(uu >= 0 && uu <= 1))
+  real det = side_ab + side_bc + side_ca;
+  real nd = v3_dot(n, d);
+  if (det == 0 || nd == 0)
     return 0;
-  vec3 q = v3_cross(s, e1);
-  real vv = v3_dot(d, q) * inv;
-  if (!(vv >= 0 && uu + vv <= 1))
-    return 0;
-  real tt = v3_dot(e2, q) * inv;
+  real tt = v3_dot(n, v3_sub(a, o)) / nd;
   if (!(tt > tmin && tt < tmax))
     return 0;
   *t = tt;
-  *u = uu;
-  *v = vv;
+  *u = side_ca / det; /* the weight of B, opposite edge CA */
+  *v = side_ab / det; /* of C */
   return 1;
+}
+
+/* The ray's L = (O - R) x D for triangle_hit. */
+static inline vec3 triangle_ray_moment(vec3 origin, vec3 o, vec3 d) {
+  return v3_cross(v3_sub(o, origin), d);
 }
 
 /* An open cone or cylinder (no end caps, as NFF specifies): base B with
@@ -103,12 +114,22 @@ static inline int triangle_hit(vec3 a, vec3 e1, vec3 e2, vec3 o, vec3 d,
  * first, and how many there are (0, 1 or 2). */
 static inline int cone_roots(vec3 base, vec3 axis, real height, real rb, real k,
                              vec3 o, vec3 d, real tmin, real tmax, real t[2]) {
+  /* Solved from the ray's point nearest the axis, o + s d, not from o: seen
+   * from afar, |o - base|^2 and (w.a)^2 are large and nearly equal, and their
+   * difference (the squared distance to the axis, the size of a thin
+   * cylinder) would lose every digit. From the near point the coefficients
+   * are as small as the cone itself. The roots are then t = s + r. */
   vec3 w = v3_sub(o, base);
   real wa = v3_dot(w, axis), da = v3_dot(d, axis);
+  vec3 wp = v3_madd(w, -wa, axis), dp = v3_madd(d, -da, axis);
+  real dp2 = v3_dot(dp, dp);
+  real s = dp2 > (real)1e-12 ? -v3_dot(wp, dp) / dp2 : 0;
+  wp = v3_madd(wp, s, dp);
+  wa += s * da;
   real rw = rb + k * wa;
-  real qa = 1 - (1 + k * k) * da * da;
-  real qb = 2 * (v3_dot(w, d) - wa * da - k * da * rw);
-  real qc = v3_dot(w, w) - wa * wa - rw * rw;
+  real qa = dp2 - k * k * da * da;
+  real qb = 2 * (v3_dot(wp, dp) - k * da * rw);
+  real qc = v3_dot(wp, wp) - rw * rw;
   real r0, r1;
   if (r_fabs(qa) < (real)1e-12) { /* along a line of the surface */
     if (qb == 0)
@@ -133,8 +154,9 @@ static inline int cone_roots(vec3 base, vec3 axis, real height, real rb, real k,
   real roots[2] = {r0, r1};
   for (int i = 0; i < (r0 == r1 ? 1 : 2); i++) {
     real h = wa + roots[i] * da;
-    if (roots[i] > tmin && roots[i] < tmax && h >= 0 && h <= height)
-      t[n++] = roots[i];
+    real ti = s + roots[i];
+    if (ti > tmin && ti < tmax && h >= 0 && h <= height)
+      t[n++] = ti;
   }
   return n;
 }

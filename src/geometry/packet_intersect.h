@@ -65,57 +65,65 @@ static ALWAYS_INLINE void packet_plane(const pplane *pl, vvec3 o, vvec3 d,
   h->object = vi_select(win, vi_set1(pl->object), h->object);
 }
 
-/* Möller–Trumbore (eq. 2.6–2.8) refactored around the triangle's stored
- * normal N = e1 x e2, as Embree's packet intersector does: with s = O - A
- * and R = s x D, det = -D·N, u det = e2·R, v det = -e1·R, t det = s·N. One
- * cross product per ray instead of two. The division is deferred: u, v and
- * t are compared as multiples of |det| (its sign folded in), so lanes that
- * miss never pay for the reciprocal. Returns the lanes that cross the
- * triangle within (eps, tmax), with their t, u, v. */
+/* The watertight test of triangle_hit (geometry/intersect.h) for all lanes,
+ * l = (O - R) x D being the lanes' packet_triangle_moment. The divisions are
+ * deferred: t is compared as a multiple of |N·D| (its sign folded in), so
+ * lanes that miss never pay for a reciprocal. Returns the lanes that cross
+ * the triangle within (eps, tmax), with their t, u, v. */
 static ALWAYS_INLINE vmask packet_triangle_cross(const ptriangle *tr, vvec3 o,
-                                                 vvec3 d, vmask active,
+                                                 vvec3 d, vvec3 l, vmask active,
                                                  vfloat eps, vfloat tmax,
                                                  int newton, vfloat *t,
                                                  vfloat *u, vfloat *v) {
+  vfloat side_ab =
+      vf_add(vv_dot(d, vv_get(tr->moment[0])), vv_dot(vv_get(tr->edge[0]), l));
+  vfloat side_bc =
+      vf_add(vv_dot(d, vv_get(tr->moment[1])), vv_dot(vv_get(tr->edge[1]), l));
+  vfloat side_ca =
+      vf_add(vv_dot(d, vv_get(tr->moment[2])), vv_dot(vv_get(tr->edge[2]), l));
+  vfloat zero = vf_zero();
+  vmask some_neg = vm_or(vm_or(vf_lt(side_ab, zero), vf_lt(side_bc, zero)),
+                         vf_lt(side_ca, zero));
+  vmask some_pos = vm_or(vm_or(vf_gt(side_ab, zero), vf_gt(side_bc, zero)),
+                         vf_gt(side_ca, zero));
+  vmask m = vm_andnot(active, vm_and(some_neg, some_pos));
+  if (vm_none(m))
+    return m;
   vvec3 n = vv_get(tr->n);
-  vfloat det = vf_neg(vv_dot(d, n));
-  vfloat sign = vi_as_vf(vi_and(vf_bits(det), vi_set1((int)0x80000000u)));
-  vfloat adet = vf_abs(det);
-  vvec3 s = vv_sub(o, vv_get(tr->a));
-  vvec3 r = vv_cross(s, d);
-  /* x ^ sign(det) multiplies x by the sign of det, exactly */
-  vfloat us =
-      vi_as_vf(vi_xor(vf_bits(vv_dot(vv_get(tr->e2), r)), vf_bits(sign)));
-  vmask m = vm_and(vm_and(active, vf_gt(adet, vf_zero())),
-                   vm_and(vf_ge(us, vf_zero()), vf_le(us, adet)));
+  vfloat nd = vv_dot(n, d);
+  vfloat sign = vi_as_vf(vi_and(vf_bits(nd), vi_set1((int)0x80000000u)));
+  vfloat and_ = vf_abs(nd);
+  /* x ^ sign(N·D) multiplies x by that sign, exactly */
+  vfloat ts = vi_as_vf(
+      vi_xor(vf_bits(vv_dot(n, vv_sub(vv_get(tr->a), o))), vf_bits(sign)));
+  vfloat det = vf_add(vf_add(side_ab, side_bc), side_ca);
+  m = vm_and(m, vm_and(vm_and(vf_gt(and_, zero), vf_neq(det, zero)),
+                       vm_and(vf_gt(ts, vf_mul(eps, and_)),
+                              vf_lt(ts, vf_mul(tmax, and_)))));
   if (vm_none(m))
     return m;
-  vfloat vs = vi_as_vf(
-      vi_xor(vf_bits(vf_neg(vv_dot(vv_get(tr->e1), r))), vf_bits(sign)));
-  m = vm_and(m, vm_and(vf_ge(vs, vf_zero()), vf_le(vf_add(us, vs), adet)));
-  if (vm_none(m))
-    return m;
-  vfloat ts = vi_as_vf(vi_xor(vf_bits(vv_dot(s, n)), vf_bits(sign)));
-  m = vm_and(
-      m, vm_and(vf_gt(ts, vf_mul(eps, adet)), vf_lt(ts, vf_mul(tmax, adet))));
-  if (vm_none(m))
-    return m;
-  vfloat inv = vf_rcp(adet, newton);
-  *t = vf_mul(ts, inv);
-  *u = vf_mul(us, inv);
-  *v = vf_mul(vs, inv);
+  *t = vf_mul(ts, vf_rcp(and_, newton));
+  vfloat inv_det = vf_rcp(det, newton);
+  *u = vf_mul(side_ca, inv_det); /* the weight of B, opposite edge CA */
+  *v = vf_mul(side_ab, inv_det); /* of C */
   /* The reciprocal's last bit can push t to the limits it was tested
-   * against as a multiple of det: test again. */
+   * against as a multiple of N·D: test again. */
   return vm_and(m, vm_and(vf_gt(*t, eps), vf_lt(*t, tmax)));
 }
 
+/* The lanes' L = (O - R) x D for packet_triangle_cross. */
+static ALWAYS_INLINE vvec3 packet_triangle_moment(const vscalar *origin,
+                                                  vvec3 o, vvec3 d) {
+  return vv_cross(vv_sub(o, vv_get(origin)), d);
+}
+
 static ALWAYS_INLINE void packet_triangle(const ptriangle *tr, uint32_t index,
-                                          vvec3 o, vvec3 d, vmask active,
-                                          vfloat eps, int newton,
+                                          vvec3 o, vvec3 d, vvec3 l,
+                                          vmask active, vfloat eps, int newton,
                                           packet_hit *h) {
   vfloat t, u, v;
   vmask win =
-      packet_triangle_cross(tr, o, d, active, eps, h->t, newton, &t, &u, &v);
+      packet_triangle_cross(tr, o, d, l, active, eps, h->t, newton, &t, &u, &v);
   if (vm_none(win))
     return;
   h->t = vf_select(win, t, h->t);
@@ -132,15 +140,24 @@ static ALWAYS_INLINE void packet_cone_roots(const pcone *c, vvec3 o, vvec3 d,
                                             vmask active, vfloat eps,
                                             vfloat tmax, vfloat *t0, vmask *m0,
                                             vfloat *t1, vmask *m1) {
+  /* From the ray's point nearest the axis, o + s d, as cone_roots in
+   * geometry/intersect.h explains; s need not be exact, only the same in
+   * the coefficients and in t = s + r. */
   vvec3 axis = vv_get(c->axis);
   vvec3 w = vv_sub(o, vv_get(c->base));
   vfloat k = vs_get(&c->k), rb = vs_get(&c->rb), height = vs_get(&c->height);
   vfloat wa = vv_dot(w, axis), da = vv_dot(d, axis);
+  vvec3 wp = vv_madd(w, vf_neg(wa), axis), dp = vv_madd(d, vf_neg(da), axis);
+  vfloat dp2 = vv_dot(dp, dp);
+  vfloat s = vf_keep(
+      vf_gt(dp2, vf_set1(1e-12f)),
+      vf_neg(vf_mul(vv_dot(wp, dp), vf_rcp(vf_max(dp2, vf_set1(1e-12f)), 1))));
+  wp = vv_madd(wp, s, dp);
+  wa = vf_fmadd(s, da, wa);
   vfloat rw = vf_fmadd(k, wa, rb);
-  vfloat qa = vf_fnmadd(vf_fmadd(k, k, vf_set1(1)), vf_mul(da, da), vf_set1(1));
-  vfloat qb = vf_mul(vf_set1(2), vf_fnmadd(vf_mul(k, da), rw,
-                                           vf_fnmadd(wa, da, vv_dot(w, d))));
-  vfloat qc = vf_fnmadd(rw, rw, vf_fnmadd(wa, wa, vv_dot(w, w)));
+  vfloat qa = vf_fnmadd(vf_mul(k, k), vf_mul(da, da), dp2);
+  vfloat qb = vf_mul(vf_set1(2), vf_fnmadd(vf_mul(k, da), rw, vv_dot(wp, dp)));
+  vfloat qc = vf_fnmadd(rw, rw, vv_dot(wp, wp));
   vfloat disc = vf_fnmadd(vf_mul(vf_set1(4), qa), qc, vf_mul(qb, qb));
   vmask m = vm_and(active, vf_ge(disc, vf_zero()));
   *m0 = *m1 = vm_false();
@@ -161,15 +178,16 @@ static ALWAYS_INLINE void packet_cone_roots(const pcone *c, vvec3 o, vvec3 d,
     a1 = vf_select(linear, lin, a1);
   }
   vfloat h0 = vf_fmadd(a0, da, wa), h1 = vf_fmadd(a1, da, wa);
-  vmask v0 = vm_and(vm_and(m, vm_and(vf_gt(a0, eps), vf_lt(a0, tmax))),
+  vfloat t0s = vf_add(s, a0), t1s = vf_add(s, a1);
+  vmask v0 = vm_and(vm_and(m, vm_and(vf_gt(t0s, eps), vf_lt(t0s, tmax))),
                     vm_and(vf_ge(h0, vf_zero()), vf_le(h0, height)));
   vmask v1 = vm_and(
-      vm_and(vm_andnot(m, linear), vm_and(vf_gt(a1, eps), vf_lt(a1, tmax))),
+      vm_and(vm_andnot(m, linear), vm_and(vf_gt(t1s, eps), vf_lt(t1s, tmax))),
       vm_and(vf_ge(h1, vf_zero()), vf_le(h1, height)));
   /* Nearest first. */
-  *t0 = vf_select(v0, a0, a1);
+  *t0 = vf_select(v0, t0s, t1s);
   *m0 = vm_or(v0, v1);
-  *t1 = a1;
+  *t1 = t1s;
   *m1 = vm_and(v0, v1);
 }
 
@@ -196,8 +214,8 @@ static ALWAYS_INLINE vvec3 packet_sphere_normal(vvec3 center, vvec3 p,
 /* A cone's outward normal at p, not normalised:
  * q - h a - k (rb + k h) a with q = p - base, h = q.a (cone_normal in
  * geometry/intersect.h). */
-static ALWAYS_INLINE vvec3 packet_cone_normal(vvec3 base, vvec3 axis,
-                                              vfloat rb, vfloat k, vvec3 p) {
+static ALWAYS_INLINE vvec3 packet_cone_normal(vvec3 base, vvec3 axis, vfloat rb,
+                                              vfloat k, vvec3 p) {
   vvec3 q = vv_sub(p, base);
   vfloat hq = vv_dot(q, axis);
   return vv_madd(q, vf_neg(vf_fmadd(k, vf_fmadd(k, hq, rb), hq)), axis);

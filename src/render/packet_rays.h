@@ -13,15 +13,15 @@
 
 /* One referenced primitive against the lanes of m. */
 static ALWAYS_INLINE void packet_prim(const packet_scene *ps, uint32_t ref,
-                                      vvec3 o, vvec3 d, vmask m, vfloat eps,
-                                      int newton, packet_hit *h) {
+                                      vvec3 o, vvec3 d, vvec3 l, vmask m,
+                                      vfloat eps, int newton, packet_hit *h) {
   uint32_t i = GLINT_REF_INDEX(ref);
   switch (GLINT_REF_SHAPE(ref)) {
   case GLINT_SHAPE_SPHERE:
     packet_sphere(&ps->spheres[i], o, d, m, eps, h);
     break;
   case GLINT_SHAPE_TRIANGLE:
-    packet_triangle(&ps->triangles[i], i, o, d, m, eps, newton, h);
+    packet_triangle(&ps->triangles[i], i, o, d, l, m, eps, newton, h);
     break;
   default: packet_cone(&ps->cones[i], o, d, m, eps, h); break;
   }
@@ -30,7 +30,7 @@ static ALWAYS_INLINE void packet_prim(const packet_scene *ps, uint32_t ref,
 /* What a closest-hit walk's leaves need. */
 typedef struct nearest_query {
   const packet_scene *ps;
-  vvec3 o, d;
+  vvec3 o, d, l;
   vfloat eps;
   int newton;
   packet_hit *h;
@@ -38,7 +38,7 @@ typedef struct nearest_query {
 
 static ALWAYS_INLINE void nearest_leaf(void *ctx, uint32_t ref, vmask m) {
   nearest_query *q = ctx;
-  packet_prim(q->ps, ref, q->o, q->d, m, q->eps, q->newton, q->h);
+  packet_prim(q->ps, ref, q->o, q->d, q->l, m, q->eps, q->newton, q->h);
 }
 
 /* The lanes' nearest hits: the planes (unbounded, outside the BVH), then
@@ -50,6 +50,7 @@ static ALWAYS_INLINE void packet_nearest(const packet_scene *ps, vvec3 o,
   const scene_r *s = ps->s;
   packet_hit_init(h);
   vfloat eps = vs_get(&ps->eps);
+  vvec3 l = packet_triangle_moment(ps->tri_origin, o, d);
   int lanes = vm_count(active);
   count_tests(st, s->plane_count, lanes);
   for (size_t i = 0; i < s->plane_count; i++)
@@ -60,13 +61,13 @@ static ALWAYS_INLINE void packet_nearest(const packet_scene *ps, vvec3 o,
     for (size_t i = 0; i < s->sphere_count; i++)
       packet_sphere(&ps->spheres[i], o, d, active, eps, h);
     for (size_t i = 0; i < s->triangle_count; i++)
-      packet_triangle(&ps->triangles[i], (uint32_t)i, o, d, active, eps, newton,
-                      h);
+      packet_triangle(&ps->triangles[i], (uint32_t)i, o, d, l, active, eps,
+                      newton, h);
     for (size_t i = 0; i < s->cone_count; i++)
       packet_cone(&ps->cones[i], o, d, active, eps, h);
     return;
   }
-  nearest_query q = {ps, o, d, eps, newton, h};
+  nearest_query q = {ps, o, d, l, eps, newton, h};
   packet_bvh_closest(bvh, o, d, active, eps, &h->t, newton, st, nearest_leaf,
                      &q);
 }
@@ -109,8 +110,9 @@ static ALWAYS_INLINE void shadow_cross(const packet_scene *ps, int object,
 /* Every crossing of one primitive by the shadow lanes within (eps, dist). */
 static ALWAYS_INLINE void packet_cross_prim(const packet_scene *ps,
                                             uint32_t shape, uint32_t i, vvec3 o,
-                                            vvec3 d, vfloat dist, vfloat eps,
-                                            int newton, shadow_state *sh) {
+                                            vvec3 d, vvec3 l, vfloat dist,
+                                            vfloat eps, int newton,
+                                            shadow_state *sh) {
   switch (shape) {
   case GLINT_SHAPE_SPHERE: {
     const psphere *sp = &ps->spheres[i];
@@ -133,8 +135,8 @@ static ALWAYS_INLINE void packet_cross_prim(const packet_scene *ps,
   case GLINT_SHAPE_TRIANGLE: {
     const ptriangle *tr = &ps->triangles[i];
     vfloat t, u, v;
-    vmask c = packet_triangle_cross(tr, o, d, sh->alive, eps, dist, newton, &t,
-                                    &u, &v);
+    vmask c = packet_triangle_cross(tr, o, d, l, sh->alive, eps, dist, newton,
+                                    &t, &u, &v);
     /* Entering: against the normal, which the unnormalised one shares. */
     shadow_cross(ps, tr->object, c, t,
                  vf_lt(vv_dot(vv_get(tr->n), d), vf_zero()), sh);
@@ -168,7 +170,7 @@ static ALWAYS_INLINE void packet_cross_prim(const packet_scene *ps,
 /* What a segment walk's leaves need. */
 typedef struct segment_query {
   const packet_scene *ps;
-  vvec3 o, d;
+  vvec3 o, d, l;
   vfloat dist, eps;
   int newton;
   shadow_state *sh;
@@ -178,7 +180,7 @@ static ALWAYS_INLINE void segment_leaf(void *ctx, uint32_t ref, vmask alive) {
   (void)alive; /* the walk keeps it in q->sh->alive */
   segment_query *q = ctx;
   packet_cross_prim(q->ps, GLINT_REF_SHAPE(ref), GLINT_REF_INDEX(ref), q->o,
-                    q->d, q->dist, q->eps, q->newton, q->sh);
+                    q->d, q->l, q->dist, q->eps, q->newton, q->sh);
 }
 
 static ALWAYS_INLINE vvec3 packet_transmission(const packet_scene *ps, vvec3 o,
@@ -191,6 +193,7 @@ static ALWAYS_INLINE vvec3 packet_transmission(const packet_scene *ps, vvec3 o,
                      active,
                      0};
   vfloat eps = vs_get(&ps->eps);
+  vvec3 l = packet_triangle_moment(ps->tri_origin, o, d);
   int lanes = vm_count(active);
   count_tests(st, s->plane_count, lanes);
   for (size_t i = 0; i < s->plane_count && vm_any(sh.alive); i++) {
@@ -207,16 +210,16 @@ static ALWAYS_INLINE vvec3 packet_transmission(const packet_scene *ps, vvec3 o,
   if (bvh->node_count == 0) {
     count_tests(st, s->sphere_count + s->triangle_count + s->cone_count, lanes);
     for (size_t i = 0; i < s->sphere_count && vm_any(sh.alive); i++)
-      packet_cross_prim(ps, GLINT_SHAPE_SPHERE, (uint32_t)i, o, d, dist, eps,
+      packet_cross_prim(ps, GLINT_SHAPE_SPHERE, (uint32_t)i, o, d, l, dist, eps,
                         newton, &sh);
     for (size_t i = 0; i < s->triangle_count && vm_any(sh.alive); i++)
-      packet_cross_prim(ps, GLINT_SHAPE_TRIANGLE, (uint32_t)i, o, d, dist, eps,
-                        newton, &sh);
+      packet_cross_prim(ps, GLINT_SHAPE_TRIANGLE, (uint32_t)i, o, d, l, dist,
+                        eps, newton, &sh);
     for (size_t i = 0; i < s->cone_count && vm_any(sh.alive); i++)
-      packet_cross_prim(ps, GLINT_SHAPE_CONE, (uint32_t)i, o, d, dist, eps,
+      packet_cross_prim(ps, GLINT_SHAPE_CONE, (uint32_t)i, o, d, l, dist, eps,
                         newton, &sh);
   } else if (vm_any(sh.alive)) {
-    segment_query q = {ps, o, d, dist, eps, newton, &sh};
+    segment_query q = {ps, o, d, l, dist, eps, newton, &sh};
     packet_bvh_segment(bvh, o, d, eps, dist, &sh.alive, newton, st,
                        segment_leaf, &q);
   }

@@ -51,8 +51,10 @@ glint_status packet_scene_prepare(const glint_scene *scene, double eps,
     const triangle_r *t = &s->triangles[i];
     ptriangle *p = &ps->triangles[i];
     put3(p->a, t->a);
-    put3(p->e1, t->e1);
-    put3(p->e2, t->e2);
+    for (int k = 0; k < 3; k++) {
+      put3(p->edge[k], t->edge[k]);
+      put3(p->moment[k], t->moment[k]);
+    }
     put3(p->n, t->n);
     p->object = (int32_t)t->object;
   }
@@ -91,6 +93,7 @@ glint_status packet_scene_prepare(const glint_scene *scene, double eps,
   }
   ps->eps = vs_make(s->eps);
   put3(ps->background, s->background);
+  put3(ps->tri_origin, s->tri_origin);
   *out = ps;
   return GLINT_OK;
 }

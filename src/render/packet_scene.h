@@ -27,8 +27,9 @@ typedef struct pplane {
 } pplane;
 
 typedef struct ptriangle {
-  vscalar a[3], e1[3], e2[3];
-  vscalar n[3]; /* e1 x e2, unnormalised */
+  vscalar a[3];
+  vscalar edge[3][3], moment[3][3]; /* see triangle_hit, geometry/intersect.h */
+  vscalar n[3];                     /* (B - A) x (C - A), unnormalised */
   int32_t object;
 } ptriangle;
 
@@ -61,6 +62,7 @@ typedef struct packet_scene {
   pmaterial *materials;
   plight *lights;
   vscalar eps, background[3];
+  vscalar tri_origin[3]; /* R of triangle_hit */
 } packet_scene;
 
 /* The converted layout this ISA's backends share (render/backend.h). */

@@ -14,6 +14,17 @@
 
 static vec3 from_d(glint_vec3 v) { return v3((real)v.x, (real)v.y, (real)v.z); }
 
+static glint_vec3 dsub(glint_vec3 a, glint_vec3 b) {
+  glint_vec3 r = {a.x - b.x, a.y - b.y, a.z - b.z};
+  return r;
+}
+
+static glint_vec3 dcross(glint_vec3 a, glint_vec3 b) {
+  glint_vec3 r = {a.y * b.z - a.z * b.y, a.z * b.x - a.x * b.z,
+                  a.x * b.y - a.y * b.x};
+  return r;
+}
+
 /* The two world axes least aligned with n: a planar checker on a floor
  * (n = +y) is indexed by x and z, exactly as SPEC §8 writes it. */
 static void planar_axes(glint_vec3 n, int *u, int *v) {
@@ -67,23 +78,39 @@ glint_status scalar_scene_prepare(const glint_scene *g, double eps,
     const gli_plane_prim *p = &g->planes[i];
     s->planes[i] = (plane_r){from_d(p->normal), (real)p->d, p->object};
   }
+  /* The triangles' origin R: the centre of their bounds, rounded to this
+   * precision so that the rays' L and the edges' moments share it. */
+  glint_vec3 lo = {INFINITY, INFINITY, INFINITY},
+             hi = {-INFINITY, -INFINITY, -INFINITY};
+  for (size_t i = 0; i < g->triangle_count; i++)
+    for (int k = 0; k < 3; k++) {
+      glint_vec3 q = g->triangles[i].v[k];
+      lo.x = fmin(lo.x, q.x), lo.y = fmin(lo.y, q.y), lo.z = fmin(lo.z, q.z);
+      hi.x = fmax(hi.x, q.x), hi.y = fmax(hi.y, q.y), hi.z = fmax(hi.z, q.z);
+    }
+  s->tri_origin = g->triangle_count ? v3((real)(0.5 * (lo.x + hi.x)),
+                                         (real)(0.5 * (lo.y + hi.y)),
+                                         (real)(0.5 * (lo.z + hi.z)))
+                                    : v3(0, 0, 0);
+  glint_vec3 r = {s->tri_origin.x, s->tri_origin.y, s->tri_origin.z};
   for (size_t i = 0; i < g->triangle_count; i++) {
     const gli_triangle_prim *p = &g->triangles[i];
-    /* Edges and normal in double, then rounded once. */
-    glint_vec3 a = p->v[0], b = p->v[1], c = p->v[2];
-    glint_vec3 e1 = {b.x - a.x, b.y - a.y, b.z - a.z};
-    glint_vec3 e2 = {c.x - a.x, c.y - a.y, c.z - a.z};
-    glint_vec3 n = {e1.y * e2.z - e1.z * e2.y, e1.z * e2.x - e1.x * e2.z,
-                    e1.x * e2.y - e1.y * e2.x};
+    /* Edges, moments and normal in double, then rounded once. */
+    glint_vec3 v[3] = {p->v[0], p->v[1], p->v[2]};
+    glint_vec3 e1 = dsub(v[1], v[0]), e2 = dsub(v[2], v[0]);
+    glint_vec3 n = dcross(e1, e2);
     double nl = sqrt(n.x * n.x + n.y * n.y + n.z * n.z);
     triangle_r *t = &s->triangles[i];
-    t->a = from_d(a);
+    t->a = from_d(v[0]);
     if (nl > 0 && isfinite(nl)) {
-      t->e1 = from_d(e1);
-      t->e2 = from_d(e2);
+      for (int k = 0; k < 3; k++) {
+        glint_vec3 from = v[k], to = v[(k + 1) % 3];
+        t->edge[k] = from_d(dsub(to, from));
+        t->moment[k] = from_d(dcross(dsub(from, r), dsub(to, r)));
+      }
       t->ng = v3((real)(n.x / nl), (real)(n.y / nl), (real)(n.z / nl));
       t->n = from_d(n);
-    } /* else degenerate: zero edges, never hit */
+    } /* else degenerate: zero edges and normal, never hit */
     t->object = p->object;
     t->normals = p->normals;
   }
@@ -173,7 +200,7 @@ void scalar_scene_release(scene_r *s) {
 /* One primitive of the BVH's (or the brute-force loop's) against the ray;
  * narrows *tmax on a nearer hit. */
 static inline void hit_prim(const scene_r *s, uint32_t shape, uint32_t i,
-                            vec3 o, vec3 d, real *tmax, hit_r *hit,
+                            vec3 o, vec3 d, vec3 l, real *tmax, hit_r *hit,
                             int *found) {
   real t, u, v;
   switch (shape) {
@@ -191,7 +218,8 @@ static inline void hit_prim(const scene_r *s, uint32_t shape, uint32_t i,
   }
   case GLINT_SHAPE_TRIANGLE: {
     const triangle_r *tr = &s->triangles[i];
-    if (triangle_hit(tr->a, tr->e1, tr->e2, o, d, s->eps, *tmax, &t, &u, &v)) {
+    if (triangle_hit(tr->a, tr->edge, tr->moment, tr->n, o, d, l, s->eps, *tmax,
+                     &t, &u, &v)) {
       *tmax = hit->t = t;
       hit->shape = GLINT_SHAPE_TRIANGLE;
       hit->prim = i;
@@ -219,19 +247,20 @@ static inline void hit_prim(const scene_r *s, uint32_t shape, uint32_t i,
 /* What a closest-hit walk's leaves need. */
 typedef struct nearest_query {
   const scene_r *s;
-  vec3 o, d;
+  vec3 o, d, l;
   hit_r *hit;
   int *found;
 } nearest_query;
 
 static inline void nearest_leaf(void *ctx, uint32_t ref, real *tmax) {
   nearest_query *q = ctx;
-  hit_prim(q->s, GLINT_REF_SHAPE(ref), GLINT_REF_INDEX(ref), q->o, q->d, tmax,
-           q->hit, q->found);
+  hit_prim(q->s, GLINT_REF_SHAPE(ref), GLINT_REF_INDEX(ref), q->o, q->d, q->l,
+           tmax, q->hit, q->found);
 }
 
 int scalar_nearest_hit(const scene_r *s, vec3 o, vec3 d, real tmax,
                        hit_r *hit) {
+  vec3 l = triangle_ray_moment(s->tri_origin, o, d);
   int found = 0;
   real t;
   for (size_t i = 0; i < s->plane_count; i++)
@@ -243,14 +272,15 @@ int scalar_nearest_hit(const scene_r *s, vec3 o, vec3 d, real tmax,
     }
   if (s->bvh->node_count == 0) { /* the thesis's brute force (§4.3) */
     for (size_t i = 0; i < s->sphere_count; i++)
-      hit_prim(s, GLINT_SHAPE_SPHERE, (uint32_t)i, o, d, &tmax, hit, &found);
+      hit_prim(s, GLINT_SHAPE_SPHERE, (uint32_t)i, o, d, l, &tmax, hit, &found);
     for (size_t i = 0; i < s->triangle_count; i++)
-      hit_prim(s, GLINT_SHAPE_TRIANGLE, (uint32_t)i, o, d, &tmax, hit, &found);
+      hit_prim(s, GLINT_SHAPE_TRIANGLE, (uint32_t)i, o, d, l, &tmax, hit,
+               &found);
     for (size_t i = 0; i < s->cone_count; i++)
-      hit_prim(s, GLINT_SHAPE_CONE, (uint32_t)i, o, d, &tmax, hit, &found);
+      hit_prim(s, GLINT_SHAPE_CONE, (uint32_t)i, o, d, l, &tmax, hit, &found);
     return found;
   }
-  nearest_query q = {s, o, d, hit, &found};
+  nearest_query q = {s, o, d, l, hit, &found};
   bvh_closest(s->bvh, o, d, s->eps, &tmax, nearest_leaf, &q);
   return found;
 }
@@ -282,7 +312,7 @@ static inline int cross_surface(const scene_r *s, shadow_acc *acc,
 
 /* Every crossing of one primitive within (eps, dist); 0 if opaque. */
 static inline int cross_prim(const scene_r *s, shadow_acc *acc, uint32_t shape,
-                             uint32_t i, vec3 o, vec3 d, real dist) {
+                             uint32_t i, vec3 o, vec3 d, vec3 l, real dist) {
   real eps = s->eps;
   switch (shape) {
   case GLINT_SHAPE_SPHERE: {
@@ -299,7 +329,8 @@ static inline int cross_prim(const scene_r *s, shadow_acc *acc, uint32_t shape,
   case GLINT_SHAPE_TRIANGLE: {
     real t, u, v;
     const triangle_r *tr = &s->triangles[i];
-    if (triangle_hit(tr->a, tr->e1, tr->e2, o, d, eps, dist, &t, &u, &v) &&
+    if (triangle_hit(tr->a, tr->edge, tr->moment, tr->n, o, d, l, eps, dist, &t,
+                     &u, &v) &&
         !cross_surface(s, acc, tr->object, t, v3_dot(tr->ng, d) < 0))
       return 0;
     return 1;
@@ -325,17 +356,18 @@ static inline int cross_prim(const scene_r *s, shadow_acc *acc, uint32_t shape,
 typedef struct segment_query {
   const scene_r *s;
   shadow_acc *acc;
-  vec3 o, d;
+  vec3 o, d, l;
   real dist;
 } segment_query;
 
 static inline int segment_leaf(void *ctx, uint32_t ref) {
   segment_query *q = ctx;
   return cross_prim(q->s, q->acc, GLINT_REF_SHAPE(ref), GLINT_REF_INDEX(ref),
-                    q->o, q->d, q->dist);
+                    q->o, q->d, q->l, q->dist);
 }
 
 vec3 scalar_transmission(const scene_r *s, vec3 o, vec3 d, real dist) {
+  vec3 l = triangle_ray_moment(s->tri_origin, o, d);
   shadow_acc acc = {v3(1, 1, 1), v3(0, 0, 0)};
   const vec3 black = v3(0, 0, 0);
   real t;
@@ -347,16 +379,17 @@ vec3 scalar_transmission(const scene_r *s, vec3 o, vec3 d, real dist) {
   }
   if (s->bvh->node_count == 0) {
     for (size_t i = 0; i < s->sphere_count; i++)
-      if (!cross_prim(s, &acc, GLINT_SHAPE_SPHERE, (uint32_t)i, o, d, dist))
+      if (!cross_prim(s, &acc, GLINT_SHAPE_SPHERE, (uint32_t)i, o, d, l, dist))
         return black;
     for (size_t i = 0; i < s->triangle_count; i++)
-      if (!cross_prim(s, &acc, GLINT_SHAPE_TRIANGLE, (uint32_t)i, o, d, dist))
+      if (!cross_prim(s, &acc, GLINT_SHAPE_TRIANGLE, (uint32_t)i, o, d, l,
+                      dist))
         return black;
     for (size_t i = 0; i < s->cone_count; i++)
-      if (!cross_prim(s, &acc, GLINT_SHAPE_CONE, (uint32_t)i, o, d, dist))
+      if (!cross_prim(s, &acc, GLINT_SHAPE_CONE, (uint32_t)i, o, d, l, dist))
         return black;
   } else {
-    segment_query q = {s, &acc, o, d, dist};
+    segment_query q = {s, &acc, o, d, l, dist};
     if (!bvh_segment(s->bvh, o, d, s->eps, dist, segment_leaf, &q))
       return black;
   }

@@ -24,9 +24,11 @@ typedef struct plane_r {
 } plane_r;
 
 typedef struct triangle_r {
-  vec3 a, e1, e2;
+  vec3 a;
+  vec3 edge[3];   /* B - A, C - B, A - C */
+  vec3 moment[3]; /* (P - R) x (Q - R) per edge PQ (see triangle_hit) */
   vec3 ng; /* unit geometric normal, front side by counter-clockwise order */
-  vec3 n;  /* e1 x e2, unnormalised (the packet intersector's) */
+  vec3 n;  /* (B - A) x (C - A), unnormalised */
   uint32_t object;
   uint32_t normals; /* first of 3 vertex normals, or GLINT_NO_NORMALS */
 } triangle_r;
@@ -73,6 +75,7 @@ typedef struct scene_r {
    * every primitive is tested (--accel none). */
   const gli_bvh *bvh;
   vec3 background, ambient;
+  vec3 tri_origin; /* R of triangle_hit: the centre of the triangles */
   real eps;
 } scene_r;
 
