@@ -4,7 +4,7 @@
  *    1e-5 relative (a different object counts only as a tie, when both hits
  *    lie at the same t, e.g. on an edge two triangles share);
  *  - full renders of the four scenes at depths 1, 5 and 15 match scalar-float
- *    at PSNR >= 40 dB (default maths);
+ *    at PSNR >= 70 dB (default maths; 73.3 dB measured at the least);
  *  - results are identical from run to run and for any thread count. */
 #define GLINT_REAL_FLOAT
 #include "test_util.h"
@@ -18,7 +18,8 @@
 #include <stdlib.h>
 
 #define RAYS 100000
-#define MATCH_PSNR 40.0
+/* Measured: 73.3 dB at the least (whitted, depth 15). */
+#define MATCH_PSNR 70.0
 
 static const char *scenes[] = {"whitted", "giza", "billiard", "phong"};
 
@@ -62,7 +63,7 @@ static void nearest_hits_agree(void **state) {
     test_view ref_view;
     const scene_r *ref = test_view_open(g, DATA_SCALAR_FLOAT, 0, &ref_view);
     for (size_t k = 0; k < sizeof packets / sizeof *packets; k++) {
-      if (!glint_backend_supported(packets[k].backend))
+      if (backend_missing(packets[k].backend))
         continue;
       test_view packet_view;
       void *prep = test_view_open(
@@ -94,8 +95,7 @@ static void nearest_hits_agree(void **state) {
           hit_r h;
           vec3 org = v3(o[i], o[w + i], o[2 * w + i]);
           vec3 dir = v3(d[i], d[w + i], d[2 * w + i]);
-          int found =
-              gli_scalar_nearest_hit_float(ref, org, dir, REAL_MAX, &h);
+          int found = gli_scalar_nearest_hit_float(ref, org, dir, REAL_MAX, &h);
           int ref_obj = -1;
           if (found) {
             hits++;
@@ -159,7 +159,7 @@ static void renders_match_scalar_float(void **state) {
       glint_image *ref =
           render(scenes[si], GLINT_BACKEND_SCALAR_FLOAT, depths[di], 0, NULL);
       for (size_t k = 0; k < sizeof packets / sizeof *packets; k++) {
-        if (!glint_backend_supported(packets[k].backend))
+        if (backend_missing(packets[k].backend))
           continue;
         glint_stats st;
         glint_image *im =
@@ -189,7 +189,7 @@ static void renders_match_scalar_float(void **state) {
 static void identical_run_to_run_and_across_threads(void **state) {
   (void)state;
   for (size_t k = 0; k < sizeof packets / sizeof *packets; k++) {
-    if (!glint_backend_supported(packets[k].backend))
+    if (backend_missing(packets[k].backend))
       continue;
     glint_image *a = render("billiard", packets[k].backend, 8, 1, NULL);
     glint_image *b = render("billiard", packets[k].backend, 8, 2, NULL);
@@ -203,6 +203,11 @@ static void identical_run_to_run_and_across_threads(void **state) {
 }
 
 int main(void) {
+  /* Every test here is of the SIMD backends. */
+  if (!glint_backend_supported(GLINT_BACKEND_SSE)) {
+    printf("SKIPPED: this CPU (or GLINT_ISA) has no SIMD backend\n");
+    return SKIP_EXIT;
+  }
   const struct CMUnitTest tests[] = {
       cmocka_unit_test(nearest_hits_agree),
       cmocka_unit_test(renders_match_scalar_float),

@@ -145,16 +145,15 @@ static int tri_hit(vec3 a, vec3 e1, vec3 e2, vec3 o, vec3 d, real tmin,
     moment[k] = v3_cross(p[k], p[(k + 1) % 3]);
   }
   vec3 l = triangle_ray_moment(v3(0, 0, 0), o, d);
-  return triangle_hit(a, edge, moment, v3_cross(e1, e2), o, d, l, tmin, tmax,
-                      t, u, v);
+  return triangle_hit(a, edge, moment, v3_cross(e1, e2), o, d, l, tmin, tmax, t,
+                      u, v);
 }
 
 /* The triangle (0,0,0) (1,0,0) (0,1,0), rays straight down -z from z = 1. */
 static const vec3 TA = {0, 0, 0}, TE1 = {1, 0, 0}, TE2 = {0, 1, 0};
 
 static int tri(real x, real y, real *t, real *u, real *v) {
-  return tri_hit(TA, TE1, TE2, v3(x, y, 1), v3(0, 0, -1), EPS, BIG, t, u,
-                      v);
+  return tri_hit(TA, TE1, TE2, v3(x, y, 1), v3(0, 0, -1), EPS, BIG, t, u, v);
 }
 
 static void triangle_inside(void **state) {
@@ -165,8 +164,8 @@ static void triangle_inside(void **state) {
   near(u, 0.25);
   near(v, 0.25);
   /* From below (the back side) too. */
-  assert_true(tri_hit(TA, TE1, TE2, v3((real)0.2, (real)0.3, -2),
-                           v3(0, 0, 1), EPS, BIG, &t, &u, &v));
+  assert_true(tri_hit(TA, TE1, TE2, v3((real)0.2, (real)0.3, -2), v3(0, 0, 1),
+                      EPS, BIG, &t, &u, &v));
   near(t, 2);
 }
 
@@ -193,10 +192,10 @@ static void triangle_outside(void **state) {
   assert_false(tri((real)0.5, (real)-0.01, &t, &u, &v));
   assert_false(tri(2, 2, &t, &u, &v));
   /* Behind the origin and parallel to the plane. */
-  assert_false(tri_hit(TA, TE1, TE2, v3((real)0.2, (real)0.2, 1),
-                            v3(0, 0, 1), EPS, BIG, &t, &u, &v));
-  assert_false(tri_hit(TA, TE1, TE2, v3(-1, (real)0.2, 0), v3(1, 0, 0),
-                            EPS, BIG, &t, &u, &v));
+  assert_false(tri_hit(TA, TE1, TE2, v3((real)0.2, (real)0.2, 1), v3(0, 0, 1),
+                       EPS, BIG, &t, &u, &v));
+  assert_false(tri_hit(TA, TE1, TE2, v3(-1, (real)0.2, 0), v3(1, 0, 0), EPS,
+                       BIG, &t, &u, &v));
 }
 
 static void triangle_degenerate(void **state) {
@@ -204,10 +203,10 @@ static void triangle_degenerate(void **state) {
   real t, u, v;
   /* Collinear vertices: e2 = 2 e1. */
   assert_false(tri_hit(TA, v3(1, 0, 0), v3(2, 0, 0), v3((real)0.5, 0, 1),
-                            v3(0, 0, -1), EPS, BIG, &t, &u, &v));
+                       v3(0, 0, -1), EPS, BIG, &t, &u, &v));
   /* All three vertices the same. */
-  assert_false(tri_hit(TA, v3(0, 0, 0), v3(0, 0, 0), v3(0, 0, 1),
-                            v3(0, 0, -1), EPS, BIG, &t, &u, &v));
+  assert_false(tri_hit(TA, v3(0, 0, 0), v3(0, 0, 0), v3(0, 0, 1), v3(0, 0, -1),
+                       EPS, BIG, &t, &u, &v));
 }
 
 static void reflection(void **state) {

@@ -13,7 +13,8 @@
 #include <string.h>
 
 #define GOLDEN_PSNR 50.0
-#define FLOAT_VS_DOUBLE_PSNR 45.0
+/* Measured: 75.6 dB at the least (whitted). */
+#define FLOAT_VS_DOUBLE_PSNR 72.0
 
 static int update;
 static const char *scenes[] = {"whitted", "giza", "billiard", "phong"};

@@ -4,11 +4,10 @@
  * golden images in tests/golden at PSNR >= 50 dB, the threshold of
  * test_golden and for the same reason (bit-identical here, room for another
  * libm's last bit). Every packet and stream backend must match scalar-float
- * at PSNR >= 40 dB (the criterion of issues 3 and 5), so the files exercise
- * the BVH, cones, polygons and patches on every backend. (Against the double
- * golden the float backends can dip to 40 dB on teapot-s1 at one sample per
- * pixel: its coarse handle has coincident faces, where a shadow ray's hit
- * depends on the last bit of t.)
+ * at PSNR >= 65 dB (67.9 dB measured at the least), so the files exercise
+ * the BVH, cones, polygons and patches on every backend; teapot-s1 alone
+ * gets 38 dB (40.8 measured): its coarse handle has coincident faces, where
+ * which face a ray meets depends on the last bit of t.
  *
  * The SPD scenes are 512x512 in their files; they are rendered at 160x160
  * (the camera keeps its field of view) to keep the goldens small. Needs
@@ -25,7 +24,10 @@
 #include <unistd.h>
 
 #define GOLDEN_PSNR 50.0
-#define BACKEND_PSNR 40.0
+/* Measured: 67.9 dB at the least, but for teapot-s1's coincident faces
+ * (40.8 dB), which get their own bound. */
+#define BACKEND_PSNR 65.0
+#define COINCIDENT_FACES_PSNR 38.0
 #define SIZE 160
 
 static int update;
@@ -67,15 +69,17 @@ static void check_golden(glint_scene *s, const char *name, int spp) {
 
   glint_image *ref = render(s, GLINT_BACKEND_SCALAR_FLOAT, spp);
   for (int b = GLINT_BACKEND_SSE; b < GLINT_BACKEND_COUNT; b++) {
-    if (!glint_backend_supported((glint_backend)b))
+    if (backend_missing((glint_backend)b))
       continue;
     im = render(s, (glint_backend)b, spp);
     psnr = glint_image_psnr(im, ref);
     printf("%-14s %-13s PSNR %6.2f dB against scalar-float\n", name,
            glint_backend_name((glint_backend)b), psnr);
-    if (psnr < BACKEND_PSNR)
+    double bound = strcmp(name, "spd-teapot-s1") == 0 ? COINCIDENT_FACES_PSNR
+                                                      : BACKEND_PSNR;
+    if (psnr < bound)
       fail_msg("%s on %s: PSNR %.2f dB < %.0f dB against scalar-float", name,
-               glint_backend_name((glint_backend)b), psnr, BACKEND_PSNR);
+               glint_backend_name((glint_backend)b), psnr, bound);
     glint_image_destroy(im);
   }
   glint_image_destroy(ref);

@@ -136,8 +136,8 @@ static void expect_fail_path(const char *path, glint_status status,
                                      (V){0, 1, 0}, m, &e_));
   ASSERT_OK(gli_scene_begin_object(s, GLINT_SHAPE_TRIANGLE, m, &e_));
   V n[3] = {{0, 0, 1}, {0, 0, 1}, {0, 0, 1}};
-  ASSERT_OK(gli_scene_push_triangle(s, (V){0, 0, 1}, (V){1, 0, 1},
-                                      (V){0, 1, 1}, n, &e_));
+  ASSERT_OK(gli_scene_push_triangle(s, (V){0, 0, 1}, (V){1, 0, 1}, (V){0, 1, 1},
+                                    n, &e_));
   size_t objects = s->object_count, tris = s->triangle_count,
          normals = s->tri_normal_count;
   gli_triangle_prim before[2];

@@ -30,8 +30,7 @@ static uint32_t material(glint_scene *s, const glint_material *m) {
 static void expect_pixel(glint_scene *s, int depth, double r, double g,
                          double b) {
   for (int be = GLINT_BACKEND_SCALAR_FLOAT; be < GLINT_BACKEND_COUNT; be++) {
-    if (be == GLINT_BACKEND_STREAM ||
-        !glint_backend_supported((glint_backend)be))
+    if (be == GLINT_BACKEND_STREAM || backend_missing((glint_backend)be))
       continue;
     glint_render_settings rs;
     glint_render_settings_default(&rs);

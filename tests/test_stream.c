@@ -11,7 +11,10 @@
 #include <stdio.h>
 #include <string.h>
 
-#define MATCH_PSNR 40.0
+/* Measured: 73.3 dB at the least. */
+#define MATCH_PSNR 70.0
+/* The SPD scenes at 1 spp: 69.9 dB at the least (balls-s2). */
+#define SPD_MATCH_PSNR 66.0
 
 static const glint_backend streams[] = {GLINT_BACKEND_STREAM_SSE,
                                         GLINT_BACKEND_STREAM_AVX2,
@@ -43,7 +46,7 @@ static void thesis_scenes_match(void **state) {
       glint_image *ref = render(s, GLINT_BACKEND_SCALAR_FLOAT, 320, 240, 5,
                                 depths[di], 0, NULL);
       for (size_t k = 0; k < 3; k++) {
-        if (!glint_backend_supported(streams[k]))
+        if (backend_missing(streams[k]))
           continue;
         glint_stats st;
         glint_image *im =
@@ -76,13 +79,13 @@ static void spd_scenes_match_shared(void **state) {
     glint_image *ref =
         render(s, GLINT_BACKEND_SCALAR_FLOAT, 128, 128, 1, 5, 0, NULL);
     for (size_t k = 0; k < 3; k++) {
-      if (!glint_backend_supported(streams[k]))
+      if (backend_missing(streams[k]))
         continue;
       glint_image *im = render(s, streams[k], 128, 128, 1, 5, 0, NULL);
       double psnr = glint_image_psnr(ref, im);
       printf("%-10s %-13s PSNR %6.2f dB\n", files[i],
              glint_backend_name(streams[k]), psnr);
-      if (psnr < MATCH_PSNR)
+      if (psnr < SPD_MATCH_PSNR)
         fail_msg("%s %s: PSNR %.2f dB", files[i],
                  glint_backend_name(streams[k]), psnr);
       glint_image_destroy(im);
@@ -97,7 +100,7 @@ static void identical_across_threads_and_runs(void **state) {
   glint_scene *s;
   ASSERT_OK(glint_scene_builtin("billiard", &s, &e_));
   for (size_t k = 0; k < 3; k++) {
-    if (!glint_backend_supported(streams[k]))
+    if (backend_missing(streams[k]))
       continue;
     glint_image *a = render(s, streams[k], 160, 120, 5, 12, 1, NULL);
     glint_image *b = render(s, streams[k], 160, 120, 5, 12, 2, NULL);
@@ -154,7 +157,7 @@ static void every_ray_is_traced(void **state) {
     ASSERT_OK(glint_scene_builtin(scenes[si], &s, &e_));
     for (int di = 0; di < 3; di++)
       for (size_t k = 0; k < 3; k++) {
-        if (!glint_backend_supported(streams[k]))
+        if (backend_missing(streams[k]))
           continue;
         glint_stats st;
         glint_image *im =
@@ -210,6 +213,11 @@ static void memory_is_bounded(void **state) {
 }
 
 int main(int argc, char **argv) {
+  /* Every test here is of the SIMD backends. */
+  if (!glint_backend_supported(GLINT_BACKEND_SSE)) {
+    printf("SKIPPED: this CPU (or GLINT_ISA) has no SIMD backend\n");
+    return SKIP_EXIT;
+  }
   const struct CMUnitTest tests[] = {
       cmocka_unit_test(thesis_scenes_match),
       cmocka_unit_test(spd_scenes_match_shared),

@@ -3,6 +3,7 @@
 #define GLINT_TEST_UTIL_H
 
 #include <setjmp.h>
+#include <stdio.h>
 #include <stdarg.h>
 #include <stddef.h>
 #include <stdint.h>
@@ -27,6 +28,15 @@ static inline int expected_byte(double c) {
   if (c >= 1)
     return 255;
   return (int)(255 * c + 0.5);
+}
+
+/* Whether this CPU (or GLINT_ISA) lacks backend b; says so when it does, so
+ * that a run shows what it did not test. */
+static inline int backend_missing(glint_backend b) {
+  if (glint_backend_supported(b))
+    return 0;
+  printf("%s: SKIPPED (not on this CPU)\n", glint_backend_name(b));
+  return 1;
 }
 
 /* The exit code for "this test cannot run here" (ctest reports SKIPPED). */
