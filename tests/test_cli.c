@@ -267,6 +267,61 @@ static void render_writes_the_film(void **state) {
                      "-W", "8", "-H", "8", "-o", "/no/such/folder/out.exr");
 }
 
+/* The 4-byte big-endian value of a PNG's gAMA chunk, or 0. */
+static unsigned png_gamma(const char *name) {
+  char p[256];
+  snprintf(p, sizeof p, "%s/%s", dir, name);
+  FILE *f = fopen(p, "rb");
+  assert_non_null(f);
+  unsigned char buf[4096];
+  size_t n = fread(buf, 1, sizeof buf, f);
+  fclose(f);
+  for (size_t i = 0; i + 8 <= n; i++)
+    if (memcmp(buf + i, "gAMA", 4) == 0)
+      return (unsigned)buf[i + 4] << 24 | (unsigned)buf[i + 5] << 16 |
+             (unsigned)buf[i + 6] << 8 | buf[i + 7];
+  return 0;
+}
+
+static long file_size(const char *name) {
+  char p[256];
+  snprintf(p, sizeof p, "%s/%s", dir, name);
+  struct stat sb;
+  return stat(p, &sb) == 0 ? (long)sb.st_size : -1;
+}
+
+/* PNG options: the same pixels fast or smallest, the gamma recorded. */
+static void png_compression_and_gamma(void **state) {
+  (void)state;
+  assert_int_equal(
+      run("render", "-W", "64", "-H", "48", "-o", "fast.png", NULL), 0);
+  assert_int_equal(run("render", "-W", "64", "-H", "48", "--png-compression",
+                       "smallest", "--gamma", "2.2", "-o", "small.png", NULL),
+                   0);
+  assert_int_equal(run("render", "-W", "64", "-H", "48", "--gamma", "2.2", "-o",
+                       "fast22.png", NULL),
+                   0);
+  assert_true(file_size("small.png") < file_size("fast22.png"));
+  assert_int_equal(png_gamma("fast.png"), 100000); /* linear */
+  assert_int_equal(png_gamma("small.png"), 45455); /* 1/2.2 */
+  glint_image *a, *b;
+  char pa[256], pb[256];
+  snprintf(pa, sizeof pa, "%s/small.png", dir);
+  snprintf(pb, sizeof pb, "%s/fast22.png", dir);
+  ASSERT_OK(glint_image_read(pa, &a, &e_));
+  ASSERT_OK(glint_image_read(pb, &b, &e_));
+  assert_memory_equal(glint_image_pixels_const(a), glint_image_pixels_const(b),
+                      64 * 48 * 3);
+  glint_image_destroy(a);
+  glint_image_destroy(b);
+  unlink(pa);
+  unlink(pb);
+  snprintf(pa, sizeof pa, "%s/fast.png", dir);
+  unlink(pa);
+  EXPECT_USAGE_ERROR("--png-compression: 'best' is not fast or smallest",
+                     "render", "--png-compression", "best", "-o", "x.png");
+}
+
 static void defaults_quiet_and_stats(void **state) {
   (void)state;
   /* The default output is SCENE.png. */
@@ -375,6 +430,7 @@ int main(void) {
       cmocka_unit_test(help_and_version),
       cmocka_unit_test(render_writes_every_format),
       cmocka_unit_test(render_writes_the_film),
+      cmocka_unit_test(png_compression_and_gamma),
       cmocka_unit_test(defaults_quiet_and_stats),
       cmocka_unit_test(bench_runs_and_writes_csv),
       cmocka_unit_test(bench_errors),

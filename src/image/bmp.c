@@ -58,7 +58,7 @@ int gli_bmp_encode(const glint_image *im, FILE *f) {
 }
 
 glint_status gli_bmp_decode(FILE *f, const char *path, glint_image **out,
-                              glint_error *error) {
+                            glint_error *error) {
   uint8_t hdr[54];
   if (fread(hdr, 1, sizeof hdr, f) != sizeof hdr || hdr[0] != 'B' ||
       hdr[1] != 'M')
@@ -67,7 +67,7 @@ glint_status gli_bmp_decode(FILE *f, const char *path, glint_image **out,
   int32_t w = (int32_t)get32(hdr + 18), h = (int32_t)get32(hdr + 22);
   if (hsize < 40 || get16(hdr + 28) != 24 || get32(hdr + 30) != 0)
     return gli_fail(error, GLINT_E_PARSE,
-                      "%s: only uncompressed 24-bit BMP is supported", path);
+                    "%s: only uncompressed 24-bit BMP is supported", path);
   int top_down = h < 0;
   if (top_down)
     h = -h;

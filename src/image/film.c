@@ -13,16 +13,15 @@
 glint_status glint_film_create(int w, int h, glint_film **out,
                                glint_error *error) {
   if (w < 1 || h < 1 || w > GLINT_MAX_DIMENSION || h > GLINT_MAX_DIMENSION)
-    return gli_fail(error, GLINT_E_ARGUMENT,
-                      "film size %dx%d is outside 1..%d", w, h,
-                      GLINT_MAX_DIMENSION);
+    return gli_fail(error, GLINT_E_ARGUMENT, "film size %dx%d is outside 1..%d",
+                    w, h, GLINT_MAX_DIMENSION);
   glint_film *film = malloc(sizeof *film);
   float *rgb = gli_aligned_calloc((size_t)w * (size_t)h * 3, sizeof(float));
   if (!film || !rgb) {
     free(film);
     gli_aligned_free(rgb);
-    return gli_fail(error, GLINT_E_MEMORY, "out of memory for a %dx%d film",
-                      w, h);
+    return gli_fail(error, GLINT_E_MEMORY, "out of memory for a %dx%d film", w,
+                    h);
   }
   film->width = w;
   film->height = h;
@@ -54,7 +53,7 @@ static inline uint8_t to_byte(float c) {
 }
 
 void gli_film_span_to_bytes(const float *src, uint8_t *dst, size_t n,
-                              double gamma) {
+                            double gamma) {
   if (gamma == 1) {
     for (size_t i = 0; i < n; i++)
       dst[i] = to_byte(src[i]);
@@ -71,14 +70,14 @@ glint_status glint_film_to_image(const glint_film *film, double gamma,
                                  glint_image *image, glint_error *error) {
   if (!(isfinite(gamma) && gamma > 0))
     return gli_fail(error, GLINT_E_ARGUMENT, "gamma %g must be a number > 0",
-                      gamma);
+                    gamma);
   if (image->width != film->width || image->height != film->height)
     return gli_fail(error, GLINT_E_ARGUMENT,
-                      "a %dx%d film does not fit a %dx%d image", film->width,
-                      film->height, image->width, image->height);
+                    "a %dx%d film does not fit a %dx%d image", film->width,
+                    film->height, image->width, image->height);
+  image->gamma = gamma;
   gli_film_span_to_bytes(film->rgb, image->rgb,
-                           (size_t)film->width * (size_t)film->height * 3,
-                           gamma);
+                         (size_t)film->width * (size_t)film->height * 3, gamma);
   return GLINT_OK;
 }
 
@@ -115,13 +114,13 @@ static glint_status film_writer(const char *path, write_fn *write,
     return GLINT_OK;
 #else
     return gli_fail(error, GLINT_E_UNSUPPORTED,
-                      "%s: this build of glint has no OpenEXR (install "
-                      "libopenexr-dev and rebuild, or write .pfm)",
-                      path);
+                    "%s: this build of glint has no OpenEXR (install "
+                    "libopenexr-dev and rebuild, or write .pfm)",
+                    path);
 #endif
   default:
     return gli_fail(error, GLINT_E_ARGUMENT,
-                      "%s: unknown film format (use .pfm or .exr)", path);
+                    "%s: unknown film format (use .pfm or .exr)", path);
   }
 }
 

@@ -19,18 +19,19 @@ glint_status glint_image_create(int w, int h, glint_image **out,
                                 glint_error *error) {
   if (w < 1 || h < 1 || w > GLINT_MAX_DIMENSION || h > GLINT_MAX_DIMENSION)
     return gli_fail(error, GLINT_E_ARGUMENT,
-                      "image size %dx%d is outside 1..%d", w, h,
-                      GLINT_MAX_DIMENSION);
+                    "image size %dx%d is outside 1..%d", w, h,
+                    GLINT_MAX_DIMENSION);
   glint_image *im = malloc(sizeof *im);
   uint8_t *rgb = calloc((size_t)w * (size_t)h, 3);
   if (!im || !rgb) {
     free(im);
     free(rgb);
-    return gli_fail(error, GLINT_E_MEMORY, "out of memory for a %dx%d image",
-                      w, h);
+    return gli_fail(error, GLINT_E_MEMORY, "out of memory for a %dx%d image", w,
+                    h);
   }
   im->width = w;
   im->height = h;
+  im->gamma = 1;
   im->rgb = rgb;
   *out = im;
   return GLINT_OK;
@@ -66,12 +67,13 @@ glint_image_format glint_image_format_from_path(const char *path) {
 
 static glint_status unknown_format(const char *path, glint_error *error) {
   return gli_fail(error, GLINT_E_ARGUMENT,
-                    "%s: unknown image format (use .png, .bmp or .ppm)", path);
+                  "%s: unknown image format (use .png, .bmp or .ppm)", path);
 }
 
 typedef struct encode_job {
   const glint_image *image;
   glint_image_format format;
+  glint_png_compression compression;
 } encode_job;
 
 /* "dir/name.png" -> "dir/.name.png.XXXXXX" for mkstemp. */
@@ -101,7 +103,7 @@ static int open_temp(const char *path, char **temp, glint_error *error) {
   int fd = mkstemp(*temp);
   if (fd < 0) {
     gli_fail(error, GLINT_E_IO, "%s: cannot write here: %s", path,
-               strerror(errno));
+             strerror(errno));
     free(*temp);
     *temp = NULL;
   }
@@ -126,7 +128,7 @@ glint_status gli_check_folder_writable(const char *path, glint_error *error) {
 }
 
 glint_status gli_write_atomically(const char *path, write_fn write,
-                                    const void *data, glint_error *error) {
+                                  const void *data, glint_error *error) {
   char *temp;
   int fd = open_temp(path, &temp, error);
   if (fd < 0)
@@ -156,7 +158,7 @@ glint_status gli_write_atomically(const char *path, write_fn write,
     unlink(temp);
     free(temp);
     return gli_fail(error, GLINT_E_IO, "%s: writing failed: %s", path,
-                      saved ? strerror(saved) : "encoder error");
+                    saved ? strerror(saved) : "encoder error");
   }
   free(temp);
   return GLINT_OK;
@@ -164,18 +166,28 @@ glint_status gli_write_atomically(const char *path, write_fn write,
 
 static int encode_image(const void *data, FILE *f) {
   const encode_job *job = data;
-  return job->format == GLINT_FORMAT_PNG   ? gli_png_encode(job->image, f)
+  return job->format == GLINT_FORMAT_PNG
+             ? gli_png_encode(job->image, job->compression, f)
          : job->format == GLINT_FORMAT_BMP ? gli_bmp_encode(job->image, f)
                                            : gli_ppm_encode(job->image, f);
 }
 
-glint_status glint_image_write(const glint_image *im, const char *path,
-                               glint_error *error) {
+glint_status glint_image_write_with(const glint_image *im, const char *path,
+                                    glint_png_compression compression,
+                                    glint_error *error) {
   glint_image_format fmt = glint_image_format_from_path(path);
   if (fmt == GLINT_FORMAT_UNKNOWN)
     return unknown_format(path, error);
-  encode_job job = {im, fmt};
+  if ((unsigned)compression > GLINT_PNG_SMALLEST)
+    return gli_fail(error, GLINT_E_ARGUMENT, "unknown PNG compression %d",
+                    (int)compression);
+  encode_job job = {im, fmt, compression};
   return gli_write_atomically(path, encode_image, &job, error);
+}
+
+glint_status glint_image_write(const glint_image *im, const char *path,
+                               glint_error *error) {
+  return glint_image_write_with(im, path, GLINT_PNG_FAST, error);
 }
 
 glint_status glint_image_read(const char *path, glint_image **out,

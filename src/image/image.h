@@ -7,6 +7,7 @@
 
 struct glint_image {
   int width, height;
+  double gamma; /* what the pixels were encoded with (PNG's gAMA) */
   uint8_t *rgb; /* width*height*3, top row first */
 };
 
@@ -19,7 +20,7 @@ struct glint_film {
  * c^(1/gamma), then round(255 c). Used for whole films and, while a frame
  * renders, for each finished tile. */
 void gli_film_span_to_bytes(const float *src, uint8_t *dst, size_t n,
-                              double gamma);
+                            double gamma);
 
 /* Writes `path` atomically: write(data, f) fills a temporary file beside
  * it (returning 0 on success), which is flushed, synced and renamed over
@@ -29,7 +30,7 @@ typedef int (*write_fn)(const void *data, FILE *f);
  * its folder takes a new file); leaves nothing behind. */
 glint_status gli_check_folder_writable(const char *path, glint_error *error);
 glint_status gli_write_atomically(const char *path, write_fn write,
-                                    const void *data, glint_error *error);
+                                  const void *data, glint_error *error);
 
 /* Film encoders: 0 on success. EXR returns -1 with errno 0 on a library
  * error, and is absent (GLINT_HAVE_EXR undefined) in builds without
@@ -38,16 +39,17 @@ int gli_pfm_encode(const glint_film *film, FILE *f);
 int gli_exr_encode(const glint_film *film, FILE *f);
 
 /* Encoders write the whole image to an open stream; 0 on success. */
-int gli_png_encode(const glint_image *image, FILE *f);
+int gli_png_encode(const glint_image *image, glint_png_compression compression,
+                   FILE *f);
 int gli_bmp_encode(const glint_image *image, FILE *f);
 int gli_ppm_encode(const glint_image *image, FILE *f);
 
 /* Decoders read a whole image; on failure they fill error naming `path`. */
 glint_status gli_png_decode(FILE *f, const char *path, glint_image **image,
-                              glint_error *error);
+                            glint_error *error);
 glint_status gli_bmp_decode(FILE *f, const char *path, glint_image **image,
-                              glint_error *error);
+                            glint_error *error);
 glint_status gli_ppm_decode(FILE *f, const char *path, glint_image **image,
-                              glint_error *error);
+                            glint_error *error);
 
 #endif

@@ -36,14 +36,14 @@ static long ppm_number(FILE *f) {
 }
 
 glint_status gli_ppm_decode(FILE *f, const char *path, glint_image **out,
-                              glint_error *error) {
+                            glint_error *error) {
   if (fgetc(f) != 'P' || fgetc(f) != '6')
     return gli_fail(error, GLINT_E_PARSE, "%s: not a binary PPM (P6) file",
-                      path);
+                    path);
   long w = ppm_number(f), h = ppm_number(f), maxval = ppm_number(f);
   if (w < 1 || h < 1 || maxval != 255)
     return gli_fail(error, GLINT_E_PARSE,
-                      "%s: bad PPM header (only 8-bit P6 is supported)", path);
+                    "%s: bad PPM header (only 8-bit P6 is supported)", path);
   glint_image *im;
   glint_status st = glint_image_create((int)w, (int)h, &im, error);
   if (st)

@@ -59,6 +59,8 @@ static glint_status render_once(const glint_scene *scene,
     return st;
   }
   out->image = image ? *image : NULL;
+  if (out->image)
+    out->image->gamma = settings->gamma;
   out->gamma = settings->gamma;
   st = renderer_render(renderer, NULL, out, stats, error);
   glint_renderer_destroy(renderer);
