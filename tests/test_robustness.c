@@ -94,6 +94,44 @@ static void thin_cylinder(void **state) {
   glint_scene_destroy(s);
 }
 
+/* ---- long numbers ----------------------------------------------------------
+ */
+
+/* Numbers longer than 127 characters were cut to 127 and read wrongly (a
+ * valid one misread, an invalid one accepted); they are read whole now. */
+static void long_numbers_are_read_whole(void **state) {
+  (void)state;
+  char text[1024], digits[260];
+  memset(digits, '0', 250);
+  digits[250] = '\0';
+  /* 0.000...0005 (250 zeros): a valid, tiny, finite number. */
+  snprintf(text, sizeof text,
+           "b 0.%s5 0 0\nv\nfrom 0 0 -8\nat 0 0 0\nup 0 1 0\nangle 40\n"
+           "hither 0.001\nresolution 4 4\n",
+           digits);
+  glint_scene *s = scene_from_text(text, ".nff");
+  glint_scene_info info;
+  glint_scene_get_info(s, &info);
+  assert_true(info.background.x > 0 && info.background.x < 1e-249);
+  glint_scene_destroy(s);
+  /* 1000...0 with a letter after the 127th character: not a number. */
+  snprintf(text, sizeof text,
+           "b 1%sx 0 0\nv\nfrom 0 0 -8\nat 0 0 0\nup 0 1 0\nangle 40\n"
+           "hither 0.001\nresolution 4 4\n",
+           digits);
+  char path[256];
+  snprintf(path, sizeof path, "%s/glint-long-%d.nff",
+           getenv("TMPDIR") ? getenv("TMPDIR") : "/tmp", (int)getpid());
+  FILE *f = fopen(path, "w");
+  fputs(text, f);
+  fclose(f);
+  glint_error e;
+  assert_int_equal(glint_scene_load(path, &s, &e), GLINT_E_PARSE);
+  assert_non_null(strstr(e.message, ":1: expected a number"));
+  assert_non_null(strstr(e.message, "..."));
+  unlink(path);
+}
+
 /* ---- watertight meshes --------------------------------------------------- */
 
 static double uniform(unsigned long long *state) {
@@ -288,6 +326,7 @@ int main(void) {
   const struct CMUnitTest tests[] = {
       cmocka_unit_test(thin_cylinder),
       cmocka_unit_test(meshes_are_watertight),
+      cmocka_unit_test(long_numbers_are_read_whole),
   };
   return cmocka_run_group_tests(tests, NULL, NULL);
 }

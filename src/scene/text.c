@@ -4,7 +4,6 @@
 #include "scene/file.h"
 #include "scene/number.h"
 
-#include <ctype.h>
 #include <errno.h>
 #include <math.h>
 #include <stdarg.h>
@@ -60,20 +59,43 @@ static void skip(text_file *t, int stop_at_eol) {
   }
 }
 
-const char *text_token(text_file *t, char *buf, size_t size) {
+static int is_space(char c) {
+  return c == ' ' || c == '\t' || c == '\n' || c == '\r' || c == '\f' ||
+         c == '\v';
+}
+
+const char *text_span(text_file *t, size_t *len) {
   skip(t, 0);
   t->token_line = t->line;
-  if (!*t->pos)
+  const char *start = t->pos, *p = start;
+  if (!*p)
     return NULL;
-  size_t n = 0;
-  while (*t->pos && !isspace((unsigned char)*t->pos) &&
-         !(t->comment && *t->pos == t->comment)) {
-    if (n + 1 < size)
-      buf[n++] = *t->pos;
-    t->pos++;
-  }
+  char comment = t->comment;
+  while (*p && !is_space(*p) && !(comment && *p == comment))
+    p++;
+  t->pos = p;
+  *len = (size_t)(p - start);
+  return start;
+}
+
+const char *text_token(text_file *t, char *buf, size_t size) {
+  size_t n;
+  const char *tok = text_span(t, &n);
+  if (!tok)
+    return NULL;
+  if (n >= size) /* longer than any word the caller knows: shown cut */
+    n = size - 1;
+  memcpy(buf, tok, n);
   buf[n] = '\0';
   return buf;
+}
+
+/* A token for a message: at most 40 characters, "..." when cut. */
+static void quote(char *out, size_t size, const char *tok, size_t len) {
+  if (len > 40)
+    snprintf(out, size, "%.40s...", tok);
+  else
+    snprintf(out, size, "%.*s", (int)len, tok);
 }
 
 int text_more_on_line(text_file *t) {
@@ -83,22 +105,24 @@ int text_more_on_line(text_file *t) {
 
 glint_status text_number(text_file *t, const char *what, double *out,
                          glint_error *error) {
-  char buf[128];
-  const char *tok = text_token(t, buf, sizeof buf);
+  size_t len;
+  const char *tok = text_span(t, &len);
   if (!tok)
     return gli_fail(error, GLINT_E_PARSE,
-                      "%s:%d: the file ends where %s was expected", t->path,
-                      t->line, what);
-  int r = number_parse(tok, strlen(tok), out);
+                    "%s:%d: the file ends where %s was expected", t->path,
+                    t->line, what);
+  int r = number_parse(tok, len, out);
+  if (r == NUMBER_OK)
+    return GLINT_OK;
+  char shown[48];
+  quote(shown, sizeof shown, tok, len);
   if (r == NUMBER_BAD)
     return gli_fail(error, GLINT_E_PARSE,
-                      "%s:%d: expected a number for %s, found '%s'", t->path,
-                      t->token_line, what, tok);
-  if (r == NUMBER_NOT_FINITE)
-    return gli_fail(error, GLINT_E_PARSE,
-                      "%s:%d: %s is '%s', not a finite number", t->path,
-                      t->token_line, what, tok);
-  return GLINT_OK;
+                    "%s:%d: expected a number for %s, found '%s'", t->path,
+                    t->token_line, what, shown);
+  return gli_fail(error, GLINT_E_PARSE,
+                  "%s:%d: %s is '%s', not a finite number", t->path,
+                  t->token_line, what, shown);
 }
 
 glint_status text_vec3(text_file *t, const char *what, glint_vec3 *out,
@@ -113,23 +137,32 @@ glint_status text_vec3(text_file *t, const char *what, glint_vec3 *out,
 
 glint_status text_int(text_file *t, const char *what, long min, long max,
                       long *out, glint_error *error) {
-  char buf[128];
-  const char *tok = text_token(t, buf, sizeof buf);
-  if (!tok)
+  size_t len;
+  const char *span = text_span(t, &len);
+  if (!span)
     return gli_fail(error, GLINT_E_PARSE,
-                      "%s:%d: the file ends where %s was expected", t->path,
-                      t->line, what);
+                    "%s:%d: the file ends where %s was expected", t->path,
+                    t->line, what);
+  char buf[48];
+  const char *tok = buf;
+  if (len > 40) { /* no whole number a scene needs is this long */
+    quote(buf, sizeof buf, span, len);
+    return gli_fail(error, GLINT_E_PARSE,
+                    "%s:%d: expected a whole number for %s, found '%s'",
+                    t->path, t->token_line, what, tok);
+  }
+  memcpy(buf, span, len);
+  buf[len] = '\0';
   char *end;
   errno = 0;
   long v = strtol(tok, &end, 10);
   if (end == tok || *end != '\0' || errno == ERANGE)
     return gli_fail(error, GLINT_E_PARSE,
-                      "%s:%d: expected a whole number for %s, found '%s'",
-                      t->path, t->token_line, what, tok);
+                    "%s:%d: expected a whole number for %s, found '%s'",
+                    t->path, t->token_line, what, tok);
   if (v < min || v > max)
-    return gli_fail(error, GLINT_E_PARSE,
-                      "%s:%d: %s is %ld, outside %ld..%ld", t->path,
-                      t->token_line, what, v, min, max);
+    return gli_fail(error, GLINT_E_PARSE, "%s:%d: %s is %ld, outside %ld..%ld",
+                    t->path, t->token_line, what, v, min, max);
   *out = v;
   return GLINT_OK;
 }

@@ -25,6 +25,10 @@ void text_close(text_file *t);
 
 /* The next white-space separated token (copied into buf), or NULL at the
  * end of the file. */
+/* The next token (white space and comments skipped) in place: its first
+ * character and *len; NULL at the end of the file. */
+const char *text_span(text_file *t, size_t *len);
+/* The next token copied into buf (cut to size - 1 characters). */
 const char *text_token(text_file *t, char *buf, size_t size);
 
 /* Whether another token follows on the current line. */
