@@ -21,11 +21,17 @@
 extern "C" {
 #endif
 
+/* The library is built with hidden symbols: what this header declares is
+ * all it exports. */
+#if defined(__GNUC__)
+#pragma GCC visibility push(default)
+#endif
+
 #define GLINT_VERSION_MAJOR 0
-#define GLINT_VERSION_MINOR 4
+#define GLINT_VERSION_MINOR 5
 #define GLINT_VERSION_PATCH 0
 
-/* "0.4.0": the version of the library actually linked. */
+/* "0.5.0": the version of the library actually linked. */
 const char *glint_version(void);
 
 /* ------------------------------------------------------------------------ */
@@ -469,6 +475,10 @@ glint_status glint_renderer_render(glint_renderer *renderer,
                                    const glint_frame_settings *frame,
                                    glint_film *film, glint_stats *stats,
                                    glint_error *error);
+
+#if defined(__GNUC__)
+#pragma GCC visibility pop
+#endif
 
 #ifdef __cplusplus
 }
