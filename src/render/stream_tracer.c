@@ -32,10 +32,13 @@
  * That keeps the stream within about 10% of the beams on coherent scenes,
  * where compaction buys nothing.
  *
+ * The buffers, their compaction and the pixels' accumulation are
+ * render/ray_stream.h's; this file schedules the generations and shades.
  * Compiled once per ISA, like the beam tracer. */
 #include "render/backend.h"
 #include "render/packet_shading.h"
 #include "render/primary.h"
+#include "render/ray_stream.h"
 
 #include "core/error.h"
 #include "core/timer.h"
@@ -43,88 +46,6 @@
 #include <stdlib.h>
 #include <string.h>
 #include <x86intrin.h>
-
-#define STREAM_CAPACITY 4096 /* rays per generation buffer */
-
-/* A generation's rays, structure of arrays. */
-typedef struct ray_stream {
-  float *ox, *oy, *oz, *dx, *dy, *dz, *wr, *wg, *wb;
-  int32_t *pixel;
-  int count, cursor;
-} ray_stream;
-
-typedef struct stream_scratch {
-  /* Two streams per generation level: the transmitted (refracted) rays and
-   * the reflected ones. Kept apart, each is coherent: a packet of rays
-   * that entered a glass sphere all meet it again from inside, while a
-   * packet mixing them with rays bounced off it would shade two objects
-   * per packet, lane by lane. (Level 0, the primary rays, is made in
-   * registers and stays empty.) */
-  ray_stream *levels;
-  float *accum; /* tile pixels x (r, g, b, unused), summed over samples */
-  float *log;   /* (r, g, b, pixel) waiting to be added (see fold_log) */
-  int log_count;
-} stream_scratch;
-
-enum { TRANSMITTED = 0, REFLECTED = 1 };
-#define STREAM(sc, level, kind) (&(sc)->levels[2 * (level) + (kind)])
-
-/* ---- memory ------------------------------------------------------------ */
-
-#define RAY_FLOATS 9
-#define LOG_CAPACITY 512 /* a multiple of every W; 8 KiB stays in L1 */
-
-/* Each array has room for W floats past its capacity: compress-stores
- * write whole vectors. */
-#define SLOTS (STREAM_CAPACITY + GLINT_SIMD_WIDTH)
-
-static size_t level_bytes(void) {
-  return (size_t)SLOTS * (RAY_FLOATS * sizeof(float) + sizeof(int32_t)) +
-         (RAY_FLOATS + 1) * 64;
-}
-
-static size_t accum_bytes(void) {
-  return (size_t)GLINT_TILE_SIZE * GLINT_TILE_SIZE * 4 * sizeof(float) +
-         (size_t)LOG_CAPACITY * 4 * sizeof(float) + 2 * 64;
-}
-
-static size_t scratch_bytes(int levels) {
-  return sizeof(stream_scratch) + 64 +
-         (size_t)levels * 2 * (sizeof(ray_stream) + level_bytes()) +
-         accum_bytes() + 64 * 32;
-}
-
-/* Carves the scratch block (allocated by the driver, 64-byte aligned) into
- * the buffers, each aligned for the widest vector. */
-static char *align64(char *p) {
-  return (char *)(((uintptr_t)p + 63) & ~(uintptr_t)63);
-}
-
-static stream_scratch *carve(void *scratch, int levels) {
-  char *p = scratch;
-  stream_scratch *sc = (stream_scratch *)p;
-  p = align64(p + sizeof *sc);
-  sc->levels = (ray_stream *)p;
-  p = align64(p + (size_t)levels * 2 * sizeof *sc->levels);
-  for (int l = 0; l < 2 * levels; l++) {
-    ray_stream *r = &sc->levels[l];
-    float **f[RAY_FLOATS] = {&r->ox, &r->oy, &r->oz, &r->dx, &r->dy,
-                             &r->dz, &r->wr, &r->wg, &r->wb};
-    for (int k = 0; k < RAY_FLOATS; k++) {
-      *f[k] = (float *)p;
-      p = align64(p + SLOTS * sizeof(float));
-    }
-    r->pixel = (int32_t *)p;
-    p = align64(p + SLOTS * sizeof(int32_t));
-    r->count = r->cursor = 0;
-  }
-  sc->accum = (float *)p;
-  p = align64(p +
-              (size_t)GLINT_TILE_SIZE * GLINT_TILE_SIZE * 4 * sizeof(float));
-  sc->log = (float *)p;
-  sc->log_count = 0;
-  return sc;
-}
 
 /* ---- stage timing ------------------------------------------------------ */
 
@@ -152,57 +73,13 @@ static ALWAYS_INLINE uint64_t tick(const tracer *t) {
   return t->timing ? __rdtsc() : 0;
 }
 
-/* ---- appending rays (the compaction) ------------------------------------ */
+/* ---- appending rays (the compaction, timed) ----------------------------- */
 
 static ALWAYS_INLINE void append_ray(tracer *t, ray_stream *r, vmask m, vvec3 o,
                                      vvec3 d, vvec3 w, vint pixel) {
   uint64_t t0 = tick(t);
-  int n = r->count;
-  vf_compress_store(r->ox + n, m, o.x);
-  vf_compress_store(r->oy + n, m, o.y);
-  vf_compress_store(r->oz + n, m, o.z);
-  vf_compress_store(r->dx + n, m, d.x);
-  vf_compress_store(r->dy + n, m, d.y);
-  vf_compress_store(r->dz + n, m, d.z);
-  vf_compress_store(r->wr + n, m, w.x);
-  vf_compress_store(r->wg + n, m, w.y);
-  vf_compress_store(r->wb + n, m, w.z);
-  r->count += vf_compress_store((float *)r->pixel + n, m, vi_as_vf(pixel));
+  ray_stream_append(r, m, o, d, w, pixel);
   t->stage_ticks[STAGE_COMPACT] += tick(t) - t0;
-}
-
-/* What secondary rays bring to pixels is logged, a packet at a time with
- * four vector stores, and folded into the pixels when the log fills and at
- * the end of the tile: a packet's rays can share a pixel (rays from one
- * primary sample meet again in a later generation), so the adds must be
- * done one by one, and done in one tight sequential pass they cost a
- * fraction of doing them packet by packet. (Measured: a gather-add-scatter
- * with AVX-512 conflict detection, or a loop over the packet's lanes, each
- * cost as much as all the rest of the secondary rays' work on Whitted.) */
-static void fold_log(stream_scratch *sc) {
-  /* Entries are (r, g, b, pixel) and pixels (r, g, b, unused): one 4-wide
-   * load, add and store each. */
-  float *accum = sc->accum;
-  const float *log = sc->log;
-  for (int i = 0; i < sc->log_count; i++) {
-    const float *e = log + 4 * i;
-    int32_t px;
-    memcpy(&px, e + 3, sizeof px);
-    __m128 sum = _mm_add_ps(_mm_load_ps(accum + 4 * px), _mm_load_ps(e));
-    _mm_store_ps(accum + 4 * px, sum);
-  }
-  sc->log_count = 0;
-}
-
-static ALWAYS_INLINE void accumulate(stream_scratch *sc, vmask m, vint pixel,
-                                     vvec3 c) {
-  if (sc->log_count > LOG_CAPACITY - LANES)
-    fold_log(sc);
-  int n = sc->log_count;
-  /* inactive lanes bring nothing, to pixel 0 */
-  vf_store_quads(sc->log + 4 * n, vf_keep(m, c.x), vf_keep(m, c.y),
-                 vf_keep(m, c.z), vi_as_vf(vi_select(m, pixel, vi_set1(0))));
-  sc->log_count = n + LANES;
 }
 
 /* Whether level's two streams can take one more packet's children each. */
