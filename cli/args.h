@@ -7,7 +7,7 @@
 
 #include <stddef.h>
 
-/* Exit statuses: bad arguments or input get 2 (SPEC of the CLI). */
+/* Exit statuses: bad arguments or input get 2 (see glint --help). */
 enum { EXIT_USAGE = 2 };
 
 typedef struct arg_cursor {

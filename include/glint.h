@@ -67,7 +67,8 @@ typedef struct glint_vec3 {
   double x, y, z;
 } glint_vec3;
 
-/* A pinhole camera (SPEC §2): from, at, up and the horizontal field of view. */
+/* A pinhole camera (docs/specification.md §2): from, at, up and the horizontal
+ * field of view. */
 typedef struct glint_camera {
   glint_vec3 from, at, up;
   double fov_x_degrees;
@@ -85,7 +86,7 @@ typedef enum glint_texture {
   GLINT_TEXTURE_CHECKER_SOLID
 } glint_texture;
 
-/* The material of SPEC §4. Colours are linear RGB. */
+/* The material of docs/specification.md §4. Colours are linear RGB. */
 typedef struct glint_material {
   glint_vec3 color; /* C, when untextured */
   glint_texture texture;
@@ -104,7 +105,8 @@ void glint_material_default(glint_material *material);
 glint_status glint_scene_create(glint_scene **scene, glint_error *error);
 void glint_scene_destroy(glint_scene *scene);
 
-/* The thesis's scenes (SPEC §8): "whitted", "giza", "billiard", "phong". */
+/* The thesis's scenes (docs/specification.md §8): "whitted", "giza",
+ * "billiard", "phong". */
 size_t glint_builtin_scene_count(void);
 const char *glint_builtin_scene_name(size_t index);
 glint_status glint_scene_builtin(const char *name, glint_scene **scene,
@@ -134,7 +136,8 @@ glint_status glint_scene_add_material(glint_scene *scene,
                                       uint32_t *material_id,
                                       glint_error *error);
 
-/* Primitives. Each call adds one object; beams split per object (SPEC §6). */
+/* Primitives. Each call adds one object; beams split per object
+ * (docs/specification.md §6). */
 glint_status glint_scene_add_sphere(glint_scene *scene, glint_vec3 center,
                                     double radius, uint32_t material_id,
                                     glint_error *error);
@@ -247,7 +250,7 @@ typedef enum glint_backend {
   GLINT_BACKEND_AUTO = 0,      /* the fastest this CPU supports */
   GLINT_BACKEND_SCALAR_FLOAT,  /* one ray at a time, float: the reference */
   GLINT_BACKEND_SCALAR_DOUBLE, /* one ray at a time, double */
-  GLINT_BACKEND_SSE,           /* 4-wide beams (SPEC §6) */
+  GLINT_BACKEND_SSE,           /* 4-wide beams (docs/specification.md §6) */
   GLINT_BACKEND_AVX2,          /* 8-wide beams */
   GLINT_BACKEND_AVX512,        /* 16-wide beams */
   GLINT_BACKEND_STREAM,        /* ray streams, widest ISA */
@@ -267,7 +270,8 @@ glint_backend glint_backend_resolve(glint_backend backend);
 /* Lanes per packet: 1 for scalar backends. */
 int glint_backend_width(glint_backend backend);
 
-/* pow and exp in the SIMD backends (SPEC §7). Scalar backends use libm. */
+/* pow and exp in the SIMD backends (docs/specification.md §7). Scalar backends
+ * use libm. */
 typedef enum glint_math {
   GLINT_MATH_MINIMAX = 0, /* Remez minimax polynomials: the default */
   GLINT_MATH_FAST,        /* IEEE-754 bit manipulation: fast, coarse */
@@ -300,7 +304,7 @@ typedef int (*glint_progress_fn)(void *user, double fraction);
 typedef struct glint_render_settings {
   int width, height; /* 0: the scene's own resolution */
   int max_depth;     /* 1 = local shading with shadows; default 5 */
-  int spp;           /* samples per pixel; default 5 (SPEC §5) */
+  int spp; /* samples per pixel; default 5 (docs/specification.md §5) */
   glint_backend backend;
   glint_math math;
   int rcp_newton; /* 1: refine rcp by a Newton step (eq. 3.1); 0: the
@@ -382,9 +386,9 @@ int glint_film_height(const glint_film *film);
 float *glint_film_pixels(glint_film *film);
 const float *glint_film_pixels_const(const glint_film *film);
 
-/* The 8-bit conversion of SPEC §4: each channel clamped to [0, 1], raised to
- * 1/gamma (gamma 1: linear), written as round(255 c). `image` must have the
- * film's size; nothing is allocated. */
+/* The 8-bit conversion of docs/specification.md §4: each channel clamped to [0,
+ * 1], raised to 1/gamma (gamma 1: linear), written as round(255 c). `image`
+ * must have the film's size; nothing is allocated. */
 glint_status glint_film_to_image(const glint_film *film, double gamma,
                                  glint_image *image, glint_error *error);
 

@@ -1,4 +1,4 @@
-/* Camera rays of SPEC §2 for the centre and corner pixels. */
+/* Camera rays of docs/specification.md §2 for the centre and corner pixels. */
 #include "test_util.h"
 
 #include "render/camera.h"

@@ -1,5 +1,5 @@
-/* Every intersection case of SPEC §3 and the optics of eq. 2.11–2.13,
- * against hand-computed values. Compiled once per precision. */
+/* Every intersection case of docs/specification.md §3 and the optics of
+ * eq. 2.11–2.13, against hand-computed values. Compiled once per precision. */
 #include "test_util.h"
 
 #include "geometry/intersect.h"

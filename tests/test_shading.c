@@ -1,6 +1,6 @@
-/* The shading of single points (SPEC §4) against hand-computed colours.
- * Each case is a 1x1 image with one sample, whose primary ray runs exactly
- * along the camera's view direction, rendered by every backend this CPU
+/* The shading of single points (docs/specification.md §4) against hand-computed
+ * colours. Each case is a 1x1 image with one sample, whose primary ray runs
+ * exactly along the camera's view direction, rendered by every backend this CPU
  * supports: all of them must agree with the hand computation to one level. */
 #include "test_util.h"
 
@@ -220,8 +220,8 @@ static void total_internal_reflection_weight(void **state) {
   expect_pixel(s, 5, 0, 1, 0);
 }
 
-/* Planar checker (SPEC §8): floor(x) + floor(z) even at (0.5, 0, 0.5), odd
- * at (1.5, 0, 0.5); ambient light only, so I = C exactly. */
+/* Planar checker (docs/specification.md §8): floor(x) + floor(z) even at (0.5,
+ * 0, 0.5), odd at (1.5, 0, 0.5); ambient light only, so I = C exactly. */
 static void planar_checker(void **state) {
   (void)state;
   for (int odd = 0; odd < 2; odd++) {

@@ -21,7 +21,8 @@
       fail_msg("%s failed: %s", #call, e_.message);                            \
   } while (0)
 
-/* Expected 8-bit value of a linear colour channel: round(255 c) (SPEC §4). */
+/* Expected 8-bit value of a linear colour channel: round(255 c)
+ * (docs/specification.md §4). */
 static inline int expected_byte(double c) {
   if (c <= 0)
     return 0;

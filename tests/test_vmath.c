@@ -1,6 +1,6 @@
-/* The SIMD maths library (SPEC §7): each variant's largest relative error
- * over the inputs the renderer gives it, against a documented bound, on
- * every ISA this CPU runs. The bounds are the README's error table:
+/* The SIMD maths library (docs/specification.md §7): each variant's largest
+ * relative error over the inputs the renderer gives it, against a documented
+ * bound, on every ISA this CPU runs. The bounds are the README's error table:
  *
  *   pow(x, y): y in [1, 1000] (Phong exponents), x such that x^y lies in
  *              [2^-20, 1] (smaller highlights are far below one 8-bit level)

@@ -1,5 +1,6 @@
-/* Ray-primitive intersection for one ray (SPEC §3, thesis §2.4), in the
- * translation unit's precision. A hit counts only for tmin < t < tmax. */
+/* Ray-primitive intersection for one ray (docs/specification.md §3, thesis
+ * §2.4), in the translation unit's precision. A hit counts only for tmin < t <
+ * tmax. */
 #ifndef GLINT_GEOMETRY_INTERSECT_H
 #define GLINT_GEOMETRY_INTERSECT_H
 

@@ -1,5 +1,5 @@
-/* Linear floating-point films and their 8-bit conversion (SPEC §4: only the
- * average is clamped, then written as round(255 c)). */
+/* Linear floating-point films and their 8-bit conversion (docs/specification.md
+ * §4: only the average is clamped, then written as round(255 c)). */
 #include "image/image.h"
 
 #include "core/error.h"

@@ -16,9 +16,9 @@ struct glint_film {
   float *rgb; /* width*height*3, top row first, aligned */
 };
 
-/* SPEC §4's 8-bit conversion of n linear values: clamp to [0, 1], then
- * c^(1/gamma), then round(255 c). Used for whole films and, while a frame
- * renders, for each finished tile. */
+/* docs/specification.md §4's 8-bit conversion of n linear values: clamp to [0,
+ * 1], then c^(1/gamma), then round(255 c). Used for whole films and, while a
+ * frame renders, for each finished tile. */
 void gli_film_span_to_bytes(const float *src, uint8_t *dst, size_t n,
                             double gamma);
 

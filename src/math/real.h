@@ -1,7 +1,8 @@
 /* The scalar precision of a translation unit. The scalar tracer is one source
- * compiled twice (SPEC §1: the thesis's "float" and "double" builds): the
- * build defines GLINT_REAL_FLOAT or GLINT_REAL_DOUBLE, and REAL_NAME() gives
- * every exported symbol a suffix so both live in one binary. */
+ * compiled twice (docs/specification.md §1: the thesis's "float" and "double"
+ * builds): the build defines GLINT_REAL_FLOAT or GLINT_REAL_DOUBLE, and
+ * REAL_NAME() gives every exported symbol a suffix so both live in one binary.
+ */
 #ifndef GLINT_MATH_REAL_H
 #define GLINT_MATH_REAL_H
 

@@ -1,9 +1,9 @@
-/* The beam tracer (SPEC §6, thesis chapter 4): W rays traced together in SIMD
- * registers. A beam finds each lane's nearest hit, splits into one sub-beam
- * per object hit (§4.3, after Boulos et al. 2007), shades each sub-beam with
- * its object's material in SIMD, and traces at most one reflected and one
- * refracted beam per sub-beam, recursively. Primary beams come from screen
- * blocks shaped to the width: 2x2 (SSE), 4x2 (AVX2), 4x4 (AVX-512).
+/* The beam tracer (docs/specification.md §6, thesis chapter 4): W rays traced
+ * together in SIMD registers. A beam finds each lane's nearest hit, splits into
+ * one sub-beam per object hit (§4.3, after Boulos et al. 2007), shades each
+ * sub-beam with its object's material in SIMD, and traces at most one reflected
+ * and one refracted beam per sub-beam, recursively. Primary beams come from
+ * screen blocks shaped to the width: 2x2 (SSE), 4x2 (AVX2), 4x4 (AVX-512).
  *
  * This file is compiled once per ISA (see simd/simd.h). It is instantiated
  * twice more inside: once with the default maths as compile-time constants
@@ -28,7 +28,8 @@ typedef void (*trace_fn)(const beam_ctx *c, const vvec3 *o, const vvec3 *d,
                          vmask active, int level, vvec3 *color);
 
 /* The thesis's sub-beam after shading: below the depth limit it traces at
- * most one reflected and one refracted beam (SPEC §6), then Beer's law. */
+ * most one reflected and one refracted beam (docs/specification.md §6), then
+ * Beer's law. */
 static ALWAYS_INLINE void
 finish_sub_beam(const beam_ctx *c, vvec3 d, const packet_hit *h,
                 const packet_surface *f, int object, vmask sub, int level,
@@ -70,8 +71,8 @@ finish_sub_beam(const beam_ctx *c, vvec3 d, const packet_hit *h,
  * shading; then each sub-beam's secondary beams.
  *
  * Shadow rays are traced as one beam per light for all the lanes that hit
- * something (SPEC §6: "shadow rays for a beam are traced as a beam too"),
- * not one per sub-beam: a beam that meets many small objects would
+ * something (docs/specification.md §6: "shadow rays for a beam are traced as a
+ * beam too"), not one per sub-beam: a beam that meets many small objects would
  * otherwise cast nearly empty shadow packets. Each lane's material
  * coefficients are gathered from its sub-beam so the light loop runs once. */
 static ALWAYS_INLINE void trace_beam_body(const beam_ctx *c, vvec3 o, vvec3 d,

@@ -1,5 +1,5 @@
-/* The camera basis of SPEC §2 (thesis eq. 2.1 with the aspect ratio folded
- * in), computed in double once per frame. */
+/* The camera basis of docs/specification.md §2 (thesis eq. 2.1 with the aspect
+ * ratio folded in), computed in double once per frame. */
 #include "render/frame.h"
 
 #include <math.h>

@@ -1,5 +1,5 @@
-/* The pinhole camera of SPEC §2 (thesis eq. 2.1 with the aspect ratio folded
- * in), in the translation unit's precision. */
+/* The pinhole camera of docs/specification.md §2 (thesis eq. 2.1 with the
+ * aspect ratio folded in), in the translation unit's precision. */
 #ifndef GLINT_RENDER_CAMERA_H
 #define GLINT_RENDER_CAMERA_H
 

@@ -12,8 +12,9 @@
  * for load balancing. */
 #define GLINT_TILE_SIZE 16
 
-/* The pinhole camera of SPEC §2 as an orthonormal basis, computed once per
- * frame in double whatever the precision (see render/camera.h). */
+/* The pinhole camera of docs/specification.md §2 as an orthonormal basis,
+ * computed once per frame in double whatever the precision (see
+ * render/camera.h). */
 typedef struct camera_basis {
   double from[3], dir[3], right[3], up[3];
   double tan_x, tan_y; /* half extents of the image plane at distance 1 */
@@ -35,9 +36,9 @@ typedef struct tile_rect {
   int x0, y0, x1, y1; /* pixels [x0, x1) x [y0, y1) */
 } tile_rect;
 
-/* SPEC §5: the sample positions of a pixel, as offsets from its centre. One
- * sample is the centre; five are the thesis's centre and (±1/4, ±1/4);
- * any other count is a deterministic Hammersley set. */
+/* docs/specification.md §5: the sample positions of a pixel, as offsets from
+ * its centre. One sample is the centre; five are the thesis's centre and (±1/4,
+ * ±1/4); any other count is a deterministic Hammersley set. */
 void gli_sample_offsets(int spp, float (*offsets)[2]);
 
 #endif

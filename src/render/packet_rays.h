@@ -1,6 +1,6 @@
 /* What W rays at once find in the packet scene: their nearest hits, and
- * the transmission of shadow rays toward a light (SPEC §4); the packet
- * forms of scalar_nearest_hit and scalar_transmission
+ * the transmission of shadow rays toward a light (docs/specification.md §4);
+ * the packet forms of scalar_nearest_hit and scalar_transmission
  * (render/scalar_scene.c). The BVH walks are accel/packet_traverse.h's. */
 #ifndef GLINT_RENDER_PACKET_RAYS_H
 #define GLINT_RENDER_PACKET_RAYS_H
@@ -74,10 +74,10 @@ static ALWAYS_INLINE void packet_nearest(const packet_scene *ps, vvec3 o,
 
 /* ---- shadow rays ------------------------------------------------------ */
 
-/* SPEC §4's transmission toward a light, for W shadow rays at once (the
- * scalar_transmission of scalar_scene.c, lane-parallel): each opaque crossing
- * kills its lane; each transparent one multiplies by kt and adds to the Beer
- * exponent (+a t entering, -a t leaving). */
+/* docs/specification.md §4's transmission toward a light, for W shadow rays at
+ * once (the scalar_transmission of scalar_scene.c, lane-parallel): each opaque
+ * crossing kills its lane; each transparent one multiplies by kt and adds to
+ * the Beer exponent (+a t entering, -a t leaving). */
 typedef struct shadow_state {
   vvec3 kt, exponent;
   vmask alive;

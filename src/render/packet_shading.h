@@ -1,7 +1,7 @@
-/* The Whitted model for W lanes at once (SPEC §4; thesis eq. 2.9-2.13):
- * surfaces, textures, the lights' local part, reflection and refraction,
- * and Beer's law, compiled once per ISA and used by both packet backends
- * (beam_tracer.c, stream_tracer.c). The scalar reference is
+/* The Whitted model for W lanes at once (docs/specification.md §4; thesis
+ * eq. 2.9-2.13): surfaces, textures, the lights' local part, reflection and
+ * refraction, and Beer's law, compiled once per ISA and used by both packet
+ * backends (beam_tracer.c, stream_tracer.c). The scalar reference is
  * render/scalar_tracer.c. */
 #ifndef GLINT_RENDER_PACKET_SHADING_H
 #define GLINT_RENDER_PACKET_SHADING_H
@@ -276,8 +276,8 @@ static ALWAYS_INLINE vfloat vv_component(vvec3 p, vint axis) {
                    vf_select(vi_eq(axis, vi_set1(1)), p.y, p.z));
 }
 
-/* The surface colour C per lane (SPEC §4 textures): the parity of the sum
- * of the checker cell indices picks the odd or even colour. */
+/* The surface colour C per lane (docs/specification.md §4 textures): the parity
+ * of the sum of the checker cell indices picks the odd or even colour. */
 static ALWAYS_INLINE vfloat checker_cells_planar(vfloat u, vfloat v,
                                                  vfloat inv_size) {
   return vf_add(vf_floor(vf_mul(u, inv_size)), vf_floor(vf_mul(v, inv_size)));

@@ -1,7 +1,8 @@
-/* Primary beams (SPEC §2, §6): W camera rays made in registers for a block of
- * BW x BH pixels of a tile, lane i on pixel (bx + i % BW, by + i / BW), one
- * sample position at a time. Shared by the beam and the stream tracers (and
- * glint_trace_primary), so all of them aim their rays identically. */
+/* Primary beams (docs/specification.md §2, §6): W camera rays made in registers
+ * for a block of BW x BH pixels of a tile, lane i on pixel (bx + i % BW, by + i
+ * / BW), one sample position at a time. Shared by the beam and the stream
+ * tracers (and glint_trace_primary), so all of them aim their rays identically.
+ */
 #ifndef GLINT_RENDER_PRIMARY_H
 #define GLINT_RENDER_PRIMARY_H
 
@@ -32,7 +33,8 @@ static ALWAYS_INLINE primary_beams primary_beams_init(const camera *cam) {
   }
   pb.lane_x = vf_load(lx);
   pb.lane_y = vf_load(ly);
-  /* SPEC §2: x = (2 px / W - 1) tan_x, y = (1 - 2 py / H) tan_y */
+  /* docs/specification.md §2: x = (2 px / W - 1) tan_x, y = (1 - 2 py / H)
+   * tan_y */
   pb.sx = vf_set1(2 * cam->tan_x / cam->width);
   pb.ox = vf_set1(-cam->tan_x);
   pb.sy = vf_set1(-2 * cam->tan_y / cam->height);

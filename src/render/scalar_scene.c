@@ -26,7 +26,8 @@ static glint_vec3 dcross(glint_vec3 a, glint_vec3 b) {
 }
 
 /* The two world axes least aligned with n: a planar checker on a floor
- * (n = +y) is indexed by x and z, exactly as SPEC §8 writes it. */
+ * (n = +y) is indexed by x and z, exactly as docs/specification.md §8 writes
+ * it. */
 static void planar_axes(glint_vec3 n, int *u, int *v) {
   double ax = fabs(n.x), ay = fabs(n.y), az = fabs(n.z);
   if (ay >= ax && ay >= az)

@@ -104,10 +104,10 @@ size_t scalar_scene_bytes(const scene_r *s);
 /* Nearest hit along o + t d, eps < t < tmax. */
 int scalar_nearest_hit(const scene_r *s, vec3 o, vec3 d, real tmax, hit_r *hit);
 
-/* SPEC §4: the fraction of light that travels from o along unit d for a
- * distance dist. An opaque surface on the way gives 0; each transparent
- * surface crossed multiplies by its kt, and each stretch inside an absorbing
- * object by exp(-absorb * length). */
+/* docs/specification.md §4: the fraction of light that travels from o along
+ * unit d for a distance dist. An opaque surface on the way gives 0; each
+ * transparent surface crossed multiplies by its kt, and each stretch inside an
+ * absorbing object by exp(-absorb * length). */
 vec3 scalar_transmission(const scene_r *s, vec3 o, vec3 d, real dist);
 
 #endif

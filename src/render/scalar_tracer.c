@@ -1,7 +1,7 @@
 /* The scalar Whitted tracer: one ray at a time, recursively (thesis §2.2),
- * shading by the extended Phong model of SPEC §4 (eq. 2.9–2.13). This source
- * is compiled once per precision; the float and double builds are the
- * reference every faster backend is checked against. */
+ * shading by the extended Phong model of docs/specification.md §4
+ * (eq. 2.9–2.13). This source is compiled once per precision; the float and
+ * double builds are the reference every faster backend is checked against. */
 #include "render/backend.h"
 #include "render/scalar_scene.h"
 #include "render/camera.h"
@@ -17,7 +17,7 @@ static inline int parity(real a) {
   return f != r_floor(f);
 }
 
-/* The surface colour C at p (SPEC §4, textures). */
+/* The surface colour C at p (docs/specification.md §4, textures). */
 static inline vec3 surface_color(const material_r *m, const object_r *ob,
                                  vec3 p) {
   switch (m->texture) {

@@ -8,9 +8,9 @@
  *
  * Each ray carries its pixel and an RGB weight (the product of the kr, kt
  * and Beer factors on its way from the eye), so a generation's rays are
- * independent: nothing waits for a recursive call to return. SPEC §4's
- * formula becomes, for a ray of weight w hitting a surface,
- *   pixel += w Beer C ka Ia                          (ambient, at once)
+ * independent: nothing waits for a recursive call to return.
+ * docs/specification.md §4's formula becomes, for a ray of weight w hitting a
+ * surface, pixel += w Beer C ka Ia                          (ambient, at once)
  *   pixel += w Beer S_j (C kd N·L + ks (V·R)^h) I_L   (per light, once its
  *                                                      shadow ray returns S_j)
  *   child rays with weights w Beer kr (reflected) and w Beer kt (refracted),
@@ -156,7 +156,8 @@ static ALWAYS_INLINE vvec3 shade_hits(
   vvec3 zero = {vf_zero(), vf_zero(), vf_zero()};
   vvec3 brings = vv_select(hits, local, vv_select(misses, bg, zero));
 
-  /* Secondary rays, one level deeper (SPEC §4; eq. 2.12, 2.13). */
+  /* Secondary rays, one level deeper (docs/specification.md §4;
+   * eq. 2.12, 2.13). */
   if (level + 1 < t->max_depth &&
       (!lm.uniform || lm.m->kr > 0 || lm.m->kt > 0)) {
     vvec3 reflected, refracted;

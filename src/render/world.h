@@ -15,7 +15,7 @@
 struct glint_world {
   atomic_int refs; /* the caller's reference and one per renderer */
   glint_scene *scene;
-  double epsilon; /* SPEC §3, fixed at commit */
+  double epsilon; /* docs/specification.md §3, fixed at commit */
   pthread_mutex_t lock;
   int bvh_built;
   gli_bvh bvh;

@@ -1,4 +1,4 @@
-/* The thesis's four scenes, exactly as SPEC §8 gives them. */
+/* The thesis's four scenes, exactly as docs/specification.md §8 gives them. */
 #include "core/error.h"
 #include "scene/scene.h"
 
@@ -7,7 +7,7 @@
 
 typedef glint_vec3 V;
 
-/* SPEC §8: "Glass" with a per-scene absorbance. */
+/* docs/specification.md §8: "Glass" with a per-scene absorbance. */
 static glint_material glass(V absorb) {
   glint_material m;
   glint_material_default(&m);
@@ -236,7 +236,7 @@ glint_status glint_scene_builtin(const char *name, glint_scene **out,
       return GLINT_OK;
     }
   return gli_fail(e, GLINT_E_ARGUMENT,
-                    "unknown scene '%s' (built-in scenes: whitted, giza, "
-                    "billiard, phong)",
-                    name);
+                  "unknown scene '%s' (built-in scenes: whitted, giza, "
+                  "billiard, phong)",
+                  name);
 }

@@ -1,5 +1,5 @@
-/* Eric Haines's Neutral File Format (../shared/scenes/spd/NFF.TXT), the
- * format of the Standard Procedural Databases. Every entity is read:
+/* Eric Haines's Neutral File Format (the NFF description that comes with his
+ * Standard Procedural Databases), the SPD scenes' format. Every entity is read:
  *
  *   v   from/at/up/angle/hither/resolution: the camera. NFF's angle spans the
  *       centres of the outer pixel columns; glint's field of view spans the
@@ -10,12 +10,10 @@
  *       uncoloured lights open; glint gives each 1/sqrt(number of lights),
  *       the rule Haines suggests so that scenes with many lights are not
  *       washed out. A given colour is used as it is.
- *   f   a material: r g b Kd Ks Shine T ior, mapped onto SPEC §4 as
- *       C = (r, g, b), ka = 0.1 (as Tachyon), kd = Kd, ks = kr = Ks,
- *       h = Shine, kt = T, ior; no absorption.
- *   c   an open cylinder or cone (no end caps).
- *   s   a sphere.
- *   p   a polygon, one object, triangulated by scene/polygon.c (NFF says
+ *   f   a material: r g b Kd Ks Shine T ior, mapped onto docs/specification.md
+ * §4 as C = (r, g, b), ka = 0.1 (as Tachyon), kd = Kd, ks = kr = Ks, h = Shine,
+ * kt = T, ior; no absorption. c   an open cylinder or cone (no end caps). s   a
+ * sphere. p   a polygon, one object, triangulated by scene/polygon.c (NFF says
  *       convex, but SPD's gears have concave faces: ear clipping down to
  *       a convex rest, then well-shaped triangles by recursive bisection).
  *   pp  a polygonal patch: the same, with vertex normals, shaded smooth.
@@ -52,11 +50,11 @@ static glint_status expect_word(nff_reader *r, const char *word,
   const char *tok = text_token(&r->t, buf, sizeof buf);
   if (!tok)
     return gli_fail(e, GLINT_E_PARSE,
-                      "%s:%d: the file ends where '%s' was expected", r->t.path,
-                      r->t.line, word);
+                    "%s:%d: the file ends where '%s' was expected", r->t.path,
+                    r->t.line, word);
   if (strcmp(tok, word) != 0)
     return gli_fail(e, GLINT_E_PARSE, "%s:%d: expected '%s', found '%s'",
-                      r->t.path, r->t.token_line, word, tok);
+                    r->t.path, r->t.token_line, word, tok);
   return GLINT_OK;
 }
 
@@ -98,8 +96,8 @@ static glint_status read_view(nff_reader *r, glint_error *e) {
     return st;
   if (!(angle > 0 && angle < 180))
     return gli_fail(e, GLINT_E_PARSE,
-                      "%s:%d: view angle %g is not between 0 and 180",
-                      r->t.path, line, angle);
+                    "%s:%d: view angle %g is not between 0 and 180", r->t.path,
+                    line, angle);
   double half = tan(angle * 3.14159265358979323846 / 360.0);
   if (w > 1)
     half *= (double)w / (double)(w - 1);
@@ -164,9 +162,8 @@ static glint_status need_material(nff_reader *r, const char *entity,
                                   glint_error *e) {
   if (r->has_material)
     return GLINT_OK;
-  return gli_fail(e, GLINT_E_PARSE,
-                    "%s:%d: '%s' before any 'f' material line", r->t.path,
-                    r->t.token_line, entity);
+  return gli_fail(e, GLINT_E_PARSE, "%s:%d: '%s' before any 'f' material line",
+                  r->t.path, r->t.token_line, entity);
 }
 
 static glint_status read_sphere(nff_reader *r, glint_error *e) {
@@ -196,9 +193,9 @@ static glint_status read_cone(nff_reader *r, glint_error *e) {
     return st;
   if ((rb < 0) != (ra < 0) && rb != 0 && ra != 0)
     return gli_fail(e, GLINT_E_PARSE,
-                      "%s:%d: the cone's radii %g and %g have different "
-                      "signs",
-                      r->t.path, line, rb, ra);
+                    "%s:%d: the cone's radii %g and %g have different "
+                    "signs",
+                    r->t.path, line, rb, ra);
   return at_line(r, line,
                  glint_scene_add_cone(r->scene, base, fabs(rb), apex, fabs(ra),
                                       r->material, e),
@@ -216,11 +213,11 @@ static int emit_triangle(void *user, size_t a, size_t b, size_t c) {
   const glint_vec3 *v = pe->r->verts;
   if (!pe->patch)
     return (int)gli_scene_push_triangle(pe->r->scene, v[a], v[b], v[c], NULL,
-                                          pe->e);
+                                        pe->e);
   const glint_vec3 *n = pe->r->norms;
   glint_vec3 nrm[3] = {n[a], n[b], n[c]};
   return (int)gli_scene_push_triangle(pe->r->scene, v[a], v[b], v[c], nrm,
-                                        pe->e);
+                                      pe->e);
 }
 
 /* p and pp: a polygon of n vertices (see polygon.c), as one object. */
@@ -242,7 +239,7 @@ static glint_status read_polygon(nff_reader *r, int patch, glint_error *e) {
       r->norms = m;
     if (!v || !m)
       return gli_fail(e, GLINT_E_MEMORY, "%s:%d: out of memory", r->t.path,
-                        line);
+                      line);
     r->vert_cap = (size_t)n;
   }
   for (long i = 0; i < n; i++) {
@@ -260,19 +257,18 @@ static glint_status read_polygon(nff_reader *r, int patch, glint_error *e) {
       return st;
     }
   }
-  if ((st = gli_scene_begin_object(r->scene, GLINT_SHAPE_TRIANGLE,
-                                     r->material, e)))
+  if ((st = gli_scene_begin_object(r->scene, GLINT_SHAPE_TRIANGLE, r->material,
+                                   e)))
     return at_line(r, line, st, e);
   polygon_emit pe = {r, patch, e};
   int res = gli_triangulate(r->verts, (size_t)n, emit_triangle, &pe);
   if (res == GLINT_TRIANGULATE_NO_MEMORY)
-    return gli_fail(e, GLINT_E_MEMORY, "%s:%d: out of memory", r->t.path,
-                      line);
+    return gli_fail(e, GLINT_E_MEMORY, "%s:%d: out of memory", r->t.path, line);
   if (res == GLINT_TRIANGULATE_TOO_COMPLEX)
     return gli_fail(e, GLINT_E_PARSE,
-                      "%s:%d: %s: the polygon of %ld vertices has too many "
-                      "inward corners to triangulate",
-                      r->t.path, line, entity, n);
+                    "%s:%d: %s: the polygon of %ld vertices has too many "
+                    "inward corners to triangulate",
+                    r->t.path, line, entity, n);
   if (res)
     return at_line(r, line, (glint_status)res, e);
   return GLINT_OK;
@@ -304,7 +300,7 @@ static glint_status read_nff(nff_reader *r, glint_error *e) {
       st = read_polygon(r, 1, e);
     else
       st = gli_fail(e, GLINT_E_PARSE, "%s:%d: unknown entity '%s'", r->t.path,
-                      r->t.token_line, tok);
+                    r->t.token_line, tok);
   }
   if (st)
     return st;
@@ -317,8 +313,7 @@ static glint_status read_nff(nff_reader *r, glint_error *e) {
   return GLINT_OK;
 }
 
-glint_status gli_nff_load(const char *path, glint_scene **out,
-                            glint_error *e) {
+glint_status gli_nff_load(const char *path, glint_scene **out, glint_error *e) {
   nff_reader r;
   memset(&r, 0, sizeof r);
   glint_status st = text_open(&r.t, path, '#', e);

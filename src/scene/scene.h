@@ -85,17 +85,17 @@ int gli_vec3_finite(glint_vec3 v);
 /* Appends a triangle to the object being built (the last one added by
  * gli_scene_begin_object). `normals` may be NULL. */
 glint_status gli_scene_begin_object(glint_scene *scene, gli_shape shape,
-                                      uint32_t material, glint_error *error);
+                                    uint32_t material, glint_error *error);
 glint_status gli_scene_push_triangle(glint_scene *scene, glint_vec3 a,
-                                       glint_vec3 b, glint_vec3 c,
-                                       const glint_vec3 normals[3],
-                                       glint_error *error);
+                                     glint_vec3 b, glint_vec3 c,
+                                     const glint_vec3 normals[3],
+                                     glint_error *error);
 
 /* File readers (scene/nff.c, scene/json.c). */
 glint_status gli_nff_load(const char *path, glint_scene **out,
-                            glint_error *error);
+                          glint_error *error);
 glint_status gli_json_load(const char *path, glint_scene **out,
-                             glint_error *error);
+                           glint_error *error);
 
 /* Checks a camera as glint_scene_set_camera does (finite, 0 < fov < 180,
  * from != at, up not parallel to the view). */
@@ -103,10 +103,11 @@ glint_status gli_camera_check(const glint_camera *camera, glint_error *error);
 
 /* A deep copy (scene/copy.c). */
 glint_status gli_scene_copy(const glint_scene *scene, glint_scene **copy,
-                              glint_error *error);
+                            glint_error *error);
 
-/* The smallest t a hit may have (SPEC §3): 1e-4 times the scene's scale, the
- * largest coordinate magnitude among the camera and the bounded primitives. */
+/* The smallest t a hit may have (docs/specification.md §3): 1e-4 times the
+ * scene's scale, the largest coordinate magnitude among the camera and the
+ * bounded primitives. */
 double gli_scene_epsilon(const glint_scene *scene);
 
 #endif

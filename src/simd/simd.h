@@ -65,8 +65,9 @@ static inline vfloat vf_rcp(vfloat a, int newton) {
 }
 
 /* 1/sqrt(a) by the hardware estimate refined with one Newton–Raphson step,
- * eq. 3.2: x1 = 3/2 x0 - 1/2 a x0^3 = x0 (3/2 - a/2 x0^2). SPEC §7 allows
- * this or listing 3.4's sqrt + rcp; this one avoids sqrt's long latency. */
+ * eq. 3.2: x1 = 3/2 x0 - 1/2 a x0^3 = x0 (3/2 - a/2 x0^2).
+ * docs/specification.md §7 allows this or listing 3.4's sqrt + rcp; this one
+ * avoids sqrt's long latency. */
 static inline vfloat vf_rsqrt(vfloat a, int newton) {
   vfloat x0 = vf_rsqrt_estimate(a);
   if (!newton)

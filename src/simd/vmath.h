@@ -1,6 +1,6 @@
-/* pow and exp for W lanes (SPEC §7, thesis §4.4.4): SSE has no instruction
- * for either, so each is built from the IEEE-754 representation and a
- * polynomial, in four variants chosen at run time (--math):
+/* pow and exp for W lanes (docs/specification.md §7, thesis §4.4.4): SSE has no
+ * instruction for either, so each is built from the IEEE-754 representation and
+ * a polynomial, in four variants chosen at run time (--math):
  *
  *   minimax  log2 by a degree-6 and 2^f by a degree-4 polynomial whose
  *            coefficients the Remez exchange in tools/remez.c produced
