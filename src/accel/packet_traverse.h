@@ -19,9 +19,9 @@ static ALWAYS_INLINE void count_tests(glint_stats *st, size_t tests,
 }
 
 /* What the slab tests of a packet need: 1/D (a zero component made tiny,
- * so 0 * inf never makes a NaN) and -O/D. */
+ * so 0 * inf never makes a NaN) and O. */
 typedef struct packet_inv {
-  vvec3 inv, neg_o_inv;
+  vvec3 inv, o;
   int neg[3]; /* the packet's direction sign per axis (first active lane) */
 } packet_inv;
 
@@ -38,7 +38,7 @@ static ALWAYS_INLINE packet_inv packet_inverse(vvec3 o, vvec3 d, vmask active,
   r.inv.x = vf_rcp(vf_nonzero(d.x), newton);
   r.inv.y = vf_rcp(vf_nonzero(d.y), newton);
   r.inv.z = vf_rcp(vf_nonzero(d.z), newton);
-  r.neg_o_inv = vv_neg(vv_mul(o, r.inv));
+  r.o = o;
   SIMD_ALIGN float dx[LANES], dy[LANES], dz[LANES];
   vf_store(dx, d.x);
   vf_store(dy, d.y);
@@ -52,19 +52,23 @@ static ALWAYS_INLINE packet_inv packet_inverse(vvec3 o, vvec3 d, vmask active,
 
 /* The slab test for all lanes of `active` against a node's box within
  * (tmin, tmax). The far distance is widened by a few ulps so rounding in
- * the reciprocal cannot cull a hit on the box's surface. */
+ * the reciprocal cannot cull a hit on the box's surface. The distances are
+ * (B - O) / D, each a few ulps off; B / D - O / D in one fma is off by an
+ * ulp of O / D instead, far more than a few ulps of the distance for a ray
+ * nearly parallel to a slab, and culled hits on box faces (rays through a
+ * mesh's vertices missed it). */
 static ALWAYS_INLINE vmask packet_box(const gli_bvh_node *n,
                                       const packet_inv *r, vfloat tmin,
                                       vfloat tmax, vmask active) {
   vfloat lx, ly, lz, hx, hy, hz, unused0, unused1;
   vf_splat4(&n->lo[0], &lx, &ly, &lz, &hx);
   vf_splat4(&n->hi[1], &hy, &hz, &unused0, &unused1);
-  vfloat t0x = vf_fmadd(lx, r->inv.x, r->neg_o_inv.x);
-  vfloat t1x = vf_fmadd(hx, r->inv.x, r->neg_o_inv.x);
-  vfloat t0y = vf_fmadd(ly, r->inv.y, r->neg_o_inv.y);
-  vfloat t1y = vf_fmadd(hy, r->inv.y, r->neg_o_inv.y);
-  vfloat t0z = vf_fmadd(lz, r->inv.z, r->neg_o_inv.z);
-  vfloat t1z = vf_fmadd(hz, r->inv.z, r->neg_o_inv.z);
+  vfloat t0x = vf_mul(vf_sub(lx, r->o.x), r->inv.x);
+  vfloat t1x = vf_mul(vf_sub(hx, r->o.x), r->inv.x);
+  vfloat t0y = vf_mul(vf_sub(ly, r->o.y), r->inv.y);
+  vfloat t1y = vf_mul(vf_sub(hy, r->o.y), r->inv.y);
+  vfloat t0z = vf_mul(vf_sub(lz, r->o.z), r->inv.z);
+  vfloat t1z = vf_mul(vf_sub(hz, r->o.z), r->inv.z);
   vfloat near = vf_max(vf_max(vf_min(t0x, t1x), vf_min(t0y, t1y)),
                        vf_max(vf_min(t0z, t1z), tmin));
   vfloat far = vf_min(vf_min(vf_max(t0x, t1x), vf_max(t0y, t1y)),
