@@ -17,7 +17,7 @@ void cli_error(const char *format, ...) {
 }
 
 int arg_is(arg_cursor *c, const char *short_name, const char *long_name) {
-  const char *a = c->argv[c->i];
+  char *a = c->argv[c->i];
   if (short_name && strncmp(a, short_name, 2) == 0 && a[0] == '-' &&
       a[1] != '-') {
     c->inline_v = a[2] ? a + 2 : NULL;
@@ -35,7 +35,7 @@ int arg_is(arg_cursor *c, const char *short_name, const char *long_name) {
   return 0;
 }
 
-const char *arg_value(arg_cursor *c, const char *option) {
+char *arg_value(arg_cursor *c, const char *option) {
   if (c->inline_v)
     return c->inline_v;
   if (c->i < c->argc)
@@ -100,44 +100,60 @@ int split_list(char *text, char **items, int max) {
   return n;
 }
 
+int arg_text(arg_cursor *c, const char *short_name, const char *long_name,
+             char **out) {
+  if (!arg_is(c, short_name, long_name))
+    return ARG_NOT_MINE;
+  char *v = arg_value(c, long_name);
+  if (!v)
+    return ARG_BAD;
+  *out = v;
+  return ARG_TAKEN;
+}
+
+int arg_int(arg_cursor *c, const char *short_name, const char *long_name,
+            long min, long max, int *out) {
+  if (!arg_is(c, short_name, long_name))
+    return ARG_NOT_MINE;
+  return parse_int(long_name, arg_value(c, long_name), min, max, out)
+             ? ARG_BAD
+             : ARG_TAKEN;
+}
+
+int arg_flag(arg_cursor *c, const char *short_name, const char *long_name,
+             int *out) {
+  if (!arg_is(c, short_name, long_name))
+    return ARG_NOT_MINE;
+  *out = 1;
+  return ARG_TAKEN;
+}
+
+int arg_is_help(arg_cursor *c) { return arg_is(c, "-h", "--help"); }
+
 int arg_render_setting(arg_cursor *c, glint_render_settings *rs) {
-  const char *v;
+  char *v = NULL;
   glint_error err;
-  if (arg_is(c, "-W", "--width"))
-    return parse_int("--width", arg_value(c, "--width"), 1, GLINT_MAX_DIMENSION,
-                     &rs->width)
-               ? ARG_BAD
-               : ARG_TAKEN;
-  if (arg_is(c, "-H", "--height"))
-    return parse_int("--height", arg_value(c, "--height"), 1,
-                     GLINT_MAX_DIMENSION, &rs->height)
-               ? ARG_BAD
-               : ARG_TAKEN;
-  if (arg_is(c, "-s", "--spp"))
-    return parse_int("--spp", arg_value(c, "--spp"), 1, GLINT_MAX_SPP, &rs->spp)
-               ? ARG_BAD
-               : ARG_TAKEN;
-  if (arg_is(c, NULL, "--no-newton")) {
+  int r;
+  if ((r = arg_int(c, "-W", "--width", 1, GLINT_MAX_DIMENSION, &rs->width)) ||
+      (r = arg_int(c, "-H", "--height", 1, GLINT_MAX_DIMENSION, &rs->height)) ||
+      (r = arg_int(c, "-s", "--spp", 1, GLINT_MAX_SPP, &rs->spp)))
+    return r;
+  int no_newton = 0;
+  if ((r = arg_flag(c, NULL, "--no-newton", &no_newton))) {
     rs->rcp_newton = 0;
-    return ARG_TAKEN;
+    return r;
   }
-  if (arg_is(c, NULL, "--math")) {
-    if (!(v = arg_value(c, "--math")))
-      return ARG_BAD;
-    if (glint_math_parse(v, &rs->math, &err)) {
-      cli_error("--math: %s", err.message);
-      return ARG_BAD;
-    }
-    return ARG_TAKEN;
+  if ((r = arg_text(c, NULL, "--math", &v)) == ARG_TAKEN &&
+      glint_math_parse(v, &rs->math, &err)) {
+    cli_error("--math: %s", err.message);
+    return ARG_BAD;
   }
-  if (arg_is(c, NULL, "--accel")) {
-    if (!(v = arg_value(c, "--accel")))
-      return ARG_BAD;
-    if (glint_accel_parse(v, &rs->accel, &err)) {
-      cli_error("--accel: %s", err.message);
-      return ARG_BAD;
-    }
-    return ARG_TAKEN;
+  if (r)
+    return r;
+  if ((r = arg_text(c, NULL, "--accel", &v)) == ARG_TAKEN &&
+      glint_accel_parse(v, &rs->accel, &err)) {
+    cli_error("--accel: %s", err.message);
+    return ARG_BAD;
   }
-  return ARG_NOT_MINE;
+  return r;
 }

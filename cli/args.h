@@ -13,8 +13,8 @@ enum { EXIT_USAGE = 2 };
 typedef struct arg_cursor {
   int argc;
   char **argv;
-  int i;                /* next argument */
-  const char *inline_v; /* value after '=' or glued to a short option */
+  int i;          /* next argument */
+  char *inline_v; /* value after '=' or glued to a short option */
 } arg_cursor;
 
 /* If argv[i] is `-s`, `-sVALUE`, `--long` or `--long=VALUE` matching one of
@@ -23,7 +23,7 @@ int arg_is(arg_cursor *c, const char *short_name, const char *long_name);
 
 /* The option's value (inline or the next argument), or NULL after printing
  * "glint: OPTION needs a value". */
-const char *arg_value(arg_cursor *c, const char *option);
+char *arg_value(arg_cursor *c, const char *option);
 
 /* Whole numbers in [min, max]; on error prints one message and returns -1. */
 int parse_int(const char *option, const char *text, long min, long max,
@@ -34,8 +34,21 @@ int parse_double(const char *option, const char *text, double min, double *out);
  * -H/--height, -s/--spp, --math, --no-newton and --accel. Returns
  * ARG_NOT_MINE if argv[i] is none of them, ARG_TAKEN once it has set *rs,
  * ARG_BAD after printing what is wrong with the value. */
-enum { ARG_NOT_MINE, ARG_TAKEN, ARG_BAD };
+enum { ARG_NOT_MINE = 0, ARG_TAKEN, ARG_BAD };
 int arg_render_setting(arg_cursor *c, glint_render_settings *rs);
+
+/* A command's own options, answering as arg_render_setting does (so that a
+ * command's loop chains them with ||): a value kept as text, a whole number
+ * in [min, max] (messages name the long option), a flag set to 1. */
+int arg_text(arg_cursor *c, const char *short_name, const char *long_name,
+             char **out);
+int arg_int(arg_cursor *c, const char *short_name, const char *long_name,
+            long min, long max, int *out);
+int arg_flag(arg_cursor *c, const char *short_name, const char *long_name,
+             int *out);
+
+/* -h or --help. */
+int arg_is_help(arg_cursor *c);
 
 /* Prints "glint: <message>" to stderr. */
 void cli_error(const char *format, ...)

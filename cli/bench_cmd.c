@@ -202,8 +202,7 @@ int cmd_bench(int argc, char **argv) {
   char default_threads[] = "1";
   char *scene_list = default_scenes, *depth_list = default_depths;
   char *backend_list = NULL, *thread_list = default_threads;
-  const char *csv_path = NULL, *plot_dir = NULL, *spd_dir = NULL,
-             *mesh_dir = NULL;
+  char *csv_path = NULL, *plot_dir = NULL, *spd_dir = NULL, *mesh_dir = NULL;
   int runs = 3, frames = 0;
   glint_render_settings rs;
   glint_render_settings_default(&rs);
@@ -212,48 +211,28 @@ int cmd_bench(int argc, char **argv) {
   arg_cursor c = {argc, argv, 0, NULL};
   while (c.i < argc) {
     const char *a = argv[c.i];
-    int shared = arg_render_setting(&c, &rs);
-    if (shared == ARG_BAD)
-      return EXIT_USAGE;
-    if (shared == ARG_TAKEN)
-      continue;
-    if (arg_is(&c, "-h", "--help")) {
+    if (arg_is_help(&c)) {
       bench_usage(stdout);
       return 0;
-    } else if (arg_is(&c, NULL, "--scenes")) {
-      if (!(scene_list = (char *)arg_value(&c, "--scenes")))
-        return EXIT_USAGE;
-    } else if (arg_is(&c, NULL, "--depths")) {
-      if (!(depth_list = (char *)arg_value(&c, "--depths")))
-        return EXIT_USAGE;
-    } else if (arg_is(&c, NULL, "--backends")) {
-      if (!(backend_list = (char *)arg_value(&c, "--backends")))
-        return EXIT_USAGE;
-    } else if (arg_is(&c, NULL, "--runs")) {
-      if (parse_int("--runs", arg_value(&c, "--runs"), 1, 255, &runs))
-        return EXIT_USAGE;
-    } else if (arg_is(&c, "-t", "--threads")) {
-      if (!(thread_list = (char *)arg_value(&c, "--threads")))
-        return EXIT_USAGE;
-    } else if (arg_is(&c, NULL, "--csv")) {
-      if (!(csv_path = arg_value(&c, "--csv")))
-        return EXIT_USAGE;
-    } else if (arg_is(&c, NULL, "--plot")) {
-      if (!(plot_dir = arg_value(&c, "--plot")))
-        return EXIT_USAGE;
-    } else if (arg_is(&c, NULL, "--spd")) {
-      if (!(spd_dir = arg_value(&c, "--spd")))
-        return EXIT_USAGE;
-    } else if (arg_is(&c, NULL, "--meshes")) {
-      if (!(mesh_dir = arg_value(&c, "--meshes")))
-        return EXIT_USAGE;
-    } else if (arg_is(&c, NULL, "--frames")) {
-      if (parse_int("--frames", arg_value(&c, "--frames"), 1, 100000, &frames))
-        return EXIT_USAGE;
-    } else {
-      cli_error("unknown option '%s' (see glint bench --help)", a);
-      return EXIT_USAGE;
     }
+    int r;
+    if ((r = arg_render_setting(&c, &rs)) ||
+        (r = arg_text(&c, NULL, "--scenes", &scene_list)) ||
+        (r = arg_text(&c, NULL, "--depths", &depth_list)) ||
+        (r = arg_text(&c, NULL, "--backends", &backend_list)) ||
+        (r = arg_int(&c, NULL, "--runs", 1, 255, &runs)) ||
+        (r = arg_text(&c, "-t", "--threads", &thread_list)) ||
+        (r = arg_text(&c, NULL, "--csv", &csv_path)) ||
+        (r = arg_text(&c, NULL, "--plot", &plot_dir)) ||
+        (r = arg_text(&c, NULL, "--spd", &spd_dir)) ||
+        (r = arg_text(&c, NULL, "--meshes", &mesh_dir)) ||
+        (r = arg_int(&c, NULL, "--frames", 1, 100000, &frames))) {
+      if (r == ARG_BAD)
+        return EXIT_USAGE;
+      continue;
+    }
+    cli_error("unknown option '%s' (see glint bench --help)", a);
+    return EXIT_USAGE;
   }
 
   int depths[MAX_ITEMS], threads[MAX_ITEMS];

@@ -199,7 +199,8 @@ static glint_status render_film(const glint_scene *scene,
 }
 
 int cmd_render(int argc, char **argv) {
-  const char *scene_arg = NULL, *output = NULL, *v;
+  const char *scene_arg = NULL, *v;
+  char *output = NULL;
   int quiet = 0, want_stats = 0;
   glint_png_compression png_compression = GLINT_PNG_FAST;
   glint_render_settings rs;
@@ -208,26 +209,23 @@ int cmd_render(int argc, char **argv) {
   arg_cursor c = {argc, argv, 0, NULL};
   while (c.i < argc) {
     const char *a = argv[c.i];
-    int shared = arg_render_setting(&c, &rs);
-    if (shared == ARG_BAD)
-      return EXIT_USAGE;
-    if (shared == ARG_TAKEN)
-      continue;
-    if (arg_is(&c, "-h", "--help")) {
+    if (arg_is_help(&c)) {
       render_usage(stdout);
       return 0;
-    } else if (arg_is(&c, "-o", "--output")) {
-      if (!(output = arg_value(&c, "--output")))
+    }
+    int r;
+    if ((r = arg_render_setting(&c, &rs)) ||
+        (r = arg_text(&c, "-o", "--output", &output)) ||
+        (r = arg_int(&c, "-d", "--depth", 1, GLINT_MAX_DEPTH, &rs.max_depth)) ||
+        (r = arg_int(&c, "-t", "--threads", 0, GLINT_MAX_THREADS,
+                     &rs.threads)) ||
+        (r = arg_flag(&c, "-q", "--quiet", &quiet)) ||
+        (r = arg_flag(&c, NULL, "--stats", &want_stats))) {
+      if (r == ARG_BAD)
         return EXIT_USAGE;
-    } else if (arg_is(&c, "-d", "--depth")) {
-      if (parse_int("--depth", arg_value(&c, "--depth"), 1, GLINT_MAX_DEPTH,
-                    &rs.max_depth))
-        return EXIT_USAGE;
-    } else if (arg_is(&c, "-t", "--threads")) {
-      if (parse_int("--threads", arg_value(&c, "--threads"), 0,
-                    GLINT_MAX_THREADS, &rs.threads))
-        return EXIT_USAGE;
-    } else if (arg_is(&c, "-b", "--backend")) {
+      continue;
+    }
+    if (arg_is(&c, "-b", "--backend")) {
       if (!(v = arg_value(&c, "--backend")))
         return EXIT_USAGE;
       if (glint_backend_parse(v, &rs.backend, &err)) {
@@ -263,10 +261,6 @@ int cmd_render(int argc, char **argv) {
     } else if (arg_is(&c, NULL, "--gamma")) {
       if (parse_double("--gamma", arg_value(&c, "--gamma"), 0, &rs.gamma))
         return EXIT_USAGE;
-    } else if (arg_is(&c, "-q", "--quiet")) {
-      quiet = 1;
-    } else if (arg_is(&c, NULL, "--stats")) {
-      want_stats = 1;
     } else if (a[0] == '-' && a[1] != '\0') {
       cli_error("unknown option '%s' (see glint render --help)", a);
       return EXIT_USAGE;

@@ -100,10 +100,10 @@ static void nearest_hits_agree(void **state) {
           if (found) {
             hits++;
             switch (h.shape) {
-            case GLINT_SHAPE_SPHERE:
+            case GLI_SHAPE_SPHERE:
               ref_obj = (int)ref->spheres[h.prim].object;
               break;
-            case GLINT_SHAPE_PLANE:
+            case GLI_SHAPE_PLANE:
               ref_obj = (int)ref->planes[h.prim].object;
               break;
             default: ref_obj = (int)ref->triangles[h.prim].object; break;

@@ -60,9 +60,9 @@ static const struct {
 
 static int object_of(const scene_r *s, const hit_r *h) {
   switch (h->shape) {
-  case GLINT_SHAPE_SPHERE: return (int)s->spheres[h->prim].object;
-  case GLINT_SHAPE_PLANE: return (int)s->planes[h->prim].object;
-  case GLINT_SHAPE_CONE: return (int)s->cones[h->prim].object;
+  case GLI_SHAPE_SPHERE: return (int)s->spheres[h->prim].object;
+  case GLI_SHAPE_PLANE: return (int)s->planes[h->prim].object;
+  case GLI_SHAPE_CONE: return (int)s->cones[h->prim].object;
   default: return (int)s->triangles[h->prim].object;
   }
 }

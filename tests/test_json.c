@@ -308,9 +308,9 @@ static void every_construct_reads(void **state) {
   assert_true(s->materials[4].kd == 0.5);
 
   /* Objects in the file's order, each with its material. */
-  static const uint32_t shapes[5] = {GLINT_SHAPE_SPHERE, GLINT_SHAPE_PLANE,
-                                     GLINT_SHAPE_TRIANGLE, GLINT_SHAPE_CONE,
-                                     GLINT_SHAPE_SPHERE};
+  static const uint32_t shapes[5] = {GLI_SHAPE_SPHERE, GLI_SHAPE_PLANE,
+                                     GLI_SHAPE_TRIANGLE, GLI_SHAPE_CONE,
+                                     GLI_SHAPE_SPHERE};
   static const uint32_t materials[5] = {1, 2, 0, 3, 4};
   for (int i = 0; i < 5; i++) {
     assert_int_equal(s->objects[i].shape, shapes[i]);

@@ -121,7 +121,7 @@ static void assert_tri(const glint_scene *s, size_t i, V a, V b, V c) {
 
 /* The normal of corner k of triangle i, which must be smooth. */
 static V normal_of(const glint_scene *s, size_t i, int k) {
-  assert_int_not_equal(s->triangles[i].normals, GLINT_NO_NORMALS);
+  assert_int_not_equal(s->triangles[i].normals, GLI_NO_NORMALS);
   return s->tri_normals[s->triangles[i].normals + (uint32_t)k];
 }
 
@@ -134,7 +134,7 @@ static void expect_fail_path(const char *path, glint_status status,
   glint_scene *s = new_scene(&m);
   ASSERT_OK(glint_scene_add_triangle(s, (V){0, 0, 0}, (V){1, 0, 0},
                                      (V){0, 1, 0}, m, &e_));
-  ASSERT_OK(gli_scene_begin_object(s, GLINT_SHAPE_TRIANGLE, m, &e_));
+  ASSERT_OK(gli_scene_begin_object(s, GLI_SHAPE_TRIANGLE, m, &e_));
   V n[3] = {{0, 0, 1}, {0, 0, 1}, {0, 0, 1}};
   ASSERT_OK(gli_scene_push_triangle(s, (V){0, 0, 1}, (V){1, 0, 1}, (V){0, 1, 1},
                                     n, &e_));
@@ -183,10 +183,10 @@ static void obj_triangle_scaled_and_moved(void **state) {
   glint_scene *s = load(p, 2, (V){10, 20, 30});
   assert_int_equal(s->object_count, 1);
   assert_int_equal(s->triangle_count, 1);
-  assert_int_equal(s->objects[0].shape, GLINT_SHAPE_TRIANGLE);
+  assert_int_equal(s->objects[0].shape, GLI_SHAPE_TRIANGLE);
   assert_int_equal(s->objects[0].count, 1);
   assert_tri(s, 0, (V){10, 20, 30}, (V){12, 20, 30}, (V){10, 22, 30});
-  assert_int_equal(s->triangles[0].normals, GLINT_NO_NORMALS);
+  assert_int_equal(s->triangles[0].normals, GLI_NO_NORMALS);
   /* Solid textures follow the mesh: its local origin is the translation. */
   assert_vec(s->objects[0].origin, 10, 20, 30);
   glint_scene_destroy(s);
@@ -285,8 +285,8 @@ static void obj_vertex_forms_and_normals(void **state) {
   assert_vec(normal_of(s, 0, 2), 1, 0, 0);
   assert_vec(normal_of(s, 1, 0), 1, 0, 0);
   assert_vec(normal_of(s, 1, 2), 0, 0, 1);
-  assert_int_equal(s->triangles[2].normals, GLINT_NO_NORMALS);
-  assert_int_equal(s->triangles[3].normals, GLINT_NO_NORMALS);
+  assert_int_equal(s->triangles[2].normals, GLI_NO_NORMALS);
+  assert_int_equal(s->triangles[3].normals, GLI_NO_NORMALS);
   assert_vec(normal_of(s, 4, 0), 0, 0, 1);
   assert_vec(normal_of(s, 4, 2), 1, 0, 0);
   assert_tri(s, 4, (V){0, 0, 0}, (V){3, 0, 0}, (V){0, 3, 0});
@@ -396,7 +396,7 @@ static void ply_ascii_skips_what_it_does_not_use(void **state) {
   assert_tri(s, 0, (V){1, 1, 1}, (V){3, 1, 1}, (V){3, 3, 1});
   assert_tri(s, 1, (V){1, 1, 1}, (V){3, 3, 1}, (V){1, 3, 1});
   assert_tri(s, 2, (V){1, 1, 1}, (V){3, 1, 1}, (V){2, 5, -1});
-  assert_int_equal(s->triangles[0].normals, GLINT_NO_NORMALS);
+  assert_int_equal(s->triangles[0].normals, GLI_NO_NORMALS);
   glint_scene_destroy(s);
   /* The same, gzip-compressed. */
   s = load(write_gz(f, "square.ply.gz", ply_ascii_text), 2, (V){1, 1, 1});
@@ -421,7 +421,7 @@ static void ply_ascii_unusual_but_valid(void **state) {
   glint_scene *s = load(p, 1, (V){0, 0, 0});
   assert_int_equal(s->triangle_count, 1);
   assert_tri(s, 0, (V){0, 5, 0}, (V){-4, 0, 0}, (V){0, 0, 0});
-  assert_int_equal(s->triangles[0].normals, GLINT_NO_NORMALS);
+  assert_int_equal(s->triangles[0].normals, GLI_NO_NORMALS);
   glint_scene_destroy(s);
 }
 

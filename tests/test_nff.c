@@ -82,7 +82,7 @@ static void every_entity(void **state) {
   assert_true(s->cones[1].base_radius == 0.2);
   /* pp keeps its normals (normalised). */
   const gli_triangle_prim *t = &s->triangles[s->triangle_count - 1];
-  assert_true(t->normals != GLINT_NO_NORMALS);
+  assert_true(t->normals != GLI_NO_NORMALS);
   assert_true(fabs(s->tri_normals[t->normals + 2].y - sqrt(0.5)) < 1e-12);
   /* The concave polygon's triangles cover its area (4 + 3*... = 7): the
    * L-shape 4x1 + 1x3 has area 7. */

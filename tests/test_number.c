@@ -18,9 +18,9 @@ static void same_as_strtod(const char *text) {
   int expected = end != text + strlen(text) || end == text ? NUMBER_BAD
                  : !isfinite(ref)                          ? NUMBER_NOT_FINITE
                                                            : NUMBER_OK;
-  int got = number_parse(text, strlen(text), &v);
+  int got = gli_number_parse(text, strlen(text), &v);
   if (got != expected)
-    fail_msg("'%s': number_parse says %d, strtod %d", text, got, expected);
+    fail_msg("'%s': gli_number_parse says %d, strtod %d", text, got, expected);
   if (got == NUMBER_OK && memcmp(&v, &ref, sizeof v) != 0)
     fail_msg("'%s': %.17g, strtod %.17g", text, v, ref);
 }

@@ -18,12 +18,12 @@ static const gli_bvh test_no_bvh;
 
 static void *test_view_open(const glint_scene *scene, data_kind kind,
                             int with_bvh, test_view *tv) {
-  ASSERT_OK(world_create(scene, &tv->world, &e_));
+  ASSERT_OK(gli_world_create(scene, &tv->world, &e_));
   const void *data;
-  ASSERT_OK(world_data(tv->world, kind, &data, &e_));
+  ASSERT_OK(gli_world_data(tv->world, kind, &data, &e_));
   const gli_bvh *bvh = &test_no_bvh;
   if (with_bvh)
-    ASSERT_OK(world_bvh(tv->world, &bvh, &e_));
+    ASSERT_OK(gli_world_bvh(tv->world, &bvh, &e_));
   tv->layout = gli_data_ops_of(kind);
   ASSERT_OK(tv->layout->bind(data, bvh, &tv->view, &e_));
   return tv->view;
@@ -31,7 +31,7 @@ static void *test_view_open(const glint_scene *scene, data_kind kind,
 
 static void test_view_close(test_view *tv) {
   tv->layout->unbind(tv->view);
-  world_release(tv->world);
+  gli_world_release(tv->world);
 }
 
 #endif

@@ -164,7 +164,7 @@ static void emit(const char *name, const char *id, const char *what, int n,
   printf("/* %s\n * degree %d; max relative error %.3Le (%.3Le with float "
          "coefficients) */\n",
          what, n, err, ferr);
-  printf("#define GLINT_%s_DEGREE %d\n", name, n);
+  printf("#define GLI_%s_DEGREE %d\n", name, n);
   printf("static const float gli_%s_coeffs[%d] = {\n", id, n + 1);
   for (int k = 0; k <= n; k++)
     printf("    %.9ef,\n", (double)c[k]);

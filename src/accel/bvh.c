@@ -27,9 +27,9 @@
  * both (balls-s4 6% faster, rings-s4 2%, the triangle scenes unchanged). */
 #define COST_NODE 2.5f
 static const float prim_cost[3] = {
-    [GLINT_SHAPE_SPHERE] = 0.4f,
-    [GLINT_SHAPE_TRIANGLE] = 1.0f,
-    [GLINT_SHAPE_CONE] = 0.6f,
+    [GLI_SHAPE_SPHERE] = 0.4f,
+    [GLI_SHAPE_TRIANGLE] = 1.0f,
+    [GLI_SHAPE_CONE] = 0.6f,
 };
 
 typedef struct box {
@@ -238,7 +238,7 @@ static uint32_t split(builder *b, const task *t, int *axis_out, box4 *lb,
     int odd = dual & (int)i;
     box4(*bb)[BINS] = odd ? bin_box2 : bin_box;
     float(*costs)[BINS] = odd ? bin_cost2 : bin_cost;
-    float cost = prim_cost[GLINT_REF_SHAPE(b->refs[i])];
+    float cost = prim_cost[GLI_REF_SHAPE(b->refs[i])];
     for (int k = 0; k < 3; k++) {
       costs[k][idx[k]] += cost;
       box4_grow(&bb[k][idx[k]], bx);
@@ -333,51 +333,51 @@ by_count:
 }
 
 glint_status gli_bvh_build(const glint_scene *scene, gli_bvh *bvh,
-                             glint_error *error) {
+                           glint_error *error) {
   double t0 = gli_now();
   memset(bvh, 0, sizeof *bvh);
   size_t n = scene->sphere_count + scene->triangle_count + scene->cone_count;
   /* A hierarchy over a handful of primitives costs more in box tests than
    * it saves (Billiard's ten spheres: 0.284 s against 0.247 s tested
    * directly, scalar-float, depth 5): below this size none is built. */
-  if (n <= GLINT_BVH_MIN_PRIMS)
+  if (n <= GLI_BVH_MIN_PRIMS)
     return GLINT_OK;
-  if (n > GLINT_MAX_BVH_PRIMS)
+  if (n > GLI_MAX_BVH_PRIMS)
     return gli_fail(error, GLINT_E_ARGUMENT,
-                      "too many primitives for the BVH (%zu)", n);
+                    "too many primitives for the BVH (%zu)", n);
   builder b = {0};
-  b.boxes = aligned_alloc(
-      GLINT_ALIGN,
-      ((n * sizeof *b.boxes + GLINT_ALIGN - 1) / GLINT_ALIGN) * GLINT_ALIGN);
+  b.boxes = aligned_alloc(GLI_ALIGN,
+                          ((n * sizeof *b.boxes + GLI_ALIGN - 1) / GLI_ALIGN) *
+                              GLI_ALIGN);
   b.refs = malloc(n * sizeof *b.refs);
   b.nodes = aligned_alloc(
-      GLINT_ALIGN, ((2 * n * sizeof *b.nodes + GLINT_ALIGN - 1) / GLINT_ALIGN) *
-                       GLINT_ALIGN);
-  task *stack = malloc(sizeof *stack * 4 * GLINT_BVH_MAX_DEPTH);
+      GLI_ALIGN,
+      ((2 * n * sizeof *b.nodes + GLI_ALIGN - 1) / GLI_ALIGN) * GLI_ALIGN);
+  task *stack = malloc(sizeof *stack * 4 * GLI_BVH_MAX_DEPTH);
   if (!b.boxes || !b.refs || !b.nodes || !stack) {
     gli_aligned_free(b.boxes);
     free(b.refs);
     gli_aligned_free(b.nodes);
     free(stack);
     return gli_fail(error, GLINT_E_MEMORY,
-                      "out of memory building the BVH of %zu primitives", n);
+                    "out of memory building the BVH of %zu primitives", n);
   }
   size_t r = 0;
   box bx;
   for (size_t i = 0; i < scene->sphere_count; i++, r++) {
-    b.refs[r] = GLINT_REF(GLINT_SHAPE_SPHERE, i);
+    b.refs[r] = GLI_REF(GLI_SHAPE_SPHERE, i);
     bx = sphere_box(&scene->spheres[i]);
     b.boxes[r] = (box4){_mm_setr_ps(bx.lo[0], bx.lo[1], bx.lo[2], 0),
                         _mm_setr_ps(bx.hi[0], bx.hi[1], bx.hi[2], 0)};
   }
   for (size_t i = 0; i < scene->triangle_count; i++, r++) {
-    b.refs[r] = GLINT_REF(GLINT_SHAPE_TRIANGLE, i);
+    b.refs[r] = GLI_REF(GLI_SHAPE_TRIANGLE, i);
     bx = triangle_box(&scene->triangles[i]);
     b.boxes[r] = (box4){_mm_setr_ps(bx.lo[0], bx.lo[1], bx.lo[2], 0),
                         _mm_setr_ps(bx.hi[0], bx.hi[1], bx.hi[2], 0)};
   }
   for (size_t i = 0; i < scene->cone_count; i++, r++) {
-    b.refs[r] = GLINT_REF(GLINT_SHAPE_CONE, i);
+    b.refs[r] = GLI_REF(GLI_SHAPE_CONE, i);
     bx = cone_box(&scene->cones[i]);
     b.boxes[r] = (box4){_mm_setr_ps(bx.lo[0], bx.lo[1], bx.lo[2], 0),
                         _mm_setr_ps(bx.hi[0], bx.hi[1], bx.hi[2], 0)};
@@ -399,7 +399,7 @@ glint_status gli_bvh_build(const glint_scene *scene, gli_bvh *bvh,
     int axis = 0;
     box4 lb, lc, rb, rc;
     uint32_t mid = t.begin;
-    if (t.end - t.begin > 1 && t.depth < GLINT_BVH_MAX_DEPTH - 1)
+    if (t.end - t.begin > 1 && t.depth < GLI_BVH_MAX_DEPTH - 1)
       mid = split(&b, &t, &axis, &lb, &lc, &rb, &rc);
     if (mid == t.begin) {
       if (t.end - t.begin > UINT16_MAX) { /* depth exhausted: still split */

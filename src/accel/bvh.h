@@ -13,10 +13,10 @@
 
 /* A primitive reference: its shape in the top two bits, its index in the
  * shape's array below them. */
-#define GLINT_REF(shape, index) ((uint32_t)(shape) << 30 | (uint32_t)(index))
-#define GLINT_REF_SHAPE(ref) ((ref) >> 30)
-#define GLINT_REF_INDEX(ref) ((ref)&0x3fffffffu)
-#define GLINT_MAX_BVH_PRIMS 0x3fffffffu
+#define GLI_REF(shape, index) ((uint32_t)(shape) << 30 | (uint32_t)(index))
+#define GLI_REF_SHAPE(ref) ((ref) >> 30)
+#define GLI_REF_INDEX(ref) ((ref)&0x3fffffffu)
+#define GLI_MAX_BVH_PRIMS 0x3fffffffu
 
 /* 32 bytes, two to a cache line. The children of an inner node are
  * adjacent: offset and offset + 1. */
@@ -27,8 +27,8 @@ typedef struct gli_bvh_node {
   uint16_t axis;   /* an inner node's split axis */
 } gli_bvh_node;
 
-#define GLINT_BVH_MAX_DEPTH 64 /* traversal stacks are this deep */
-#define GLINT_BVH_MIN_PRIMS 16 /* fewer bounded primitives: no hierarchy */
+#define GLI_BVH_MAX_DEPTH 64 /* traversal stacks are this deep */
+#define GLI_BVH_MIN_PRIMS 16 /* fewer bounded primitives: no hierarchy */
 
 typedef struct gli_bvh {
   gli_bvh_node *nodes;
@@ -40,7 +40,7 @@ typedef struct gli_bvh {
 } gli_bvh;
 
 /* Builds over the scene's spheres, triangles and cones. A scene with at most
- * GLINT_BVH_MIN_PRIMS of them gives node_count = 0: test them all. */
+ * GLI_BVH_MIN_PRIMS of them gives node_count = 0: test them all. */
 glint_status gli_bvh_build(const glint_scene *scene, gli_bvh *bvh,
                            glint_error *error);
 void gli_bvh_free(gli_bvh *bvh);

@@ -91,7 +91,7 @@ static ALWAYS_INLINE void packet_bvh_closest(const gli_bvh *bvh, vvec3 o,
                                              packet_leaf_fn leaf, void *ctx) {
   int lanes = vm_count(active);
   packet_inv r = packet_inverse(o, d, active, newton);
-  uint32_t stack[GLINT_BVH_MAX_DEPTH];
+  uint32_t stack[GLI_BVH_MAX_DEPTH];
   int sp = 0;
   stack[sp++] = 0;
   while (sp > 0) {
@@ -122,7 +122,7 @@ static ALWAYS_INLINE void packet_bvh_segment(const gli_bvh *bvh, vvec3 o,
                                              glint_stats *st,
                                              packet_leaf_fn leaf, void *ctx) {
   packet_inv r = packet_inverse(o, d, *alive, newton);
-  uint32_t stack[GLINT_BVH_MAX_DEPTH];
+  uint32_t stack[GLI_BVH_MAX_DEPTH];
   int sp = 0;
   stack[sp++] = 0;
   while (sp > 0 && vm_any(*alive)) {

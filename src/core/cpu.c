@@ -56,9 +56,7 @@ void gli_cpu_detect(gli_cpu_features *f) {
   apply_cap(f);
 }
 #else
-void gli_cpu_detect(gli_cpu_features *f) {
-  f->sse41 = f->avx2 = f->avx512 = 0;
-}
+void gli_cpu_detect(gli_cpu_features *f) { f->sse41 = f->avx2 = f->avx512 = 0; }
 #endif
 
 int glint_cpu_count(void) {

@@ -4,7 +4,7 @@
 #include <stdio.h>
 
 glint_status gli_fail(glint_error *error, glint_status status,
-                        const char *format, ...) {
+                      const char *format, ...) {
   if (error) {
     va_list args;
     va_start(args, format);
@@ -36,8 +36,8 @@ const char *glint_status_name(glint_status status) {
 }
 
 const char *glint_version(void) {
-#define GLINT_STR2(x) #x
-#define GLINT_STR(x) GLINT_STR2(x)
-  return GLINT_STR(GLINT_VERSION_MAJOR) "." GLINT_STR(
-      GLINT_VERSION_MINOR) "." GLINT_STR(GLINT_VERSION_PATCH);
+#define GLI_STR2(x) #x
+#define GLI_STR(x) GLI_STR2(x)
+  return GLI_STR(GLINT_VERSION_MAJOR) "." GLI_STR(
+      GLINT_VERSION_MINOR) "." GLI_STR(GLINT_VERSION_PATCH);
 }

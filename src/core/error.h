@@ -6,14 +6,14 @@
 #include "glint.h"
 
 #if defined(__GNUC__)
-#define GLINT_PRINTF(f, a) __attribute__((format(printf, f, a)))
+#define GLI_PRINTF(f, a) __attribute__((format(printf, f, a)))
 #else
-#define GLINT_PRINTF(f, a)
+#define GLI_PRINTF(f, a)
 #endif
 
 /* Records status and a printf-formatted message; returns status. */
 glint_status gli_fail(glint_error *error, glint_status status,
-                        const char *format, ...) GLINT_PRINTF(3, 4);
+                      const char *format, ...) GLI_PRINTF(3, 4);
 
 /* Clears an error record (status GLINT_OK, empty message). */
 void gli_error_clear(glint_error *error);

@@ -8,12 +8,12 @@ void *gli_aligned_calloc(size_t count, size_t size) {
     return NULL;
   size_t bytes = count * size;
   /* aligned_alloc wants a multiple of the alignment. */
-  size_t rounded = (bytes + GLINT_ALIGN - 1) & ~(size_t)(GLINT_ALIGN - 1);
+  size_t rounded = (bytes + GLI_ALIGN - 1) & ~(size_t)(GLI_ALIGN - 1);
   if (rounded < bytes)
     return NULL;
   if (rounded == 0)
-    rounded = GLINT_ALIGN;
-  void *p = aligned_alloc(GLINT_ALIGN, rounded);
+    rounded = GLI_ALIGN;
+  void *p = aligned_alloc(GLI_ALIGN, rounded);
   if (p)
     memset(p, 0, rounded);
   return p;

@@ -6,7 +6,7 @@
 #include <stddef.h>
 #include <stdint.h>
 
-#define GLINT_ALIGN 64
+#define GLI_ALIGN 64
 
 /* NULL on failure or on size overflow; zero-filled. */
 void *gli_aligned_calloc(size_t count, size_t size);
@@ -16,10 +16,10 @@ void gli_aligned_free(void *p);
  * capacity. Returns 0 on success, -1 on allocation failure or overflow. */
 int gli_grow(void **items, size_t *capacity, size_t needed, size_t size);
 
-/* Appends one element: GLINT_PUSH(array, count, capacity, value) evaluates to
+/* Appends one element: GLI_PUSH(array, count, capacity, value) evaluates to
  * 0 on success, -1 when out of memory. */
-#define GLINT_PUSH(arr, count, cap, value)                                     \
-  (gli_grow((void **)&(arr), &(cap), (count) + 1, sizeof *(arr)) == 0        \
+#define GLI_PUSH(arr, count, cap, value)                                       \
+  (gli_grow((void **)&(arr), &(cap), (count) + 1, sizeof *(arr)) == 0          \
        ? ((arr)[(count)++] = (value), 0)                                       \
        : -1)
 

@@ -4,8 +4,8 @@
 
 #include <math.h>
 
-void camera_basis_init(camera_basis *c, const glint_camera *g, int width,
-                       int height) {
+void gli_camera_basis_init(camera_basis *c, const glint_camera *g, int width,
+                           int height) {
   double dx = g->at.x - g->from.x, dy = g->at.y - g->from.y,
          dz = g->at.z - g->from.z;
   double dl = sqrt(dx * dx + dy * dy + dz * dz);

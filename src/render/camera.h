@@ -29,7 +29,7 @@ static inline void camera_from_basis(camera *c, const camera_basis *b) {
 static inline void camera_init(camera *c, const glint_camera *g, int width,
                                int height) {
   camera_basis b;
-  camera_basis_init(&b, g, width, height);
+  gli_camera_basis_init(&b, g, width, height);
   camera_from_basis(c, &b);
 }
 

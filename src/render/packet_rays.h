@@ -15,12 +15,10 @@
 static ALWAYS_INLINE void packet_prim(const packet_scene *ps, uint32_t ref,
                                       vvec3 o, vvec3 d, vvec3 l, vmask m,
                                       vfloat eps, int newton, packet_hit *h) {
-  uint32_t i = GLINT_REF_INDEX(ref);
-  switch (GLINT_REF_SHAPE(ref)) {
-  case GLINT_SHAPE_SPHERE:
-    packet_sphere(&ps->spheres[i], o, d, m, eps, h);
-    break;
-  case GLINT_SHAPE_TRIANGLE:
+  uint32_t i = GLI_REF_INDEX(ref);
+  switch (GLI_REF_SHAPE(ref)) {
+  case GLI_SHAPE_SPHERE: packet_sphere(&ps->spheres[i], o, d, m, eps, h); break;
+  case GLI_SHAPE_TRIANGLE:
     packet_triangle(&ps->triangles[i], i, o, d, l, m, eps, newton, h);
     break;
   default: packet_cone(&ps->cones[i], o, d, m, eps, h); break;
@@ -114,7 +112,7 @@ static ALWAYS_INLINE void packet_cross_prim(const packet_scene *ps,
                                             vfloat eps, int newton,
                                             shadow_state *sh) {
   switch (shape) {
-  case GLINT_SHAPE_SPHERE: {
+  case GLI_SHAPE_SPHERE: {
     const psphere *sp = &ps->spheres[i];
     vvec3 v = vv_sub(vv_get(sp->center), o);
     vfloat proj = vv_dot(v, d);
@@ -132,7 +130,7 @@ static ALWAYS_INLINE void packet_cross_prim(const packet_scene *ps,
     shadow_cross(ps, sp->object, c2, l2, vm_false(), sh);
     break;
   }
-  case GLINT_SHAPE_TRIANGLE: {
+  case GLI_SHAPE_TRIANGLE: {
     const ptriangle *tr = &ps->triangles[i];
     vfloat t, u, v;
     vmask c = packet_triangle_cross(tr, o, d, l, sh->alive, eps, dist, newton,
@@ -179,8 +177,8 @@ typedef struct segment_query {
 static ALWAYS_INLINE void segment_leaf(void *ctx, uint32_t ref, vmask alive) {
   (void)alive; /* the walk keeps it in q->sh->alive */
   segment_query *q = ctx;
-  packet_cross_prim(q->ps, GLINT_REF_SHAPE(ref), GLINT_REF_INDEX(ref), q->o,
-                    q->d, q->l, q->dist, q->eps, q->newton, q->sh);
+  packet_cross_prim(q->ps, GLI_REF_SHAPE(ref), GLI_REF_INDEX(ref), q->o, q->d,
+                    q->l, q->dist, q->eps, q->newton, q->sh);
 }
 
 static ALWAYS_INLINE vvec3 packet_transmission(const packet_scene *ps, vvec3 o,
@@ -210,13 +208,13 @@ static ALWAYS_INLINE vvec3 packet_transmission(const packet_scene *ps, vvec3 o,
   if (bvh->node_count == 0) {
     count_tests(st, s->sphere_count + s->triangle_count + s->cone_count, lanes);
     for (size_t i = 0; i < s->sphere_count && vm_any(sh.alive); i++)
-      packet_cross_prim(ps, GLINT_SHAPE_SPHERE, (uint32_t)i, o, d, l, dist, eps,
+      packet_cross_prim(ps, GLI_SHAPE_SPHERE, (uint32_t)i, o, d, l, dist, eps,
                         newton, &sh);
     for (size_t i = 0; i < s->triangle_count && vm_any(sh.alive); i++)
-      packet_cross_prim(ps, GLINT_SHAPE_TRIANGLE, (uint32_t)i, o, d, l, dist,
-                        eps, newton, &sh);
+      packet_cross_prim(ps, GLI_SHAPE_TRIANGLE, (uint32_t)i, o, d, l, dist, eps,
+                        newton, &sh);
     for (size_t i = 0; i < s->cone_count && vm_any(sh.alive); i++)
-      packet_cross_prim(ps, GLINT_SHAPE_CONE, (uint32_t)i, o, d, l, dist, eps,
+      packet_cross_prim(ps, GLI_SHAPE_CONE, (uint32_t)i, o, d, l, dist, eps,
                         newton, &sh);
   } else if (vm_any(sh.alive)) {
     segment_query q = {ps, o, d, l, dist, eps, newton, &sh};

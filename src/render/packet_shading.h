@@ -147,16 +147,16 @@ packet_surface_object(const packet_scene *ps, const object_r *ob,
   f.p = vv_madd(o, h->t, d);
   vvec3 ng;
   switch (ob->shape) {
-  case GLINT_SHAPE_SPHERE:
+  case GLI_SHAPE_SPHERE:
     ng = packet_sphere_normal(vv_get(ps->spheres[ob->first].center), f.p,
                               newton);
     f.front = vm_andnot(vm_true(), h->inside);
     break;
-  case GLINT_SHAPE_PLANE:
+  case GLI_SHAPE_PLANE:
     ng = vv_get(ps->planes[ob->first].n);
     f.front = vf_lt(vv_dot(ng, d), vf_zero());
     break;
-  case GLINT_SHAPE_CONE: {
+  case GLI_SHAPE_CONE: {
     const pcone *c = &ps->cones[ob->first];
     ng = vv_normalize(packet_cone_normal(vv_get(c->base), vv_get(c->axis),
                                          vs_get(&c->rb), vs_get(&c->k), f.p),
@@ -213,21 +213,21 @@ static ALWAYS_INLINE packet_surface packet_surface_lanes(
   f.front = vm_false();
   vmask smooth_done = vm_false();
 
-  vmask sph = vm_and(hits, vi_eq(shape, vi_set1(GLINT_SHAPE_SPHERE)));
+  vmask sph = vm_and(hits, vi_eq(shape, vi_set1(GLI_SHAPE_SPHERE)));
   if (vm_any(sph)) {
     vvec3 c = vv_gather((const float *)s->spheres, vi_select(sph, first, none),
                         FLOATS_OF(sphere_r), FLOAT_OFFSET(sphere_r, center));
     ng = vv_select(sph, packet_sphere_normal(c, f.p, newton), ng);
     f.front = vm_select(sph, vm_andnot(vm_true(), h->inside), f.front);
   }
-  vmask pla = vm_and(hits, vi_eq(shape, vi_set1(GLINT_SHAPE_PLANE)));
+  vmask pla = vm_and(hits, vi_eq(shape, vi_set1(GLI_SHAPE_PLANE)));
   if (vm_any(pla)) {
     vvec3 g = vv_gather((const float *)s->planes, vi_select(pla, first, none),
                         FLOATS_OF(plane_r), FLOAT_OFFSET(plane_r, n));
     ng = vv_select(pla, g, ng);
     f.front = vm_select(pla, vf_lt(vv_dot(g, d), vf_zero()), f.front);
   }
-  vmask tri = vm_and(hits, vi_eq(shape, vi_set1(GLINT_SHAPE_TRIANGLE)));
+  vmask tri = vm_and(hits, vi_eq(shape, vi_set1(GLI_SHAPE_TRIANGLE)));
   if (vm_any(tri)) {
     vint prim = vi_select(tri, h->prim, none);
     vvec3 g = vv_gather((const float *)s->triangles, prim,
@@ -243,7 +243,7 @@ static ALWAYS_INLINE packet_surface packet_surface_lanes(
       smooth_done = smooth;
     }
   }
-  vmask con = vm_and(hits, vi_eq(shape, vi_set1(GLINT_SHAPE_CONE)));
+  vmask con = vm_and(hits, vi_eq(shape, vi_set1(GLI_SHAPE_CONE)));
   if (vm_any(con)) {
     const float *cb = (const float *)s->cones;
     int stride = FLOATS_OF(cone_r);

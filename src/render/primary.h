@@ -11,7 +11,7 @@
 #include "render/packet_shading.h"
 
 /* Block shapes: 2x2 for SSE, 4x2 for AVX2, 4x4 for AVX-512 (issue 3). */
-#if GLINT_SIMD_WIDTH == 4
+#if GLI_SIMD_WIDTH == 4
 #define BLOCK_W 2
 #else
 #define BLOCK_W 4

@@ -46,7 +46,7 @@ enum { TRANSMITTED = 0, REFLECTED = 1 };
 
 /* Each array has room for W floats past its capacity: compress-stores
  * write whole vectors. */
-#define SLOTS (STREAM_CAPACITY + GLINT_SIMD_WIDTH)
+#define SLOTS (STREAM_CAPACITY + GLI_SIMD_WIDTH)
 
 static inline size_t level_bytes(void) {
   return (size_t)SLOTS * (RAY_FLOATS * sizeof(float) + sizeof(int32_t)) +
@@ -54,7 +54,7 @@ static inline size_t level_bytes(void) {
 }
 
 static inline size_t accum_bytes(void) {
-  return (size_t)GLINT_TILE_SIZE * GLINT_TILE_SIZE * 4 * sizeof(float) +
+  return (size_t)GLI_TILE_SIZE * GLI_TILE_SIZE * 4 * sizeof(float) +
          (size_t)LOG_CAPACITY * 4 * sizeof(float) + 2 * 64;
 }
 
@@ -89,8 +89,7 @@ static inline stream_scratch *carve(void *scratch, int levels) {
     r->count = r->cursor = 0;
   }
   sc->accum = (float *)p;
-  p = align64(p +
-              (size_t)GLINT_TILE_SIZE * GLINT_TILE_SIZE * 4 * sizeof(float));
+  p = align64(p + (size_t)GLI_TILE_SIZE * GLI_TILE_SIZE * 4 * sizeof(float));
   sc->log = (float *)p;
   sc->log_count = 0;
   return sc;

@@ -35,17 +35,17 @@ static glint_status render_once(const glint_scene *scene,
   if (!scene)
     return gli_fail(error, GLINT_E_ARGUMENT, "no scene to render");
   glint_status st =
-      render_settings_check(settings, scene->width, scene->height, error);
+      gli_render_settings_check(settings, scene->width, scene->height, error);
   if (st)
     return st;
 
   double t0 = gli_now();
   glint_world *world = NULL;
   glint_renderer *renderer = NULL;
-  if ((st = world_create(scene, &world, error)))
+  if ((st = gli_world_create(scene, &world, error)))
     return st;
   st = glint_renderer_create(world, settings, &renderer, error);
-  world_release(world); /* the renderer holds its own reference */
+  gli_world_release(world); /* the renderer holds its own reference */
   if (st)
     return st;
   double prepare = gli_now() - t0;
@@ -62,7 +62,7 @@ static glint_status render_once(const glint_scene *scene,
   if (out->image)
     out->image->gamma = settings->gamma;
   out->gamma = settings->gamma;
-  st = renderer_render(renderer, NULL, out, stats, error);
+  st = gli_renderer_render(renderer, NULL, out, stats, error);
   glint_renderer_destroy(renderer);
   if (st && image) {
     glint_image_destroy(*image);

@@ -29,7 +29,7 @@
 
 /* One worker's own memory, a cache line apart from the next worker's. */
 typedef struct render_worker {
-  _Alignas(GLINT_ALIGN) glint_stats stats;
+  _Alignas(GLI_ALIGN) glint_stats stats;
   uint64_t hits;
   float *rgb;    /* one tile of linear RGB */
   void *scratch; /* the backend's, for frames up to scratch_depth */
@@ -95,9 +95,9 @@ static glint_status frame_check(int w, int h, int depth, int spp, int rx,
   return GLINT_OK;
 }
 
-glint_status render_settings_check(const glint_render_settings *s,
-                                   int scene_width, int scene_height,
-                                   glint_error *e) {
+glint_status gli_render_settings_check(const glint_render_settings *s,
+                                       int scene_width, int scene_height,
+                                       glint_error *e) {
   glint_status st = frame_check(s->width ? s->width : scene_width,
                                 s->height ? s->height : scene_height,
                                 s->max_depth, s->spp, s->region_x, s->region_y,
@@ -153,8 +153,8 @@ glint_status glint_renderer_create(glint_world *world,
     glint_render_settings_default(&defaults);
     settings = &defaults;
   }
-  glint_status st = render_settings_check(settings, world->scene->width,
-                                          world->scene->height, error);
+  glint_status st = gli_render_settings_check(settings, world->scene->width,
+                                              world->scene->height, error);
   if (st)
     return st;
   glint_backend backend = glint_backend_resolve(settings->backend);
@@ -166,7 +166,7 @@ glint_status glint_renderer_create(glint_world *world,
   glint_renderer *r = calloc(1, sizeof *r);
   if (!r)
     return gli_fail(error, GLINT_E_MEMORY, "out of memory");
-  world_retain(world);
+  gli_world_retain(world);
   r->world = world;
   r->settings = *settings;
   r->backend = backend;
@@ -176,26 +176,26 @@ glint_status glint_renderer_create(glint_world *world,
 
   const void *data = NULL;
   const gli_bvh *bvh = &r->no_bvh;
-  if ((st = world_data(world, r->ops->data, &data, error)) ||
+  if ((st = gli_world_data(world, r->ops->data, &data, error)) ||
       (settings->accel == GLINT_ACCEL_BVH &&
-       (st = world_bvh(world, &bvh, error))) ||
+       (st = gli_world_bvh(world, &bvh, error))) ||
       (st = r->layout->bind(data, bvh, &r->view, error))) {
     glint_renderer_destroy(r);
     return st;
   }
 
   int threads = settings->threads ? settings->threads : glint_cpu_count();
-  if ((st = thread_pool_create(threads, &r->pool, error))) {
+  if ((st = gli_thread_pool_create(threads, &r->pool, error))) {
     glint_renderer_destroy(r);
     return st;
   }
-  r->workers = thread_pool_size(r->pool);
+  r->workers = gli_thread_pool_size(r->pool);
   r->worker = gli_aligned_calloc((size_t)r->workers, sizeof *r->worker);
   r->samples = malloc(sizeof *r->samples * GLINT_MAX_SPP);
   int ok = r->worker && r->samples;
   for (int i = 0; ok && i < r->workers; i++) {
     r->worker[i].rgb = gli_aligned_calloc(
-        (size_t)GLINT_TILE_SIZE * GLINT_TILE_SIZE * 3, sizeof(float));
+        (size_t)GLI_TILE_SIZE * GLI_TILE_SIZE * 3, sizeof(float));
     ok = r->worker[i].rgb != NULL;
   }
   if (!ok) {
@@ -214,7 +214,7 @@ glint_status glint_renderer_create(glint_world *world,
 void glint_renderer_destroy(glint_renderer *r) {
   if (!r)
     return;
-  thread_pool_destroy(r->pool);
+  gli_thread_pool_destroy(r->pool);
   for (int i = 0; r->worker && i < r->workers; i++) {
     gli_aligned_free(r->worker[i].rgb);
     gli_aligned_free(r->worker[i].scratch);
@@ -224,7 +224,7 @@ void glint_renderer_destroy(glint_renderer *r) {
   if (r->view)
     r->layout->unbind(r->view);
   pthread_mutex_destroy(&r->job.report_lock);
-  world_release(r->world);
+  gli_world_release(r->world);
   free(r);
 }
 
@@ -313,10 +313,10 @@ static void work(void *arg, int index) {
     if (i >= job->tile_count)
       break;
     tile_rect t;
-    t.x0 = job->x0 + (i % job->tiles_x) * GLINT_TILE_SIZE;
-    t.y0 = job->y0 + (i / job->tiles_x) * GLINT_TILE_SIZE;
-    t.x1 = t.x0 + GLINT_TILE_SIZE < job->x1 ? t.x0 + GLINT_TILE_SIZE : job->x1;
-    t.y1 = t.y0 + GLINT_TILE_SIZE < job->y1 ? t.y0 + GLINT_TILE_SIZE : job->y1;
+    t.x0 = job->x0 + (i % job->tiles_x) * GLI_TILE_SIZE;
+    t.y0 = job->y0 + (i / job->tiles_x) * GLI_TILE_SIZE;
+    t.x1 = t.x0 + GLI_TILE_SIZE < job->x1 ? t.x0 + GLI_TILE_SIZE : job->x1;
+    t.y1 = t.y0 + GLI_TILE_SIZE < job->y1 ? t.y0 + GLI_TILE_SIZE : job->y1;
     if (job->out->primary_only) {
       w->hits += r->ops->primary_tile(r->view, &job->params, &t, &w->stats);
       continue;
@@ -357,10 +357,10 @@ static int pick(int frame_value, int renderer_value) {
   return frame_value ? frame_value : renderer_value;
 }
 
-glint_status renderer_render(glint_renderer *r,
-                             const glint_frame_settings *frame,
-                             frame_output *out, glint_stats *stats_out,
-                             glint_error *error) {
+glint_status gli_renderer_render(glint_renderer *r,
+                                 const glint_frame_settings *frame,
+                                 frame_output *out, glint_stats *stats_out,
+                                 glint_error *error) {
   glint_frame_settings none;
   if (!frame) {
     glint_frame_settings_default(&none);
@@ -401,7 +401,7 @@ glint_status renderer_render(glint_renderer *r,
   }
 
   frame_job *job = &r->job;
-  camera_basis_init(&job->params.camera, camera, width, height);
+  gli_camera_basis_init(&job->params.camera, camera, width, height);
   job->params.spp = spp;
   job->params.max_depth = depth;
   job->params.math = s->math;
@@ -411,9 +411,8 @@ glint_status renderer_render(glint_renderer *r,
   job->y0 = ry;
   job->x1 = rx + rw;
   job->y1 = ry + rh;
-  job->tiles_x = (rw + GLINT_TILE_SIZE - 1) / GLINT_TILE_SIZE;
-  job->tile_count =
-      job->tiles_x * ((rh + GLINT_TILE_SIZE - 1) / GLINT_TILE_SIZE);
+  job->tiles_x = (rw + GLI_TILE_SIZE - 1) / GLI_TILE_SIZE;
+  job->tile_count = job->tiles_x * ((rh + GLI_TILE_SIZE - 1) / GLI_TILE_SIZE);
   job->out = out;
   job->progress = frame->progress ? frame->progress : s->progress;
   job->progress_user =
@@ -430,7 +429,7 @@ glint_status renderer_render(glint_renderer *r,
     r->worker[i].hits = 0;
   }
   double t0 = gli_now();
-  thread_pool_run(r->pool, workers, work, r);
+  gli_thread_pool_run(r->pool, workers, work, r);
   double seconds = gli_now() - t0;
 
   glint_stats stats;
@@ -443,7 +442,7 @@ glint_status renderer_render(glint_renderer *r,
   if (atomic_load(&job->cancelled))
     return gli_fail(error, GLINT_E_CANCELLED, "render cancelled");
   if (stats_out) {
-    world_stats(r->world, &stats);
+    gli_world_stats(r->world, &stats);
     stats.prepare_seconds = 0; /* a frame prepares nothing */
     stats.backend = r->backend;
     stats.width = width;
@@ -467,5 +466,5 @@ glint_status glint_renderer_render(glint_renderer *r,
     return gli_fail(error, GLINT_E_ARGUMENT,
                     r ? "no film to render into" : "no renderer");
   frame_output out = {film, NULL, 1, 0, 0};
-  return renderer_render(r, frame, &out, stats, error);
+  return gli_renderer_render(r, frame, &out, stats, error);
 }

@@ -17,15 +17,15 @@ typedef struct frame_output {
   uint64_t hits;      /* primary_only: how many hit */
 } frame_output;
 
-glint_status renderer_render(glint_renderer *renderer,
-                             const glint_frame_settings *frame,
-                             frame_output *out, glint_stats *stats,
-                             glint_error *error);
+glint_status gli_renderer_render(glint_renderer *renderer,
+                                 const glint_frame_settings *frame,
+                                 frame_output *out, glint_stats *stats,
+                                 glint_error *error);
 
 /* The checks of glint_render_settings that do not depend on the scene
  * (size, depth, spp, region are frame checks: see renderer.c). */
-glint_status render_settings_check(const glint_render_settings *settings,
-                                   int scene_width, int scene_height,
-                                   glint_error *error);
+glint_status gli_render_settings_check(const glint_render_settings *settings,
+                                       int scene_width, int scene_height,
+                                       glint_error *error);
 
 #endif

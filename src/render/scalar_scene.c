@@ -151,11 +151,11 @@ glint_status scalar_scene_prepare(const glint_scene *g, double eps,
     r->shape = o->shape;
     r->first = o->first;
     r->count = o->count;
-    r->smooth = o->shape == GLINT_SHAPE_TRIANGLE && o->count > 0 &&
-                g->triangles[o->first].normals != GLINT_NO_NORMALS;
+    r->smooth = o->shape == GLI_SHAPE_TRIANGLE && o->count > 0 &&
+                g->triangles[o->first].normals != GLI_NO_NORMALS;
     r->origin = from_d(o->origin);
     glint_vec3 n = {0, 1, 0};
-    if (o->shape == GLINT_SHAPE_PLANE)
+    if (o->shape == GLI_SHAPE_PLANE)
       n = g->planes[o->first].normal;
     planar_axes(n, &r->axis_u, &r->axis_v);
   }
@@ -205,24 +205,24 @@ static inline void hit_prim(const scene_r *s, uint32_t shape, uint32_t i,
                             int *found) {
   real t, u, v;
   switch (shape) {
-  case GLINT_SHAPE_SPHERE: {
+  case GLI_SHAPE_SPHERE: {
     int inside;
     if (sphere_hit(s->spheres[i].center, s->spheres[i].r2, o, d, s->eps, *tmax,
                    &t, &inside)) {
       *tmax = hit->t = t;
-      hit->shape = GLINT_SHAPE_SPHERE;
+      hit->shape = GLI_SHAPE_SPHERE;
       hit->prim = i;
       hit->inside = inside;
       *found = 1;
     }
     break;
   }
-  case GLINT_SHAPE_TRIANGLE: {
+  case GLI_SHAPE_TRIANGLE: {
     const triangle_r *tr = &s->triangles[i];
     if (triangle_hit(tr->a, tr->edge, tr->moment, tr->n, o, d, l, s->eps, *tmax,
                      &t, &u, &v)) {
       *tmax = hit->t = t;
-      hit->shape = GLINT_SHAPE_TRIANGLE;
+      hit->shape = GLI_SHAPE_TRIANGLE;
       hit->prim = i;
       hit->u = u;
       hit->v = v;
@@ -230,13 +230,13 @@ static inline void hit_prim(const scene_r *s, uint32_t shape, uint32_t i,
     }
     break;
   }
-  default: { /* GLINT_SHAPE_CONE */
+  default: { /* GLI_SHAPE_CONE */
     const cone_r *c = &s->cones[i];
     real ts[2];
     if (cone_roots(c->base, c->axis, c->height, c->rb, c->k, o, d, s->eps,
                    *tmax, ts)) {
       *tmax = hit->t = ts[0];
-      hit->shape = GLINT_SHAPE_CONE;
+      hit->shape = GLI_SHAPE_CONE;
       hit->prim = i;
       *found = 1;
     }
@@ -255,8 +255,8 @@ typedef struct nearest_query {
 
 static inline void nearest_leaf(void *ctx, uint32_t ref, real *tmax) {
   nearest_query *q = ctx;
-  hit_prim(q->s, GLINT_REF_SHAPE(ref), GLINT_REF_INDEX(ref), q->o, q->d, q->l,
-           tmax, q->hit, q->found);
+  hit_prim(q->s, GLI_REF_SHAPE(ref), GLI_REF_INDEX(ref), q->o, q->d, q->l, tmax,
+           q->hit, q->found);
 }
 
 int scalar_nearest_hit(const scene_r *s, vec3 o, vec3 d, real tmax,
@@ -267,18 +267,17 @@ int scalar_nearest_hit(const scene_r *s, vec3 o, vec3 d, real tmax,
   for (size_t i = 0; i < s->plane_count; i++)
     if (plane_hit(s->planes[i].n, s->planes[i].d, o, d, s->eps, tmax, &t)) {
       tmax = hit->t = t;
-      hit->shape = GLINT_SHAPE_PLANE;
+      hit->shape = GLI_SHAPE_PLANE;
       hit->prim = (uint32_t)i;
       found = 1;
     }
   if (s->bvh->node_count == 0) { /* the thesis's brute force (§4.3) */
     for (size_t i = 0; i < s->sphere_count; i++)
-      hit_prim(s, GLINT_SHAPE_SPHERE, (uint32_t)i, o, d, l, &tmax, hit, &found);
+      hit_prim(s, GLI_SHAPE_SPHERE, (uint32_t)i, o, d, l, &tmax, hit, &found);
     for (size_t i = 0; i < s->triangle_count; i++)
-      hit_prim(s, GLINT_SHAPE_TRIANGLE, (uint32_t)i, o, d, l, &tmax, hit,
-               &found);
+      hit_prim(s, GLI_SHAPE_TRIANGLE, (uint32_t)i, o, d, l, &tmax, hit, &found);
     for (size_t i = 0; i < s->cone_count; i++)
-      hit_prim(s, GLINT_SHAPE_CONE, (uint32_t)i, o, d, l, &tmax, hit, &found);
+      hit_prim(s, GLI_SHAPE_CONE, (uint32_t)i, o, d, l, &tmax, hit, &found);
     return found;
   }
   nearest_query q = {s, o, d, l, hit, &found};
@@ -316,7 +315,7 @@ static inline int cross_prim(const scene_r *s, shadow_acc *acc, uint32_t shape,
                              uint32_t i, vec3 o, vec3 d, vec3 l, real dist) {
   real eps = s->eps;
   switch (shape) {
-  case GLINT_SHAPE_SPHERE: {
+  case GLI_SHAPE_SPHERE: {
     real l1, l2;
     const sphere_r *sp = &s->spheres[i];
     if (!sphere_roots(sp->center, sp->r2, o, d, &l1, &l2))
@@ -327,7 +326,7 @@ static inline int cross_prim(const scene_r *s, shadow_acc *acc, uint32_t shape,
       return 0;
     return 1;
   }
-  case GLINT_SHAPE_TRIANGLE: {
+  case GLI_SHAPE_TRIANGLE: {
     real t, u, v;
     const triangle_r *tr = &s->triangles[i];
     if (triangle_hit(tr->a, tr->edge, tr->moment, tr->n, o, d, l, eps, dist, &t,
@@ -336,7 +335,7 @@ static inline int cross_prim(const scene_r *s, shadow_acc *acc, uint32_t shape,
       return 0;
     return 1;
   }
-  default: { /* GLINT_SHAPE_CONE */
+  default: { /* GLI_SHAPE_CONE */
     const cone_r *c = &s->cones[i];
     real ts[2];
     int n = cone_roots(c->base, c->axis, c->height, c->rb, c->k, o, d, eps,
@@ -363,8 +362,8 @@ typedef struct segment_query {
 
 static inline int segment_leaf(void *ctx, uint32_t ref) {
   segment_query *q = ctx;
-  return cross_prim(q->s, q->acc, GLINT_REF_SHAPE(ref), GLINT_REF_INDEX(ref),
-                    q->o, q->d, q->l, q->dist);
+  return cross_prim(q->s, q->acc, GLI_REF_SHAPE(ref), GLI_REF_INDEX(ref), q->o,
+                    q->d, q->l, q->dist);
 }
 
 vec3 scalar_transmission(const scene_r *s, vec3 o, vec3 d, real dist) {
@@ -380,14 +379,13 @@ vec3 scalar_transmission(const scene_r *s, vec3 o, vec3 d, real dist) {
   }
   if (s->bvh->node_count == 0) {
     for (size_t i = 0; i < s->sphere_count; i++)
-      if (!cross_prim(s, &acc, GLINT_SHAPE_SPHERE, (uint32_t)i, o, d, l, dist))
+      if (!cross_prim(s, &acc, GLI_SHAPE_SPHERE, (uint32_t)i, o, d, l, dist))
         return black;
     for (size_t i = 0; i < s->triangle_count; i++)
-      if (!cross_prim(s, &acc, GLINT_SHAPE_TRIANGLE, (uint32_t)i, o, d, l,
-                      dist))
+      if (!cross_prim(s, &acc, GLI_SHAPE_TRIANGLE, (uint32_t)i, o, d, l, dist))
         return black;
     for (size_t i = 0; i < s->cone_count; i++)
-      if (!cross_prim(s, &acc, GLINT_SHAPE_CONE, (uint32_t)i, o, d, l, dist))
+      if (!cross_prim(s, &acc, GLI_SHAPE_CONE, (uint32_t)i, o, d, l, dist))
         return black;
   } else {
     segment_query q = {s, &acc, o, d, l, dist};

@@ -30,7 +30,7 @@ typedef struct triangle_r {
   vec3 ng; /* unit geometric normal, front side by counter-clockwise order */
   vec3 n;  /* (B - A) x (C - A), unnormalised */
   uint32_t object;
-  uint32_t normals; /* first of 3 vertex normals, or GLINT_NO_NORMALS */
+  uint32_t normals; /* first of 3 vertex normals, or GLI_NO_NORMALS */
 } triangle_r;
 
 typedef struct cone_r {

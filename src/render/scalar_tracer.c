@@ -48,7 +48,7 @@ static inline surface surface_at(const scene_r *s, const hit_r *h, vec3 o,
   f.p = v3_madd(o, h->t, d);
   vec3 ng;
   switch (h->shape) {
-  case GLINT_SHAPE_SPHERE: {
+  case GLI_SHAPE_SPHERE: {
     const sphere_r *sp = &s->spheres[h->prim];
     /* Normalised rather than scaled by 1/r: a grazing hit's point can lie
      * off the surface by more than rounding, and a normal that is not unit
@@ -59,24 +59,24 @@ static inline surface surface_at(const scene_r *s, const hit_r *h, vec3 o,
     f.object = sp->object;
     break;
   }
-  case GLINT_SHAPE_PLANE:
+  case GLI_SHAPE_PLANE:
     ng = s->planes[h->prim].n;
     f.front = v3_dot(ng, d) < 0;
     f.object = s->planes[h->prim].object;
     break;
-  case GLINT_SHAPE_CONE: {
+  case GLI_SHAPE_CONE: {
     const cone_r *c = &s->cones[h->prim];
     ng = v3_normalize(cone_normal(c->base, c->axis, c->rb, c->k, f.p));
     f.front = v3_dot(ng, d) < 0;
     f.object = c->object;
     break;
   }
-  default: { /* GLINT_SHAPE_TRIANGLE */
+  default: { /* GLI_SHAPE_TRIANGLE */
     const triangle_r *t = &s->triangles[h->prim];
     ng = t->ng;
     f.front = v3_dot(ng, d) < 0;
     f.object = t->object;
-    if (t->normals != GLINT_NO_NORMALS) {
+    if (t->normals != GLI_NO_NORMALS) {
       /* Interpolated vertex normals (NFF polygonal patches). */
       const vec3 *vn = &s->normals[t->normals];
       vec3 n = v3_madd(v3_madd(v3_scale(vn[0], 1 - h->u - h->v), h->u, vn[1]),

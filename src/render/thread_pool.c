@@ -52,8 +52,8 @@ static void *thread_main(void *p) {
   return NULL;
 }
 
-glint_status thread_pool_create(int threads, thread_pool **out,
-                                glint_error *error) {
+glint_status gli_thread_pool_create(int threads, thread_pool **out,
+                                    glint_error *error) {
   thread_pool *pool = calloc(1, sizeof *pool);
   pool_thread *t = threads > 1 ? calloc((size_t)threads - 1, sizeof *t) : NULL;
   if (!pool || (threads > 1 && !t)) {
@@ -77,7 +77,7 @@ glint_status thread_pool_create(int threads, thread_pool **out,
   return GLINT_OK;
 }
 
-void thread_pool_destroy(thread_pool *pool) {
+void gli_thread_pool_destroy(thread_pool *pool) {
   if (!pool)
     return;
   pthread_mutex_lock(&pool->lock);
@@ -93,10 +93,10 @@ void thread_pool_destroy(thread_pool *pool) {
   free(pool);
 }
 
-int thread_pool_size(const thread_pool *pool) { return pool->size; }
+int gli_thread_pool_size(const thread_pool *pool) { return pool->size; }
 
-void thread_pool_run(thread_pool *pool, int workers, pool_task task,
-                     void *arg) {
+void gli_thread_pool_run(thread_pool *pool, int workers, pool_task task,
+                         void *arg) {
   if (workers > pool->size)
     workers = pool->size;
   if (workers > 1) {

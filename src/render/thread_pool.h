@@ -12,14 +12,15 @@ typedef struct thread_pool thread_pool;
 typedef void (*pool_task)(void *arg, int worker);
 
 /* Starts threads - 1 threads (fewer if the system refuses some: the pool
- * then has fewer workers, which thread_pool_size tells). */
-glint_status thread_pool_create(int threads, thread_pool **pool,
-                                glint_error *error);
-void thread_pool_destroy(thread_pool *pool);
-int thread_pool_size(const thread_pool *pool);
+ * then has fewer workers, which gli_thread_pool_size tells). */
+glint_status gli_thread_pool_create(int threads, thread_pool **pool,
+                                    glint_error *error);
+void gli_thread_pool_destroy(thread_pool *pool);
+int gli_thread_pool_size(const thread_pool *pool);
 
 /* Runs task(arg, i) for i in 0 .. workers - 1 (workers <= size), i = 0 on the
  * calling thread, and returns when every one has returned. */
-void thread_pool_run(thread_pool *pool, int workers, pool_task task, void *arg);
+void gli_thread_pool_run(thread_pool *pool, int workers, pool_task task,
+                         void *arg);
 
 #endif

@@ -7,8 +7,8 @@
 
 #include <stdlib.h>
 
-glint_status world_create(const glint_scene *scene, glint_world **out,
-                          glint_error *error) {
+glint_status gli_world_create(const glint_scene *scene, glint_world **out,
+                              glint_error *error) {
   if (!scene)
     return gli_fail(error, GLINT_E_ARGUMENT, "no scene to commit");
   glint_world *w = calloc(1, sizeof *w);
@@ -26,9 +26,9 @@ glint_status world_create(const glint_scene *scene, glint_world **out,
   return GLINT_OK;
 }
 
-void world_retain(glint_world *w) { atomic_fetch_add(&w->refs, 1); }
+void gli_world_retain(glint_world *w) { atomic_fetch_add(&w->refs, 1); }
 
-void world_release(glint_world *w) {
+void gli_world_release(glint_world *w) {
   if (!w || atomic_fetch_sub(&w->refs, 1) != 1)
     return;
   for (int k = 0; k < DATA_KIND_COUNT; k++)
@@ -41,8 +41,8 @@ void world_release(glint_world *w) {
   free(w);
 }
 
-glint_status world_bvh(glint_world *w, const gli_bvh **bvh,
-                       glint_error *error) {
+glint_status gli_world_bvh(glint_world *w, const gli_bvh **bvh,
+                           glint_error *error) {
   glint_status st = GLINT_OK;
   pthread_mutex_lock(&w->lock);
   if (!w->bvh_built) {
@@ -56,8 +56,8 @@ glint_status world_bvh(glint_world *w, const gli_bvh **bvh,
   return st;
 }
 
-glint_status world_data(glint_world *w, data_kind kind, const void **data,
-                        glint_error *error) {
+glint_status gli_world_data(glint_world *w, data_kind kind, const void **data,
+                            glint_error *error) {
   const data_ops *ops = gli_data_ops_of(kind);
   if (!ops)
     return gli_fail(error, GLINT_E_UNSUPPORTED,
@@ -74,7 +74,7 @@ glint_status world_data(glint_world *w, data_kind kind, const void **data,
   return st;
 }
 
-void world_stats(glint_world *w, glint_stats *stats) {
+void gli_world_stats(glint_world *w, glint_stats *stats) {
   pthread_mutex_lock(&w->lock);
   stats->prepare_seconds = w->prepare_seconds;
   stats->bvh_nodes = w->bvh_built ? w->bvh.node_count : 0;
@@ -92,12 +92,12 @@ void world_stats(glint_world *w, glint_stats *stats) {
 glint_status glint_world_commit(const glint_scene *scene, glint_world **out,
                                 glint_stats *stats, glint_error *error) {
   glint_world *w = NULL;
-  glint_status st = world_create(scene, &w, error);
+  glint_status st = gli_world_create(scene, &w, error);
   if (st)
     return st;
   const gli_bvh *bvh;
-  if ((st = world_bvh(w, &bvh, error))) {
-    world_release(w);
+  if ((st = gli_world_bvh(w, &bvh, error))) {
+    gli_world_release(w);
     return st;
   }
   /* The layout of the default backend now; the others on first use by a
@@ -105,17 +105,17 @@ glint_status glint_world_commit(const glint_scene *scene, glint_world **out,
   const gli_backend_ops *ops =
       gli_backend_ops_of(glint_backend_resolve(GLINT_BACKEND_AUTO));
   const void *data;
-  if ((st = world_data(w, ops->data, &data, error))) {
-    world_release(w);
+  if ((st = gli_world_data(w, ops->data, &data, error))) {
+    gli_world_release(w);
     return st;
   }
   if (stats)
-    world_stats(w, stats);
+    gli_world_stats(w, stats);
   *out = w;
   return GLINT_OK;
 }
 
-void glint_world_destroy(glint_world *w) { world_release(w); }
+void glint_world_destroy(glint_world *w) { gli_world_release(w); }
 
 void glint_world_get_info(const glint_world *w, glint_scene_info *info) {
   glint_scene_get_info(w->scene, info);

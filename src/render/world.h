@@ -25,18 +25,18 @@ struct glint_world {
 
 /* Commits without building anything yet (glint_render builds only what its
  * backend and accel use). */
-glint_status world_create(const glint_scene *scene, glint_world **world,
-                          glint_error *error);
-void world_retain(glint_world *world);
-void world_release(glint_world *world);
+glint_status gli_world_create(const glint_scene *scene, glint_world **world,
+                              glint_error *error);
+void gli_world_retain(glint_world *world);
+void gli_world_release(glint_world *world);
 
 /* The BVH, built on first use. */
-glint_status world_bvh(glint_world *world, const gli_bvh **bvh,
-                       glint_error *error);
+glint_status gli_world_bvh(glint_world *world, const gli_bvh **bvh,
+                           glint_error *error);
 /* The scene converted for one family of backends, on first use. */
-glint_status world_data(glint_world *world, data_kind kind, const void **data,
-                        glint_error *error);
+glint_status gli_world_data(glint_world *world, data_kind kind,
+                            const void **data, glint_error *error);
 /* What has been built so far: BVH and data sizes and times. */
-void world_stats(glint_world *world, glint_stats *stats);
+void gli_world_stats(glint_world *world, glint_stats *stats);
 
 #endif

@@ -32,9 +32,10 @@ static glint_material matte(V color) {
   return m;
 }
 
-static glint_material planar_checker(V odd, V even, double size) {
+static glint_material checkered(glint_texture texture, V odd, V even,
+                                double size) {
   glint_material m = matte(odd);
-  m.texture = GLINT_TEXTURE_CHECKER_PLANAR;
+  m.texture = texture;
   m.checker_odd = odd;
   m.checker_even = even;
   m.checker_size = size;
@@ -66,7 +67,9 @@ static glint_status build_whitted(glint_scene *s, glint_error *e) {
   uint32_t floor, sphere;
   if ((st = setup(s, (V){0, 2, 6}, (V){0, 1.25, 0}, 60, (V){0.25, 0.45, 0.85},
                   (V){-4, 8, 6}, e)) ||
-      (st = add_material(s, planar_checker((V){1, 0, 0}, (V){1, 1, 0}, 1),
+      (st = add_material(s,
+                         checkered(GLINT_TEXTURE_CHECKER_PLANAR, (V){1, 0, 0},
+                                   (V){1, 1, 0}, 1),
                          &floor, e)) ||
       (st = add_material(s, glass((V){0.10, 0.025, 0.0}), &sphere, e)) ||
       (st = glint_scene_add_plane(s, (V){0, 1, 0}, (V){0, 0, 0}, floor, e)))
@@ -130,9 +133,11 @@ static glint_status build_giza(glint_scene *s, glint_error *e) {
   uint32_t sand, glass_id, bark, leaf;
   if ((st = setup(s, (V){0, 3, 9}, (V){0, 2.2, -4}, 60, (V){0.45, 0.65, 0.95},
                   (V){-10, 20, 10}, e)) ||
-      (st = add_material(
-           s, planar_checker((V){0.93, 0.79, 0.50}, (V){0.80, 0.62, 0.35}, 2),
-           &sand, e)) ||
+      (st = add_material(s,
+                         checkered(GLINT_TEXTURE_CHECKER_PLANAR,
+                                   (V){0.93, 0.79, 0.50}, (V){0.80, 0.62, 0.35},
+                                   2),
+                         &sand, e)) ||
       (st = add_material(s, glass((V){0.0, 0.025, 0.10}), &glass_id, e)) ||
       (st = add_material(s, matte((V){0.45, 0.30, 0.15}), &bark, e)) ||
       (st = add_material(s, matte((V){0.10, 0.55, 0.10}), &leaf, e)) ||
@@ -147,12 +152,8 @@ static glint_status build_giza(glint_scene *s, glint_error *e) {
 static glint_status build_billiard(glint_scene *s, glint_error *e) {
   glint_status st;
   uint32_t cloth, glass_id, checker;
-  glint_material c = matte((V){0.9, 0.9, 0.9});
-  c.texture = GLINT_TEXTURE_CHECKER_SOLID;
-  c.checker_odd = (V){0.9, 0.9, 0.9};
-  c.checker_even = (V){0.8, 0.1, 0.1};
-  c.checker_size = 0.5;
-  c.ka = 0.1;
+  glint_material c = checkered(GLINT_TEXTURE_CHECKER_SOLID, (V){0.9, 0.9, 0.9},
+                               (V){0.8, 0.1, 0.1}, 0.5);
   c.kd = 0.7;
   c.ks = 0.6;
   c.h = 40;

@@ -24,7 +24,7 @@ static int copy_array(void **dst, const void *src, size_t count, size_t size,
 }
 
 glint_status gli_scene_copy(const glint_scene *src, glint_scene **out,
-                              glint_error *error) {
+                            glint_error *error) {
   glint_scene *s = calloc(1, sizeof *s);
   if (!s)
     return gli_fail(error, GLINT_E_MEMORY, "out of memory copying the scene");

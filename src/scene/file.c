@@ -22,13 +22,12 @@ static glint_status too_large(glint_error *e, const char *path,
                               size_t max_bytes) {
   if (max_bytes >= (size_t)1 << 30 && max_bytes % ((size_t)1 << 30) == 0)
     return gli_fail(e, GLINT_E_IO, "%s: larger than %zu GiB", path,
-                      max_bytes >> 30);
-  return gli_fail(e, GLINT_E_IO, "%s: larger than %zu bytes", path,
-                    max_bytes);
+                    max_bytes >> 30);
+  return gli_fail(e, GLINT_E_IO, "%s: larger than %zu bytes", path, max_bytes);
 }
 
-glint_status file_read_all(const char *path, size_t max_bytes, char **out,
-                           size_t *out_size, glint_error *e) {
+glint_status gli_file_read_all(const char *path, size_t max_bytes, char **out,
+                               size_t *out_size, glint_error *e) {
   struct stat sb;
   if (stat(path, &sb) != 0)
     return io_fail(e, path, "", errno);
@@ -66,7 +65,7 @@ glint_status file_read_all(const char *path, size_t max_bytes, char **out,
           zerr == Z_ERRNO
               ? io_fail(e, path, "cannot read: ", errno ? errno : EIO)
               : gli_fail(e, GLINT_E_PARSE, "%s: damaged compressed file: %s",
-                           path, msg);
+                         path, msg);
       gzclose(f);
       free(data);
       return st;
@@ -93,13 +92,13 @@ glint_status file_read_all(const char *path, size_t max_bytes, char **out,
   if (zst != Z_OK) {
     free(data);
     if (zst == Z_BUF_ERROR)
-      return gli_fail(e, GLINT_E_PARSE,
-                        "%s: the compressed file is truncated", path);
+      return gli_fail(e, GLINT_E_PARSE, "%s: the compressed file is truncated",
+                      path);
     /* Only the system failing to read is I/O; bad data is the file's. */
     return zst == Z_ERRNO
                ? io_fail(e, path, "cannot read: ", errno ? errno : EIO)
                : gli_fail(e, GLINT_E_PARSE, "%s: damaged compressed file",
-                            path);
+                          path);
   }
   data[size] = '\0';
   *out = data;
@@ -107,8 +106,9 @@ glint_status file_read_all(const char *path, size_t max_bytes, char **out,
   return GLINT_OK;
 }
 
-glint_status file_check_text(const char *path, const char *data, size_t size,
-                             size_t first_line, glint_error *e) {
+glint_status gli_file_check_text(const char *path, const char *data,
+                                 size_t size, size_t first_line,
+                                 glint_error *e) {
   const char *nul = memchr(data, '\0', size);
   if (!nul)
     return GLINT_OK;
@@ -116,5 +116,5 @@ glint_status file_check_text(const char *path, const char *data, size_t size,
   for (const char *p = data; p < nul; p++)
     line += *p == '\n';
   return gli_fail(e, GLINT_E_PARSE,
-                    "%s:%zu: binary data where text was expected", path, line);
+                  "%s:%zu: binary data where text was expected", path, line);
 }

@@ -15,13 +15,14 @@
  * Files of more than max_bytes (after decompression) are refused, naming
  * the limit. GLINT_E_IO when the system cannot read the file, GLINT_E_PARSE
  * for a damaged or truncated compressed stream. Thread-safe. */
-glint_status file_read_all(const char *path, size_t max_bytes, char **data,
-                           size_t *size, glint_error *error);
+glint_status gli_file_read_all(const char *path, size_t max_bytes, char **data,
+                               size_t *size, glint_error *error);
 
 /* GLINT_E_PARSE "PATH:LINE: binary data where text was expected" if data
  * holds a NUL byte (it would end a number early and hide the rest of the
  * line); LINE counts from first_line. */
-glint_status file_check_text(const char *path, const char *data, size_t size,
-                             size_t first_line, glint_error *error);
+glint_status gli_file_check_text(const char *path, const char *data,
+                                 size_t size, size_t first_line,
+                                 glint_error *error);
 
 #endif

@@ -59,7 +59,7 @@ static int fast_path(const char *p, const char *end, double *out) {
   return 1;
 }
 
-int number_parse(const char *t, size_t len, double *out) {
+int gli_number_parse(const char *t, size_t len, double *out) {
   if (len == 0)
     return NUMBER_BAD;
   double v;
@@ -75,14 +75,14 @@ int number_parse(const char *t, size_t len, double *out) {
   return NUMBER_OK;
 }
 
-number_locale number_locale_begin(void) {
+number_locale gli_number_locale_begin(void) {
   number_locale l;
   l.c = newlocale(LC_NUMERIC_MASK, "C", (locale_t)0);
   l.old = l.c ? uselocale(l.c) : (locale_t)0;
   return l;
 }
 
-void number_locale_end(number_locale l) {
+void gli_number_locale_end(number_locale l) {
   if (l.c) {
     uselocale(l.old);
     freelocale(l.c);

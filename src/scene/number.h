@@ -12,14 +12,14 @@ enum { NUMBER_OK = 0, NUMBER_BAD = -1, NUMBER_NOT_FINITE = -2 };
  * NUMBER_BAD if they are not a number as strtod reads one, or
  * NUMBER_NOT_FINITE (inf, nan, or too large for a double). The character at
  * t[len] must not continue a number (a blank, a newline, '#' or NUL). */
-int number_parse(const char *t, size_t len, double *out);
+int gli_number_parse(const char *t, size_t len, double *out);
 
 /* Makes strtod read '.' on this thread whatever LC_NUMERIC the host program
- * chose, until number_locale_end; loaders bracket their parsing with it. */
+ * chose, until gli_number_locale_end; loaders bracket their parsing with it. */
 typedef struct number_locale {
   locale_t c, old;
 } number_locale;
-number_locale number_locale_begin(void);
-void number_locale_end(number_locale l);
+number_locale gli_number_locale_begin(void);
+void gli_number_locale_end(number_locale l);
 
 #endif

@@ -134,9 +134,9 @@ static size_t first_vertex(const ring *g, size_t b, size_t m) {
 }
 
 int gli_triangulate(const glint_vec3 *v, size_t n, gli_polygon_emit emit,
-                      void *user) {
+                    void *user) {
   if (n < 3)
-    return GLINT_TRIANGULATE_NO_MEMORY;
+    return GLI_TRIANGULATE_NO_MEMORY;
   if (n == 3)
     return emit(user, 0, 1, 2);
   /* idx: the convex rest in order; tmp: bisection's scratch (each level
@@ -148,7 +148,7 @@ int gli_triangulate(const glint_vec3 *v, size_t n, gli_polygon_emit emit,
   if (!idx || !reflex) {
     free(idx);
     free(reflex);
-    return GLINT_TRIANGULATE_NO_MEMORY;
+    return GLI_TRIANGULATE_NO_MEMORY;
   }
   size_t *tmp = idx + n;
   ring g = {
@@ -219,7 +219,7 @@ int gli_triangulate(const glint_vec3 *v, size_t n, gli_polygon_emit emit,
       }
     }
     if (tests > EAR_TEST_BUDGET) {
-      r = GLINT_TRIANGULATE_TOO_COMPLEX;
+      r = GLI_TRIANGULATE_TOO_COMPLEX;
       break;
     }
   }

@@ -15,15 +15,15 @@ typedef int (*gli_polygon_emit)(void *user, size_t a, size_t b, size_t c);
  * convex. */
 int gli_polygon_is_convex(const glint_vec3 *v, size_t n);
 
-#define GLINT_TRIANGULATE_NO_MEMORY (-1) /* or n < 3 */
-#define GLINT_TRIANGULATE_TOO_COMPLEX (-2)
+#define GLI_TRIANGULATE_NO_MEMORY (-1) /* or n < 3 */
+#define GLI_TRIANGULATE_TOO_COMPLEX (-2)
 
 /* Triangulates the n >= 3 vertices v (in order around the polygon), keeping
  * their orientation. Returns 0, an emit's non-zero result,
- * GLINT_TRIANGULATE_NO_MEMORY, or GLINT_TRIANGULATE_TOO_COMPLEX when ear
+ * GLI_TRIANGULATE_NO_MEMORY, or GLI_TRIANGULATE_TOO_COMPLEX when ear
  * clipping would take more than about 2^27 point-in-triangle tests (a
  * polygon with tens of thousands of inward corners) rather than hang. */
 int gli_triangulate(const glint_vec3 *v, size_t n, gli_polygon_emit emit,
-                      void *user);
+                    void *user);
 
 #endif

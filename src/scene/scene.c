@@ -72,21 +72,21 @@ glint_status gli_camera_check(const glint_camera *c, glint_error *error) {
   if (!gli_vec3_finite(c->from) || !gli_vec3_finite(c->at) ||
       !gli_vec3_finite(c->up) || !isfinite(c->fov_x_degrees))
     return gli_fail(error, GLINT_E_ARGUMENT,
-                      "camera: coordinates must be finite numbers");
+                    "camera: coordinates must be finite numbers");
   if (!(c->fov_x_degrees > 0 && c->fov_x_degrees < 180))
     return gli_fail(error, GLINT_E_ARGUMENT,
-                      "camera: field of view %g is not between 0 and 180 "
-                      "degrees",
-                      c->fov_x_degrees);
+                    "camera: field of view %g is not between 0 and 180 "
+                    "degrees",
+                    c->fov_x_degrees);
   glint_vec3 d = vsub(c->at, c->from);
   if (vlen(d) == 0)
     return gli_fail(error, GLINT_E_ARGUMENT,
-                      "camera: 'from' and 'at' are the same point");
+                    "camera: 'from' and 'at' are the same point");
   double dl = vlen(d), ul = vlen(c->up);
   if (ul == 0 || vlen(vcross(d, c->up)) <= 1e-9 * dl * ul)
     return gli_fail(error, GLINT_E_ARGUMENT,
-                      "camera: 'up' is zero or parallel to the view "
-                      "direction");
+                    "camera: 'up' is zero or parallel to the view "
+                    "direction");
   return GLINT_OK;
 }
 
@@ -103,8 +103,8 @@ glint_status glint_scene_set_resolution(glint_scene *s, int w, int h,
                                         glint_error *error) {
   if (w < 1 || h < 1 || w > GLINT_MAX_DIMENSION || h > GLINT_MAX_DIMENSION)
     return gli_fail(error, GLINT_E_ARGUMENT,
-                      "resolution %dx%d is outside 1..%d", w, h,
-                      GLINT_MAX_DIMENSION);
+                    "resolution %dx%d is outside 1..%d", w, h,
+                    GLINT_MAX_DIMENSION);
   s->width = w;
   s->height = h;
   return GLINT_OK;
@@ -143,8 +143,8 @@ glint_status glint_scene_add_light(glint_scene *s, glint_vec3 p, glint_vec3 c,
   if (st != GLINT_OK)
     return st;
   gli_light l = {p, c};
-  return GLINT_PUSH(s->lights, s->light_count, s->light_cap, l) ? oom(error)
-                                                                : GLINT_OK;
+  return GLI_PUSH(s->lights, s->light_count, s->light_cap, l) ? oom(error)
+                                                              : GLINT_OK;
 }
 
 glint_status glint_scene_add_material(glint_scene *s, const glint_material *m,
@@ -160,24 +160,24 @@ glint_status glint_scene_add_material(glint_scene *s, const glint_material *m,
   for (int i = 0; i < 6; i++)
     if (!isfinite(k[i]) || k[i] < 0)
       return gli_fail(error, GLINT_E_ARGUMENT,
-                        "material %s = %g must be a finite number >= 0",
-                        names[i], k[i]);
+                      "material %s = %g must be a finite number >= 0", names[i],
+                      k[i]);
   if (!isfinite(m->ior) || m->ior <= 0)
     return gli_fail(error, GLINT_E_ARGUMENT,
-                      "material ior = %g must be a finite number > 0", m->ior);
+                    "material ior = %g must be a finite number > 0", m->ior);
   if (m->texture != GLINT_TEXTURE_NONE &&
       m->texture != GLINT_TEXTURE_CHECKER_PLANAR &&
       m->texture != GLINT_TEXTURE_CHECKER_SOLID)
     return gli_fail(error, GLINT_E_ARGUMENT, "unknown texture kind %d",
-                      (int)m->texture);
+                    (int)m->texture);
   if (m->texture != GLINT_TEXTURE_NONE &&
       !(isfinite(m->checker_size) && m->checker_size > 0))
     return gli_fail(error, GLINT_E_ARGUMENT,
-                      "checker size %g must be a finite number > 0",
-                      m->checker_size);
+                    "checker size %g must be a finite number > 0",
+                    m->checker_size);
   if (s->material_count >= UINT32_MAX)
     return gli_fail(error, GLINT_E_ARGUMENT, "too many materials");
-  if (GLINT_PUSH(s->materials, s->material_count, s->material_cap, *m))
+  if (GLI_PUSH(s->materials, s->material_count, s->material_cap, *m))
     return oom(error);
   if (id)
     *id = (uint32_t)(s->material_count - 1);
@@ -185,42 +185,42 @@ glint_status glint_scene_add_material(glint_scene *s, const glint_material *m,
 }
 
 glint_status gli_scene_begin_object(glint_scene *s, gli_shape shape,
-                                      uint32_t material, glint_error *error) {
+                                    uint32_t material, glint_error *error) {
   if (material >= s->material_count)
     return gli_fail(error, GLINT_E_ARGUMENT,
-                      "material %u does not exist (the scene has %zu)",
-                      material, s->material_count);
+                    "material %u does not exist (the scene has %zu)", material,
+                    s->material_count);
   if (s->object_count >= UINT32_MAX - 1)
     return gli_fail(error, GLINT_E_ARGUMENT, "too many objects");
   size_t first = 0;
   switch (shape) {
-  case GLINT_SHAPE_SPHERE: first = s->sphere_count; break;
-  case GLINT_SHAPE_TRIANGLE: first = s->triangle_count; break;
-  case GLINT_SHAPE_CONE: first = s->cone_count; break;
-  case GLINT_SHAPE_PLANE: first = s->plane_count; break;
+  case GLI_SHAPE_SPHERE: first = s->sphere_count; break;
+  case GLI_SHAPE_TRIANGLE: first = s->triangle_count; break;
+  case GLI_SHAPE_CONE: first = s->cone_count; break;
+  case GLI_SHAPE_PLANE: first = s->plane_count; break;
   }
   if (first >= UINT32_MAX)
     return gli_fail(error, GLINT_E_ARGUMENT, "too many primitives");
   gli_object o = {material, (uint32_t)shape, (uint32_t)first, 0, {0, 0, 0}};
-  return GLINT_PUSH(s->objects, s->object_count, s->object_cap, o) ? oom(error)
-                                                                   : GLINT_OK;
+  return GLI_PUSH(s->objects, s->object_count, s->object_cap, o) ? oom(error)
+                                                                 : GLINT_OK;
 }
 
 glint_status glint_scene_add_sphere(glint_scene *s, glint_vec3 c, double r,
                                     uint32_t material, glint_error *error) {
   if (!gli_vec3_finite(c) || !isfinite(r))
     return gli_fail(error, GLINT_E_ARGUMENT,
-                      "sphere: coordinates must be finite numbers");
+                    "sphere: coordinates must be finite numbers");
   if (!(r > 0))
     return gli_fail(error, GLINT_E_ARGUMENT, "sphere: radius %g must be > 0",
-                      r);
+                    r);
   glint_status st =
-      gli_scene_begin_object(s, GLINT_SHAPE_SPHERE, material, error);
+      gli_scene_begin_object(s, GLI_SHAPE_SPHERE, material, error);
   if (st)
     return st;
   gli_object *o = &s->objects[s->object_count - 1];
   gli_sphere_prim p = {c, r, (uint32_t)(s->object_count - 1)};
-  if (GLINT_PUSH(s->spheres, s->sphere_count, s->sphere_cap, p)) {
+  if (GLI_PUSH(s->spheres, s->sphere_count, s->sphere_cap, p)) {
     s->object_count--;
     return oom(error);
   }
@@ -233,19 +233,18 @@ glint_status glint_scene_add_plane(glint_scene *s, glint_vec3 n, glint_vec3 p,
                                    uint32_t material, glint_error *error) {
   if (!gli_vec3_finite(n) || !gli_vec3_finite(p))
     return gli_fail(error, GLINT_E_ARGUMENT,
-                      "plane: coordinates must be finite numbers");
+                    "plane: coordinates must be finite numbers");
   double len = vlen(n);
   if (!(len > 0) || !isfinite(len))
     return gli_fail(error, GLINT_E_ARGUMENT,
-                      "plane: the normal must not be zero");
-  glint_status st =
-      gli_scene_begin_object(s, GLINT_SHAPE_PLANE, material, error);
+                    "plane: the normal must not be zero");
+  glint_status st = gli_scene_begin_object(s, GLI_SHAPE_PLANE, material, error);
   if (st)
     return st;
   glint_vec3 u = {n.x / len, n.y / len, n.z / len};
   gli_plane_prim pl = {u, -(u.x * p.x + u.y * p.y + u.z * p.z),
-                         (uint32_t)(s->object_count - 1)};
-  if (GLINT_PUSH(s->planes, s->plane_count, s->plane_cap, pl)) {
+                       (uint32_t)(s->object_count - 1)};
+  if (GLI_PUSH(s->planes, s->plane_count, s->plane_cap, pl)) {
     s->object_count--;
     return oom(error);
   }
@@ -253,27 +252,26 @@ glint_status glint_scene_add_plane(glint_scene *s, glint_vec3 n, glint_vec3 p,
   return GLINT_OK;
 }
 
-glint_status gli_scene_push_triangle(glint_scene *s, glint_vec3 a,
-                                       glint_vec3 b, glint_vec3 c,
-                                       const glint_vec3 normals[3],
-                                       glint_error *error) {
+glint_status gli_scene_push_triangle(glint_scene *s, glint_vec3 a, glint_vec3 b,
+                                     glint_vec3 c, const glint_vec3 normals[3],
+                                     glint_error *error) {
   if (!gli_vec3_finite(a) || !gli_vec3_finite(b) || !gli_vec3_finite(c))
     return gli_fail(error, GLINT_E_ARGUMENT,
-                      "triangle: coordinates must be finite numbers");
+                    "triangle: coordinates must be finite numbers");
   gli_object *o = &s->objects[s->object_count - 1];
   if (s->triangle_count >= UINT32_MAX - 1)
     return gli_fail(error, GLINT_E_ARGUMENT, "too many triangles");
   gli_triangle_prim t = {
-      {a, b, c}, (uint32_t)(s->object_count - 1), GLINT_NO_NORMALS};
+      {a, b, c}, (uint32_t)(s->object_count - 1), GLI_NO_NORMALS};
   if (normals) {
     for (int i = 0; i < 3; i++)
       if (!gli_vec3_finite(normals[i]))
         return gli_fail(error, GLINT_E_ARGUMENT,
-                          "triangle: normals must be finite numbers");
+                        "triangle: normals must be finite numbers");
     if (s->tri_normal_count >= UINT32_MAX - 3)
       return gli_fail(error, GLINT_E_ARGUMENT, "too many normals");
     if (gli_grow((void **)&s->tri_normals, &s->tri_normal_cap,
-                   s->tri_normal_count + 3, sizeof *s->tri_normals))
+                 s->tri_normal_count + 3, sizeof *s->tri_normals))
       return oom(error);
     t.normals = (uint32_t)s->tri_normal_count;
     for (int i = 0; i < 3; i++) {
@@ -284,7 +282,7 @@ glint_status gli_scene_push_triangle(glint_scene *s, glint_vec3 a,
           l > 0 ? (glint_vec3){nv.x / l, nv.y / l, nv.z / l} : nv;
     }
   }
-  if (GLINT_PUSH(s->triangles, s->triangle_count, s->triangle_cap, t))
+  if (GLI_PUSH(s->triangles, s->triangle_count, s->triangle_cap, t))
     return oom(error);
   o->count++;
   return GLINT_OK;
@@ -295,9 +293,9 @@ glint_status glint_scene_add_triangle(glint_scene *s, glint_vec3 a,
                                       uint32_t material, glint_error *error) {
   if (!gli_vec3_finite(a) || !gli_vec3_finite(b) || !gli_vec3_finite(c))
     return gli_fail(error, GLINT_E_ARGUMENT,
-                      "triangle: coordinates must be finite numbers");
+                    "triangle: coordinates must be finite numbers");
   glint_status st =
-      gli_scene_begin_object(s, GLINT_SHAPE_TRIANGLE, material, error);
+      gli_scene_begin_object(s, GLI_SHAPE_TRIANGLE, material, error);
   if (st)
     return st;
   st = gli_scene_push_triangle(s, a, b, c, NULL, error);
@@ -312,20 +310,19 @@ glint_status glint_scene_add_cone(glint_scene *s, glint_vec3 base, double rb,
   if (!gli_vec3_finite(base) || !gli_vec3_finite(apex) || !isfinite(rb) ||
       !isfinite(ra))
     return gli_fail(error, GLINT_E_ARGUMENT,
-                      "cone: coordinates must be finite numbers");
+                    "cone: coordinates must be finite numbers");
   if (rb < 0 || ra < 0 || (rb == 0 && ra == 0))
     return gli_fail(error, GLINT_E_ARGUMENT,
-                      "cone: radii %g and %g must be >= 0 and not both 0", rb,
-                      ra);
+                    "cone: radii %g and %g must be >= 0 and not both 0", rb,
+                    ra);
   if (vlen(vsub(apex, base)) == 0)
     return gli_fail(error, GLINT_E_ARGUMENT,
-                      "cone: base and apex are the same point");
-  glint_status st =
-      gli_scene_begin_object(s, GLINT_SHAPE_CONE, material, error);
+                    "cone: base and apex are the same point");
+  glint_status st = gli_scene_begin_object(s, GLI_SHAPE_CONE, material, error);
   if (st)
     return st;
   gli_cone_prim p = {base, apex, rb, ra, (uint32_t)(s->object_count - 1)};
-  if (GLINT_PUSH(s->cones, s->cone_count, s->cone_cap, p)) {
+  if (GLI_PUSH(s->cones, s->cone_count, s->cone_cap, p)) {
     s->object_count--;
     return oom(error);
   }
@@ -340,11 +337,11 @@ glint_status glint_scene_add_mesh(glint_scene *s, const glint_mesh *m,
   for (size_t i = 0; i < 3 * m->triangle_count; i++)
     if (m->indices[i] >= m->vertex_count)
       return gli_fail(error, GLINT_E_ARGUMENT,
-                        "mesh: triangle %zu refers to vertex %u, but the "
-                        "mesh has %zu",
-                        i / 3, m->indices[i], m->vertex_count);
+                      "mesh: triangle %zu refers to vertex %u, but the "
+                      "mesh has %zu",
+                      i / 3, m->indices[i], m->vertex_count);
   glint_status st =
-      gli_scene_begin_object(s, GLINT_SHAPE_TRIANGLE, material, error);
+      gli_scene_begin_object(s, GLI_SHAPE_TRIANGLE, material, error);
   if (st)
     return st;
   size_t tri0 = s->triangle_count, nrm0 = s->tri_normal_count;
@@ -355,8 +352,8 @@ glint_status glint_scene_add_mesh(glint_scene *s, const glint_mesh *m,
       for (int k = 0; k < 3; k++)
         n[k] = m->normals[ix[k]];
     st = gli_scene_push_triangle(s, m->positions[ix[0]], m->positions[ix[1]],
-                                   m->positions[ix[2]], m->normals ? n : NULL,
-                                   error);
+                                 m->positions[ix[2]], m->normals ? n : NULL,
+                                 error);
   }
   if (st) { /* leave the scene as it was */
     s->triangle_count = tri0;

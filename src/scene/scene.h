@@ -10,10 +10,10 @@
 #include <stdint.h>
 
 typedef enum gli_shape {
-  GLINT_SHAPE_SPHERE = 0,
-  GLINT_SHAPE_TRIANGLE = 1, /* one triangle, a polygon or a whole mesh */
-  GLINT_SHAPE_CONE = 2,
-  GLINT_SHAPE_PLANE = 3
+  GLI_SHAPE_SPHERE = 0,
+  GLI_SHAPE_TRIANGLE = 1, /* one triangle, a polygon or a whole mesh */
+  GLI_SHAPE_CONE = 2,
+  GLI_SHAPE_PLANE = 3
 } gli_shape;
 
 /* An object is what the user added in one call: one material, one shape
@@ -43,7 +43,7 @@ typedef struct gli_triangle_prim {
   uint32_t normals; /* index of 3 vertex normals in tri_normals, or NONE */
 } gli_triangle_prim;
 
-#define GLINT_NO_NORMALS UINT32_MAX
+#define GLI_NO_NORMALS UINT32_MAX
 
 typedef struct gli_cone_prim {
   glint_vec3 base, apex;

@@ -13,18 +13,19 @@
 
 #define MAX_FILE_BYTES ((size_t)4 << 30)
 
-glint_status text_open(text_file *t, const char *path, char comment,
-                       glint_error *error) {
+glint_status gli_text_open(text_file *t, const char *path, char comment,
+                           glint_error *error) {
   memset(t, 0, sizeof *t);
   t->path = path;
   t->comment = comment;
   t->line = 1;
   char *data;
   size_t size;
-  glint_status st = file_read_all(path, MAX_FILE_BYTES, &data, &size, error);
+  glint_status st =
+      gli_file_read_all(path, MAX_FILE_BYTES, &data, &size, error);
   if (st != GLINT_OK)
     return st;
-  if ((st = file_check_text(path, data, size, 1, error)) != GLINT_OK) {
+  if ((st = gli_file_check_text(path, data, size, 1, error)) != GLINT_OK) {
     free(data);
     return st;
   }
@@ -34,7 +35,7 @@ glint_status text_open(text_file *t, const char *path, char comment,
   return GLINT_OK;
 }
 
-void text_close(text_file *t) {
+void gli_text_close(text_file *t) {
   free(t->data);
   t->data = NULL;
 }
@@ -64,7 +65,7 @@ static int is_space(char c) {
          c == '\v';
 }
 
-const char *text_span(text_file *t, size_t *len) {
+const char *gli_text_span(text_file *t, size_t *len) {
   skip(t, 0);
   t->token_line = t->line;
   const char *start = t->pos, *p = start;
@@ -78,9 +79,9 @@ const char *text_span(text_file *t, size_t *len) {
   return start;
 }
 
-const char *text_token(text_file *t, char *buf, size_t size) {
+const char *gli_text_token(text_file *t, char *buf, size_t size) {
   size_t n;
-  const char *tok = text_span(t, &n);
+  const char *tok = gli_text_span(t, &n);
   if (!tok)
     return NULL;
   if (n >= size) /* longer than any word the caller knows: shown cut */
@@ -90,32 +91,65 @@ const char *text_token(text_file *t, char *buf, size_t size) {
   return buf;
 }
 
-/* A token for a message: at most 40 characters, "..." when cut. */
-static void quote(char *out, size_t size, const char *tok, size_t len) {
-  if (len > 40)
-    snprintf(out, size, "%.40s...", tok);
-  else
-    snprintf(out, size, "%.*s", (int)len, tok);
+/* A piece of the file for an error message: at most about 40 bytes, with
+ * anything unprintable as '?', so that binary garbage cannot garble it. */
+const char *gli_text_quote(char *buf, size_t cap, const char *s, size_t len) {
+  size_t max = cap - 4, n = len < max ? len : max;
+  for (size_t i = 0; i < n; i++) {
+    unsigned char ch = (unsigned char)s[i];
+    buf[i] = ch >= 0x20 && ch < 0x7f ? (char)ch : '?';
+  }
+  if (len > n) {
+    memcpy(buf + n, "...", 3);
+    n += 3;
+  }
+  buf[n] = '\0';
+  return buf;
 }
 
-int text_more_on_line(text_file *t) {
+int gli_text_is_blank(char c) {
+  return c == ' ' || c == '\t' || c == '\r' || c == '\f' || c == '\v';
+}
+
+/* A whole number: optional sign and 1..18 digits (enough for any index,
+ * and no overflow). Advances *s; -1 when there is none. */
+int gli_text_parse_whole(const char **s, const char *end, long long *out) {
+  const char *p = *s;
+  int neg = 0;
+  if (p < end && (*p == '-' || *p == '+'))
+    neg = *p++ == '-';
+  const char *digits = p;
+  long long v = 0;
+  while (p < end && *p >= '0' && *p <= '9') {
+    if (p - digits >= 18)
+      return -1;
+    v = v * 10 + (*p++ - '0');
+  }
+  if (p == digits)
+    return -1;
+  *s = p;
+  *out = neg ? -v : v;
+  return 0;
+}
+
+int gli_text_more_on_line(text_file *t) {
   skip(t, 1);
   return *t->pos && *t->pos != '\n';
 }
 
-glint_status text_number(text_file *t, const char *what, double *out,
-                         glint_error *error) {
+glint_status gli_text_number(text_file *t, const char *what, double *out,
+                             glint_error *error) {
   size_t len;
-  const char *tok = text_span(t, &len);
+  const char *tok = gli_text_span(t, &len);
   if (!tok)
     return gli_fail(error, GLINT_E_PARSE,
                     "%s:%d: the file ends where %s was expected", t->path,
                     t->line, what);
-  int r = number_parse(tok, len, out);
+  int r = gli_number_parse(tok, len, out);
   if (r == NUMBER_OK)
     return GLINT_OK;
   char shown[48];
-  quote(shown, sizeof shown, tok, len);
+  gli_text_quote(shown, sizeof shown, tok, len);
   if (r == NUMBER_BAD)
     return gli_fail(error, GLINT_E_PARSE,
                     "%s:%d: expected a number for %s, found '%s'", t->path,
@@ -125,20 +159,20 @@ glint_status text_number(text_file *t, const char *what, double *out,
                   t->token_line, what, shown);
 }
 
-glint_status text_vec3(text_file *t, const char *what, glint_vec3 *out,
-                       glint_error *error) {
+glint_status gli_text_vec3(text_file *t, const char *what, glint_vec3 *out,
+                           glint_error *error) {
   glint_status st;
-  if ((st = text_number(t, what, &out->x, error)) ||
-      (st = text_number(t, what, &out->y, error)) ||
-      (st = text_number(t, what, &out->z, error)))
+  if ((st = gli_text_number(t, what, &out->x, error)) ||
+      (st = gli_text_number(t, what, &out->y, error)) ||
+      (st = gli_text_number(t, what, &out->z, error)))
     return st;
   return GLINT_OK;
 }
 
-glint_status text_int(text_file *t, const char *what, long min, long max,
-                      long *out, glint_error *error) {
+glint_status gli_text_int(text_file *t, const char *what, long min, long max,
+                          long *out, glint_error *error) {
   size_t len;
-  const char *span = text_span(t, &len);
+  const char *span = gli_text_span(t, &len);
   if (!span)
     return gli_fail(error, GLINT_E_PARSE,
                     "%s:%d: the file ends where %s was expected", t->path,
@@ -146,7 +180,7 @@ glint_status text_int(text_file *t, const char *what, long min, long max,
   char buf[48];
   const char *tok = buf;
   if (len > 40) { /* no whole number a scene needs is this long */
-    quote(buf, sizeof buf, span, len);
+    gli_text_quote(buf, sizeof buf, span, len);
     return gli_fail(error, GLINT_E_PARSE,
                     "%s:%d: expected a whole number for %s, found '%s'",
                     t->path, t->token_line, what, tok);

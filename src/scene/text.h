@@ -19,28 +19,37 @@ typedef struct text_file {
 } text_file;
 
 /* Reads `path` (decompressing .gz) into memory. */
-glint_status text_open(text_file *t, const char *path, char comment,
-                       glint_error *error);
-void text_close(text_file *t);
+glint_status gli_text_open(text_file *t, const char *path, char comment,
+                           glint_error *error);
+void gli_text_close(text_file *t);
 
-/* The next white-space separated token (copied into buf), or NULL at the
- * end of the file. */
 /* The next token (white space and comments skipped) in place: its first
  * character and *len; NULL at the end of the file. */
-const char *text_span(text_file *t, size_t *len);
+const char *gli_text_span(text_file *t, size_t *len);
 /* The next token copied into buf (cut to size - 1 characters). */
-const char *text_token(text_file *t, char *buf, size_t size);
+const char *gli_text_token(text_file *t, char *buf, size_t size);
 
 /* Whether another token follows on the current line. */
-int text_more_on_line(text_file *t);
+int gli_text_more_on_line(text_file *t);
 
 /* The next token as a finite number; `what` names it in errors. */
-glint_status text_number(text_file *t, const char *what, double *out,
-                         glint_error *error);
-glint_status text_vec3(text_file *t, const char *what, glint_vec3 *out,
-                       glint_error *error);
+glint_status gli_text_number(text_file *t, const char *what, double *out,
+                             glint_error *error);
+glint_status gli_text_vec3(text_file *t, const char *what, glint_vec3 *out,
+                           glint_error *error);
 /* The next token as a whole number in [min, max]. */
-glint_status text_int(text_file *t, const char *what, long min, long max,
-                      long *out, glint_error *error);
+glint_status gli_text_int(text_file *t, const char *what, long min, long max,
+                          long *out, glint_error *error);
+
+/* Pieces shared with the mesh readers, which scan their own buffers. */
+/* A piece of the file for an error message, in buf: at most cap - 4 bytes
+ * then "...", anything unprintable as '?', so that binary garbage cannot
+ * garble the message. Returns buf. */
+const char *gli_text_quote(char *buf, size_t cap, const char *s, size_t len);
+/* White space within a line. */
+int gli_text_is_blank(char c);
+/* A whole number: optional sign and 1..18 digits (enough for any index,
+ * and no overflow). Advances *s; -1 when there is none. */
+int gli_text_parse_whole(const char **s, const char *end, long long *out);
 
 #endif

@@ -7,7 +7,7 @@
 
 /* log2(1 + x) = x P(x), x in [sqrt(1/2) - 1, sqrt(2) - 1]
  * degree 6; max relative error 1.109e-06 (1.116e-06 with float coefficients) */
-#define GLINT_LOG2_DEGREE 6
+#define GLI_LOG2_DEGREE 6
 static const float gli_log2_coeffs[7] = {
     1.442696447e+00f,
     -7.213635760e-01f,
@@ -20,7 +20,7 @@ static const float gli_log2_coeffs[7] = {
 
 /* 2^f = Q(f), f in [-1/2, 1/2]
  * degree 4; max relative error 2.593e-06 (2.642e-06 with float coefficients) */
-#define GLINT_EXP2_DEGREE 4
+#define GLI_EXP2_DEGREE 4
 static const float gli_exp2_coeffs[5] = {
     9.999992614e-01f,
     6.931218147e-01f,

@@ -4,7 +4,7 @@
  * the matching compiler flags). After Embree's vfloat/vbool wrappers.
  *
  *   vfloat   W floats           vint    W 32-bit integers
- *   vmask    W lane flags       W       GLINT_SIMD_WIDTH
+ *   vmask    W lane flags       W       GLI_SIMD_WIDTH
  *
  * ISA_NAME(x) gives a symbol an ISA suffix, so the three builds link into one
  * binary and are picked at run time by CPUID. */
@@ -28,7 +28,7 @@
 #define ISA_GLUE(a, b) ISA_GLUE2(a, b)
 #define ISA_NAME(name) ISA_GLUE(name, ISA_SUFFIX)
 
-#define LANES GLINT_SIMD_WIDTH
+#define LANES GLI_SIMD_WIDTH
 #define SIMD_ALIGN __attribute__((aligned(64)))
 
 /* ---- derived operations, the same for every ISA ------------------------ */

@@ -5,7 +5,7 @@
 #include <immintrin.h>
 #include <stdint.h>
 
-#define GLINT_SIMD_WIDTH 8
+#define GLI_SIMD_WIDTH 8
 
 typedef __m256 vfloat;
 typedef __m256 vmask; /* all-ones or all-zeros per lane */

@@ -4,7 +4,7 @@
 
 #include <immintrin.h>
 
-#define GLINT_SIMD_WIDTH 16
+#define GLI_SIMD_WIDTH 16
 
 typedef __m512 vfloat;
 typedef __mmask16 vmask; /* one bit per lane */
@@ -162,7 +162,7 @@ static inline int vi_distinct(vint a, vmask m) {
   __m512i c = _mm512_maskz_conflict_epi32(m, a);
   return !_mm512_mask_test_epi32_mask(m, c, _mm512_set1_epi32((int)m));
 }
-#define GLINT_HAS_SCATTER 1
+#define GLI_HAS_SCATTER 1
 
 /* Stores the lanes of m contiguously at p; returns how many. The compress
  * happens in a register and the whole vector is stored (the caller leaves

@@ -4,7 +4,7 @@
 
 #include <smmintrin.h>
 
-#define GLINT_SIMD_WIDTH 4
+#define GLI_SIMD_WIDTH 4
 
 typedef __m128 vfloat;
 typedef __m128 vmask; /* all-ones or all-zeros per lane */

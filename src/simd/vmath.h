@@ -70,7 +70,7 @@ static inline vfloat vm_log2(vfloat x, glint_math math) {
     vfloat e, t = vm_split(x, &e);
     vfloat p = math == GLINT_MATH_TAYLOR
                    ? vm_horner(gli_taylor_log2, 4, t)
-                   : vm_horner(gli_log2_coeffs, GLINT_LOG2_DEGREE, t);
+                   : vm_horner(gli_log2_coeffs, GLI_LOG2_DEGREE, t);
     r = vf_fmadd(t, p, e);
   }
   return vf_select(tiny, vf_set1(-126.0f), r);
@@ -89,7 +89,7 @@ static inline vfloat vm_exp2(vfloat x, glint_math math) {
   vfloat f = vf_sub(x, k); /* [-1/2, 1/2] */
   vfloat p = math == GLINT_MATH_TAYLOR
                  ? vm_horner(gli_taylor_exp2, 3, f)
-                 : vm_horner(gli_exp2_coeffs, GLINT_EXP2_DEGREE, f);
+                 : vm_horner(gli_exp2_coeffs, GLI_EXP2_DEGREE, f);
   vfloat s = vm_pow2i(vf_max(k, vf_set1(-126.0f)));
   return vf_mul(p, s);
 }

@@ -6,15 +6,15 @@
 
 #include <stddef.h>
 
-#define GLINT_VMATH_DECLARE(isa)                                               \
+#define GLI_VMATH_DECLARE(isa)                                                 \
   void gli_vmath_pow_##isa(const float *x, const float *y, float *out,         \
                            size_t n, glint_math math);                         \
   void gli_vmath_exp_##isa(const float *x, float *out, size_t n,               \
                            glint_math math);                                   \
   void gli_vmath_rcp_##isa(const float *x, float *out, size_t n, int newton);
-GLINT_VMATH_DECLARE(sse)
-GLINT_VMATH_DECLARE(avx2)
-GLINT_VMATH_DECLARE(avx512)
-#undef GLINT_VMATH_DECLARE
+GLI_VMATH_DECLARE(sse)
+GLI_VMATH_DECLARE(avx2)
+GLI_VMATH_DECLARE(avx512)
+#undef GLI_VMATH_DECLARE
 
 #endif

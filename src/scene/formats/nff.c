@@ -47,7 +47,7 @@ typedef struct nff_reader {
 static glint_status expect_word(nff_reader *r, const char *word,
                                 glint_error *e) {
   char buf[64];
-  const char *tok = text_token(&r->t, buf, sizeof buf);
+  const char *tok = gli_text_token(&r->t, buf, sizeof buf);
   if (!tok)
     return gli_fail(e, GLINT_E_PARSE,
                     "%s:%d: the file ends where '%s' was expected", r->t.path,
@@ -79,20 +79,20 @@ static glint_status read_view(nff_reader *r, glint_error *e) {
   glint_status st;
   int line = r->t.token_line;
   if ((st = expect_word(r, "from", e)) ||
-      (st = text_vec3(&r->t, "'from'", &cam.from, e)) ||
+      (st = gli_text_vec3(&r->t, "'from'", &cam.from, e)) ||
       (st = expect_word(r, "at", e)) ||
-      (st = text_vec3(&r->t, "'at'", &cam.at, e)) ||
+      (st = gli_text_vec3(&r->t, "'at'", &cam.at, e)) ||
       (st = expect_word(r, "up", e)) ||
-      (st = text_vec3(&r->t, "'up'", &cam.up, e)) ||
+      (st = gli_text_vec3(&r->t, "'up'", &cam.up, e)) ||
       (st = expect_word(r, "angle", e)) ||
-      (st = text_number(&r->t, "the view angle", &angle, e)) ||
+      (st = gli_text_number(&r->t, "the view angle", &angle, e)) ||
       (st = expect_word(r, "hither", e)) ||
-      (st = text_number(&r->t, "hither", &hither, e)) ||
+      (st = gli_text_number(&r->t, "hither", &hither, e)) ||
       (st = expect_word(r, "resolution", e)) ||
-      (st = text_int(&r->t, "the horizontal resolution", 1, GLINT_MAX_DIMENSION,
-                     &w, e)) ||
-      (st = text_int(&r->t, "the vertical resolution", 1, GLINT_MAX_DIMENSION,
-                     &h, e)))
+      (st = gli_text_int(&r->t, "the horizontal resolution", 1,
+                         GLINT_MAX_DIMENSION, &w, e)) ||
+      (st = gli_text_int(&r->t, "the vertical resolution", 1,
+                         GLINT_MAX_DIMENSION, &h, e)))
     return st;
   if (!(angle > 0 && angle < 180))
     return gli_fail(e, GLINT_E_PARSE,
@@ -112,11 +112,11 @@ static glint_status read_view(nff_reader *r, glint_error *e) {
 static glint_status read_light(nff_reader *r, glint_error *e) {
   int line = r->t.token_line;
   glint_vec3 p, c = {1, 1, 1};
-  glint_status st = text_vec3(&r->t, "the light position", &p, e);
+  glint_status st = gli_text_vec3(&r->t, "the light position", &p, e);
   if (st)
     return st;
-  int coloured = text_more_on_line(&r->t);
-  if (coloured && (st = text_vec3(&r->t, "the light colour", &c, e)))
+  int coloured = gli_text_more_on_line(&r->t);
+  if (coloured && (st = gli_text_vec3(&r->t, "the light colour", &c, e)))
     return st;
   if ((st = glint_scene_add_light(r->scene, p, c, e)))
     return at_line(r, line, st, e);
@@ -137,7 +137,7 @@ static glint_status read_material(nff_reader *r, glint_error *e) {
   for (int i = 0; i < 8; i++) {
     char what[64];
     snprintf(what, sizeof what, "the material's %s", names[i]);
-    glint_status st = text_number(&r->t, what, &v[i], e);
+    glint_status st = gli_text_number(&r->t, what, &v[i], e);
     if (st)
       return st;
   }
@@ -172,8 +172,8 @@ static glint_status read_sphere(nff_reader *r, glint_error *e) {
   double radius;
   glint_status st;
   if ((st = need_material(r, "s", e)) ||
-      (st = text_vec3(&r->t, "the sphere's centre", &c, e)) ||
-      (st = text_number(&r->t, "the sphere's radius", &radius, e)))
+      (st = gli_text_vec3(&r->t, "the sphere's centre", &c, e)) ||
+      (st = gli_text_number(&r->t, "the sphere's radius", &radius, e)))
     return st;
   return at_line(
       r, line,
@@ -186,10 +186,10 @@ static glint_status read_cone(nff_reader *r, glint_error *e) {
   double rb, ra;
   glint_status st;
   if ((st = need_material(r, "c", e)) ||
-      (st = text_vec3(&r->t, "the cone's base", &base, e)) ||
-      (st = text_number(&r->t, "the cone's base radius", &rb, e)) ||
-      (st = text_vec3(&r->t, "the cone's apex", &apex, e)) ||
-      (st = text_number(&r->t, "the cone's apex radius", &ra, e)))
+      (st = gli_text_vec3(&r->t, "the cone's base", &base, e)) ||
+      (st = gli_text_number(&r->t, "the cone's base radius", &rb, e)) ||
+      (st = gli_text_vec3(&r->t, "the cone's apex", &apex, e)) ||
+      (st = gli_text_number(&r->t, "the cone's apex radius", &ra, e)))
     return st;
   if ((rb < 0) != (ra < 0) && rb != 0 && ra != 0)
     return gli_fail(e, GLINT_E_PARSE,
@@ -227,8 +227,8 @@ static glint_status read_polygon(nff_reader *r, int patch, glint_error *e) {
   long n;
   glint_status st;
   if ((st = need_material(r, entity, e)) ||
-      (st =
-           text_int(&r->t, "the vertex count", 3, MAX_POLYGON_VERTICES, &n, e)))
+      (st = gli_text_int(&r->t, "the vertex count", 3, MAX_POLYGON_VERTICES, &n,
+                         e)))
     return st;
   if ((size_t)n > r->vert_cap) {
     glint_vec3 *v = realloc(r->verts, sizeof *v * (size_t)n);
@@ -243,8 +243,9 @@ static glint_status read_polygon(nff_reader *r, int patch, glint_error *e) {
     r->vert_cap = (size_t)n;
   }
   for (long i = 0; i < n; i++) {
-    if ((st = text_vec3(&r->t, "a polygon vertex", &r->verts[i], e)) ||
-        (patch && (st = text_vec3(&r->t, "a patch normal", &r->norms[i], e)))) {
+    if ((st = gli_text_vec3(&r->t, "a polygon vertex", &r->verts[i], e)) ||
+        (patch &&
+         (st = gli_text_vec3(&r->t, "a patch normal", &r->norms[i], e)))) {
       /* Say which vertex of which polygon (the message is built only now,
        * not for every vertex read). */
       if (e) {
@@ -257,14 +258,14 @@ static glint_status read_polygon(nff_reader *r, int patch, glint_error *e) {
       return st;
     }
   }
-  if ((st = gli_scene_begin_object(r->scene, GLINT_SHAPE_TRIANGLE, r->material,
+  if ((st = gli_scene_begin_object(r->scene, GLI_SHAPE_TRIANGLE, r->material,
                                    e)))
     return at_line(r, line, st, e);
   polygon_emit pe = {r, patch, e};
   int res = gli_triangulate(r->verts, (size_t)n, emit_triangle, &pe);
-  if (res == GLINT_TRIANGULATE_NO_MEMORY)
+  if (res == GLI_TRIANGULATE_NO_MEMORY)
     return gli_fail(e, GLINT_E_MEMORY, "%s:%d: out of memory", r->t.path, line);
-  if (res == GLINT_TRIANGULATE_TOO_COMPLEX)
+  if (res == GLI_TRIANGULATE_TOO_COMPLEX)
     return gli_fail(e, GLINT_E_PARSE,
                     "%s:%d: %s: the polygon of %ld vertices has too many "
                     "inward corners to triangulate",
@@ -278,13 +279,13 @@ static glint_status read_nff(nff_reader *r, glint_error *e) {
   char buf[64];
   const char *tok;
   glint_status st = GLINT_OK;
-  while (!st && (tok = text_token(&r->t, buf, sizeof buf))) {
+  while (!st && (tok = gli_text_token(&r->t, buf, sizeof buf))) {
     if (strcmp(tok, "v") == 0)
       st = read_view(r, e);
     else if (strcmp(tok, "b") == 0) {
       glint_vec3 c;
       int line = r->t.token_line;
-      if (!(st = text_vec3(&r->t, "the background colour", &c, e)))
+      if (!(st = gli_text_vec3(&r->t, "the background colour", &c, e)))
         st = at_line(r, line, glint_scene_set_background(r->scene, c, e), e);
     } else if (strcmp(tok, "l") == 0)
       st = read_light(r, e);
@@ -316,18 +317,18 @@ static glint_status read_nff(nff_reader *r, glint_error *e) {
 glint_status gli_nff_load(const char *path, glint_scene **out, glint_error *e) {
   nff_reader r;
   memset(&r, 0, sizeof r);
-  glint_status st = text_open(&r.t, path, '#', e);
+  glint_status st = gli_text_open(&r.t, path, '#', e);
   if (st)
     return st;
   if ((st = glint_scene_create(&r.scene, e))) {
-    text_close(&r.t);
+    gli_text_close(&r.t);
     return st;
   }
   /* NFF's defaults: black background, white ambient light. */
-  number_locale locale = number_locale_begin();
+  number_locale locale = gli_number_locale_begin();
   st = read_nff(&r, e);
-  number_locale_end(locale);
-  text_close(&r.t);
+  gli_number_locale_end(locale);
+  gli_text_close(&r.t);
   free(r.verts);
   free(r.norms);
   if (st) {

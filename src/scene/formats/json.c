@@ -112,7 +112,7 @@ static value_text describe(const cJSON *v) {
 
 /* "FILE: PATH: message", or "FILE: message" at the top level. */
 static glint_status fail(json_reader *r, glint_status st, const char *format,
-                         ...) GLINT_PRINTF(3, 4);
+                         ...) GLI_PRINTF(3, 4);
 static glint_status fail(json_reader *r, glint_status st, const char *format,
                          ...) {
   char msg[sizeof r->error->message];
@@ -149,7 +149,7 @@ static glint_status lib(json_reader *r, glint_status st) {
 /* ---- the JSON path ------------------------------------------------------ */
 
 static void path_append(json_reader *r, const char *format, ...)
-    GLINT_PRINTF(2, 3);
+    GLI_PRINTF(2, 3);
 static void path_append(json_reader *r, const char *format, ...) {
   size_t room = sizeof r->path - r->path_len;
   va_list args;
@@ -286,28 +286,35 @@ static glint_status missing(json_reader *r, const char *key) {
   return fail(r, GLINT_E_PARSE, "missing \"%s\"", key);
 }
 
-/* Member `key` of `obj` as a number; absent: an error if `required`, else
- * *out is left as it is (the default). */
+/* Member `key` of `obj` with the error path entered at it (leave it with
+ * path_pop(r, *mark)); NULL when absent, and *st then says whether that is
+ * an error (`required`) or not (the caller keeps its default). */
+static const cJSON *enter_field(json_reader *r, const cJSON *obj,
+                                const char *key, int required, size_t *mark,
+                                glint_status *st) {
+  const cJSON *v = cJSON_GetObjectItemCaseSensitive(obj, key);
+  *st = v || !required ? GLINT_OK : missing(r, key);
+  if (v)
+    *mark = path_key(r, key);
+  return v;
+}
+
 static glint_status number_field(json_reader *r, const cJSON *obj,
                                  const char *key, int required, double *out) {
-  const cJSON *v = cJSON_GetObjectItemCaseSensitive(obj, key);
-  if (!v)
-    return required ? missing(r, key) : GLINT_OK;
-  size_t mark = path_key(r, key);
-  glint_status st = get_number(r, v, out);
-  if (st == GLINT_OK)
+  size_t mark;
+  glint_status st;
+  const cJSON *v = enter_field(r, obj, key, required, &mark, &st);
+  if (v && (st = get_number(r, v, out)) == GLINT_OK)
     path_pop(r, mark);
   return st;
 }
 
 static glint_status vec3_field(json_reader *r, const cJSON *obj,
                                const char *key, int required, glint_vec3 *out) {
-  const cJSON *v = cJSON_GetObjectItemCaseSensitive(obj, key);
-  if (!v)
-    return required ? missing(r, key) : GLINT_OK;
-  size_t mark = path_key(r, key);
-  glint_status st = get_vec3(r, v, out);
-  if (st == GLINT_OK)
+  size_t mark;
+  glint_status st;
+  const cJSON *v = enter_field(r, obj, key, required, &mark, &st);
+  if (v && (st = get_vec3(r, v, out)) == GLINT_OK)
     path_pop(r, mark);
   return st;
 }
@@ -317,10 +324,10 @@ static glint_status vec3_field(json_reader *r, const cJSON *obj,
 static glint_status string_field(json_reader *r, const cJSON *obj,
                                  const char *key, const char **out,
                                  size_t *mark) {
-  const cJSON *v = cJSON_GetObjectItemCaseSensitive(obj, key);
+  glint_status st;
+  const cJSON *v = enter_field(r, obj, key, 1, mark, &st);
   if (!v)
-    return missing(r, key);
-  *mark = path_key(r, key);
+    return st;
   if (!cJSON_IsString(v) || !v->valuestring)
     return fail(r, GLINT_E_PARSE, "expected a string, found %s", describe(v).s);
   *out = v->valuestring;
@@ -800,15 +807,15 @@ static glint_status parse_text(const char *path, char *data, size_t size,
   if (size >= 2 &&
       ((u[0] == 0xFF && u[1] == 0xFE) || (u[0] == 0xFE && u[1] == 0xFF)))
     return gli_fail(e, GLINT_E_PARSE,
-                      "%s: UTF-16 text; glint reads JSON in UTF-8", path);
+                    "%s: UTF-16 text; glint reads JSON in UTF-8", path);
   const char *nul = memchr(data, '\0', size);
   size_t line, column;
   if (nul) {
     line_column(data, nul, &line, &column);
     return gli_fail(e, GLINT_E_PARSE,
-                      "%s:%zu:%zu: a NUL byte: binary data where JSON text "
-                      "was expected",
-                      path, line, column);
+                    "%s:%zu:%zu: a NUL byte: binary data where JSON text "
+                    "was expected",
+                    path, line, column);
   }
   /* return_parse_end rather than cJSON_GetErrorPtr, which reads a global
    * that another thread's parse may have changed. */
@@ -824,15 +831,16 @@ static glint_status parse_text(const char *path, char *data, size_t size,
   syntax_hint(data, &end, hint, sizeof hint);
   line_column(data, end, &line, &column);
   return gli_fail(e, GLINT_E_PARSE, "%s:%zu:%zu: JSON syntax error: %s", path,
-                    line, column, hint);
+                  line, column, hint);
 }
 
 glint_status gli_json_load(const char *path, glint_scene **out,
-                             glint_error *error) {
+                           glint_error *error) {
   char *data = NULL;
   size_t size = 0;
   cJSON *root = NULL;
-  glint_status st = file_read_all(path, MAX_FILE_BYTES, &data, &size, error);
+  glint_status st =
+      gli_file_read_all(path, MAX_FILE_BYTES, &data, &size, error);
   if (st)
     return st;
   st = parse_text(path, data, size, &root, error);

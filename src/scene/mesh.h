@@ -1,0 +1,57 @@
+/* A mesh file as it was read, before it goes into a scene: what the OBJ and
+ * PLY readers (scene/formats/obj.c, ply.c) fill, and what
+ * glint_scene_add_mesh_file (mesh.c) pushes into the scene once the whole
+ * file has parsed, so that a file that fails leaves the scene as it was. */
+#ifndef GLINT_SCENE_MESH_H
+#define GLINT_SCENE_MESH_H
+
+#include "glint.h"
+
+#include <stddef.h>
+#include <stdint.h>
+
+/* A polygon with more corners than this is a damaged list count, not a
+ * real face; the limit keeps a garbage count from allocating gigabytes. */
+#define MESH_MAX_FACE_VERTICES (1 << 20)
+/* Vertex and triangle indices are uint32_t in the scene. */
+#define MESH_MAX_ITEMS ((size_t)UINT32_MAX - 1)
+#define MESH_NO_INDEX UINT32_MAX
+
+typedef struct tri3 {
+  uint32_t v[3];
+} tri3;
+
+typedef struct corner {
+  uint32_t v, n; /* position and normal index; n = MESH_NO_INDEX: none */
+} corner;
+
+typedef struct mesh_data {
+  glint_vec3 *pos;
+  size_t npos, pos_cap;
+  glint_vec3 *nrm;
+  size_t nnrm, nrm_cap;
+  tri3 *tri; /* position indices */
+  size_t ntri, tri_cap;
+  tri3 *tri_nrm; /* OBJ: normal indices, parallel to tri; MESH_NO_INDEX: flat */
+  size_t tri_nrm_cap;
+  int vertex_normals; /* PLY: nrm[i] belongs to pos[i] */
+  corner *corners;    /* the face being read */
+  size_t ncorners, corners_cap;
+} mesh_data;
+
+void gli_mesh_free(mesh_data *m);
+/* "PATH: out of memory" */
+glint_status gli_mesh_oom(const char *path, glint_error *e);
+/* Appends the n - 2 triangles of the face in m->corners: a fan (c0, ci,
+ * ci+1) when it is convex, else the ear clipping of polygon.c. `obj` keeps
+ * the corners' normal indices beside the triangle (when `with_normals`).
+ * Returns 0, -1 (out of memory) or GLI_TRIANGULATE_TOO_COMPLEX. */
+int gli_mesh_emit_face(mesh_data *m, int obj, int with_normals);
+
+/* The readers: `data` is the whole file, NUL-terminated after `size`. */
+glint_status gli_obj_parse(const char *path, const char *data, size_t size,
+                           mesh_data *m, glint_error *e);
+glint_status gli_ply_parse(const char *path, const char *data, size_t size,
+                           mesh_data *m, glint_error *e);
+
+#endif
