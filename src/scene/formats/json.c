@@ -299,24 +299,29 @@ static const cJSON *enter_field(json_reader *r, const cJSON *obj,
   return v;
 }
 
-static glint_status number_field(json_reader *r, const cJSON *obj,
-                                 const char *key, int required, double *out) {
+/* A member that get_number or get_vec3 reads into *out. */
+static glint_status value_field(json_reader *r, const cJSON *obj,
+                                const char *key, int required, int is_vec3,
+                                void *out) {
   size_t mark;
   glint_status st;
   const cJSON *v = enter_field(r, obj, key, required, &mark, &st);
-  if (v && (st = get_number(r, v, out)) == GLINT_OK)
+  if (!v)
+    return st;
+  st = is_vec3 ? get_vec3(r, v, out) : get_number(r, v, out);
+  if (st == GLINT_OK)
     path_pop(r, mark);
   return st;
 }
 
+static glint_status number_field(json_reader *r, const cJSON *obj,
+                                 const char *key, int required, double *out) {
+  return value_field(r, obj, key, required, 0, out);
+}
+
 static glint_status vec3_field(json_reader *r, const cJSON *obj,
                                const char *key, int required, glint_vec3 *out) {
-  size_t mark;
-  glint_status st;
-  const cJSON *v = enter_field(r, obj, key, required, &mark, &st);
-  if (v && (st = get_vec3(r, v, out)) == GLINT_OK)
-    path_pop(r, mark);
-  return st;
+  return value_field(r, obj, key, required, 1, out);
 }
 
 /* A required string member; its path stays entered (pop it with *mark) so

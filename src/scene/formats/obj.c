@@ -101,14 +101,38 @@ static glint_status obj_line_end(obj_reader *r, const char *statement,
                   statement);
 }
 
-static glint_status obj_vertex(obj_reader *r, glint_error *e) {
-  static const char *const names[3] = {"the vertex's x", "the vertex's y",
-                                       "the vertex's z"};
-  double v[3], extra;
+/* x, y and z of a v or vn line, named in errors by `names`. */
+static glint_status obj_xyz(obj_reader *r, const char *const names[3],
+                            glint_vec3 *out, glint_error *e) {
+  double v[3];
   glint_status st;
   for (int k = 0; k < 3; k++)
     if ((st = obj_number(r, names[k], &v[k], e)))
       return st;
+  *out = (glint_vec3){v[0], v[1], v[2]};
+  return GLINT_OK;
+}
+
+/* Appends v to the mesh's positions or normals (`what` names them). */
+static glint_status obj_append(obj_reader *r, const char *what,
+                               glint_vec3 **list, size_t *count, size_t *cap,
+                               glint_vec3 v, glint_error *e) {
+  if (*count >= MESH_MAX_ITEMS)
+    return gli_fail(e, GLINT_E_PARSE, "%s:%zu: too many %s", r->path, r->line,
+                    what);
+  if (GLI_PUSH(*list, *count, *cap, v))
+    return gli_mesh_oom(r->path, e);
+  return GLINT_OK;
+}
+
+static glint_status obj_vertex(obj_reader *r, glint_error *e) {
+  static const char *const names[3] = {"the vertex's x", "the vertex's y",
+                                       "the vertex's z"};
+  glint_vec3 v;
+  double extra;
+  glint_status st;
+  if ((st = obj_xyz(r, names, &v, e)))
+    return st;
   /* w, or the r g b of the widespread vertex colour extension: read (so
    * that garbage is still caught) and ignored. */
   for (int k = 0; k < 4 && !obj_at_eol(r); k++)
@@ -118,31 +142,18 @@ static glint_status obj_vertex(obj_reader *r, glint_error *e) {
   if ((st = obj_line_end(r, "vertex's coordinates", e)))
     return st;
   mesh_data *m = r->m;
-  if (m->npos >= MESH_MAX_ITEMS)
-    return gli_fail(e, GLINT_E_PARSE, "%s:%zu: too many vertices", r->path,
-                    r->line);
-  if (GLI_PUSH(m->pos, m->npos, m->pos_cap, ((glint_vec3){v[0], v[1], v[2]})))
-    return gli_mesh_oom(r->path, e);
-  return GLINT_OK;
+  return obj_append(r, "vertices", &m->pos, &m->npos, &m->pos_cap, v, e);
 }
 
 static glint_status obj_normal(obj_reader *r, glint_error *e) {
   static const char *const names[3] = {"the normal's x", "the normal's y",
                                        "the normal's z"};
-  double v[3];
+  glint_vec3 v;
   glint_status st;
-  for (int k = 0; k < 3; k++)
-    if ((st = obj_number(r, names[k], &v[k], e)))
-      return st;
-  if ((st = obj_line_end(r, "normal", e)))
+  if ((st = obj_xyz(r, names, &v, e)) || (st = obj_line_end(r, "normal", e)))
     return st;
   mesh_data *m = r->m;
-  if (m->nnrm >= MESH_MAX_ITEMS)
-    return gli_fail(e, GLINT_E_PARSE, "%s:%zu: too many normals", r->path,
-                    r->line);
-  if (GLI_PUSH(m->nrm, m->nnrm, m->nrm_cap, ((glint_vec3){v[0], v[1], v[2]})))
-    return gli_mesh_oom(r->path, e);
-  return GLINT_OK;
+  return obj_append(r, "normals", &m->nrm, &m->nnrm, &m->nrm_cap, v, e);
 }
 
 /* An OBJ reference to the `what` list of `count` items, as a 0-based index. */
