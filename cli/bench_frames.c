@@ -19,12 +19,6 @@
 #include <stdlib.h>
 #include <time.h>
 
-static double now(void) {
-  struct timespec ts;
-  clock_gettime(CLOCK_MONOTONIC, &ts);
-  return (double)ts.tv_sec + 1e-9 * (double)ts.tv_nsec;
-}
-
 static glint_camera orbit(const glint_camera *c, int frame) {
   double a = frame * 3.14159265358979323846 / 180.0;
   double dx = c->from.x - c->at.x, dz = c->from.z - c->at.z;
@@ -78,24 +72,24 @@ int bench_frames(const char *scene_name, const glint_render_settings *base,
     glint_frame_settings fs;
     glint_frame_settings_default(&fs);
     fs.camera = &cam;
-    double t0 = now();
+    double t0 = cli_now();
     if (glint_renderer_render(renderer, &fs, film, &st, &err)) {
       cli_error("%s", err.message);
       goto done;
     }
-    double t1 = now();
+    double t1 = cli_now();
     if (f >= 0) {
       paths[0].wall[f] = t1 - t0;
       paths[0].render[f] = st.render_seconds;
     }
     glint_image *image;
-    t0 = now();
+    t0 = cli_now();
     if (glint_scene_set_camera(scene, &cam, &err) ||
         glint_render(scene, &rs, &image, &st, &err)) {
       cli_error("%s", err.message);
       goto done;
     }
-    t1 = now();
+    t1 = cli_now();
     glint_image_destroy(image);
     if (f >= 0) {
       paths[1].wall[f] = t1 - t0;

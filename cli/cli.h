@@ -11,6 +11,9 @@ int cmd_compare(int argc, char **argv);
 struct glint_scene *cli_load_scene(const char *arg, char *stem,
                                    unsigned long stem_size);
 
+/* Seconds on a monotonic clock, for timing stages. */
+double cli_now(void);
+
 /* Peak resident set size of this process, in MiB. */
 double cli_peak_rss_mib(void);
 

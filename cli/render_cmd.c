@@ -6,6 +6,7 @@
 
 #include <signal.h>
 #include <stdio.h>
+#include <time.h>
 #include <stdlib.h>
 #include <string.h>
 #include <strings.h>
@@ -74,6 +75,12 @@ static int on_progress(void *user, double fraction) {
   return 0;
 }
 
+double cli_now(void) {
+  struct timespec ts;
+  clock_gettime(CLOCK_MONOTONIC, &ts);
+  return (double)ts.tv_sec + 1e-9 * (double)ts.tv_nsec;
+}
+
 double cli_peak_rss_mib(void) {
   struct rusage ru;
   if (getrusage(RUSAGE_SELF, &ru) != 0)
@@ -104,7 +111,13 @@ glint_scene *cli_load_scene(const char *arg, char *stem,
 
 static double mega(uint64_t n) { return (double)n / 1e6; }
 
-static void print_stats(const glint_stats *s) {
+/* --stats: the library's figures, and the whole command's stages as the CLI
+ * timed them (loading the scene, writing the file, start to end). */
+typedef struct command_times {
+  double load, write, total;
+} command_times;
+
+static void print_stats(const glint_stats *s, const command_times *t) {
   uint64_t rays = s->primary_rays + s->secondary_rays + s->shadow_rays;
   printf("  backend            %s, %d thread%s\n",
          glint_backend_name(s->backend), s->threads,
@@ -118,6 +131,9 @@ static void print_stats(const glint_stats *s) {
            (unsigned long long)s->bvh_nodes, (double)s->bvh_bytes / 1048576.0,
            s->bvh_build_seconds * 1e3);
   printf("  render             %.3f s\n", s->render_seconds);
+  printf("  load scene         %.4f s\n", t->load);
+  printf("  write image        %.4f s\n", t->write);
+  printf("  load to written    %.4f s\n", t->total);
   printf("  rays               %llu (%.2f Mrays/s)\n", (unsigned long long)rays,
          s->render_seconds > 0 ? mega(rays) / s->render_seconds : 0.0);
   printf("    primary          %llu\n", (unsigned long long)s->primary_rays);
@@ -276,7 +292,10 @@ int cmd_render(int argc, char **argv) {
     scene_arg = "whitted";
 
   char stem[256], default_output[300];
+  command_times times;
+  double t0 = cli_now();
   glint_scene *scene = cli_load_scene(scene_arg, stem, sizeof stem);
+  times.load = cli_now() - t0;
   if (!scene)
     return EXIT_USAGE;
   if (!output) {
@@ -327,9 +346,11 @@ int cmd_render(int argc, char **argv) {
   sigaddset(&block, SIGTERM);
   sigaddset(&block, SIGHUP);
   sigprocmask(SIG_BLOCK, &block, &old);
+  double write_start = cli_now();
   st = film_output
            ? glint_film_write(film, output, &err)
            : glint_image_write_with(image, output, png_compression, &err);
+  times.write = cli_now() - write_start;
   sigprocmask(SIG_SETMASK, &old, NULL);
   int out_w = film_output ? glint_film_width(film) : glint_image_width(image);
   int out_h = film_output ? glint_film_height(film) : glint_image_height(image);
@@ -350,7 +371,9 @@ int cmd_render(int argc, char **argv) {
            mega(stats.secondary_rays), mega(stats.shadow_rays),
            stats.render_seconds > 0 ? mega(rays) / stats.render_seconds : 0.0);
   }
-  if (want_stats)
-    print_stats(&stats);
+  if (want_stats) {
+    times.total = cli_now() - t0;
+    print_stats(&stats, &times);
+  }
   return 0;
 }
