@@ -18,7 +18,7 @@ static const gli_bvh test_no_bvh;
 
 static void *test_view_open(const glint_scene *scene, data_kind kind,
                             int with_bvh, test_view *tv) {
-  ASSERT_OK(gli_world_create(scene, &tv->world, &e_));
+  ASSERT_OK(gli_world_create(scene, 0, &tv->world, &e_));
   const void *data;
   ASSERT_OK(gli_world_data(tv->world, kind, &data, &e_));
   const gli_bvh *bvh = &test_no_bvh;

@@ -7,17 +7,21 @@
 
 #include <stdlib.h>
 
-glint_status gli_world_create(const glint_scene *scene, glint_world **out,
-                              glint_error *error) {
+glint_status gli_world_create(const glint_scene *scene, int borrow,
+                              glint_world **out, glint_error *error) {
   if (!scene)
     return gli_fail(error, GLINT_E_ARGUMENT, "no scene to commit");
   glint_world *w = calloc(1, sizeof *w);
   if (!w)
     return gli_fail(error, GLINT_E_MEMORY, "out of memory");
-  glint_status st = gli_scene_copy(scene, &w->scene, error);
-  if (st) {
-    free(w);
-    return st;
+  w->scene = scene;
+  if (!borrow) {
+    glint_status st = gli_scene_copy(scene, &w->owned_scene, error);
+    if (st) {
+      free(w);
+      return st;
+    }
+    w->scene = w->owned_scene;
   }
   atomic_init(&w->refs, 1);
   w->epsilon = gli_scene_epsilon(w->scene);
@@ -37,7 +41,7 @@ void gli_world_release(glint_world *w) {
   if (w->bvh_built)
     gli_bvh_free(&w->bvh);
   pthread_mutex_destroy(&w->lock);
-  glint_scene_destroy(w->scene);
+  glint_scene_destroy(w->owned_scene);
   free(w);
 }
 
@@ -92,7 +96,7 @@ void gli_world_stats(glint_world *w, glint_stats *stats) {
 glint_status glint_world_commit(const glint_scene *scene, glint_world **out,
                                 glint_stats *stats, glint_error *error) {
   glint_world *w = NULL;
-  glint_status st = gli_world_create(scene, &w, error);
+  glint_status st = gli_world_create(scene, 0, &w, error);
   if (st)
     return st;
   const gli_bvh *bvh;

@@ -1,5 +1,6 @@
 /* The committed world (include/glint.h, "Worlds and renderers"): a private
- * copy of the scene, its BVH, and the scene converted for each family of
+ * copy of the scene (or, inside glint_render, the caller's scene itself), its
+ * BVH, and the scene converted for each family of
  * backends in use. Conversions are made on first use by a renderer, under
  * the world's lock, and never change afterwards, so renderers on any threads
  * read them without locking. */
@@ -14,7 +15,8 @@
 
 struct glint_world {
   atomic_int refs; /* the caller's reference and one per renderer */
-  glint_scene *scene;
+  const glint_scene *scene;
+  glint_scene *owned_scene; /* the copy, or NULL when the scene is borrowed */
   double epsilon; /* docs/specification.md §3, fixed at commit */
   pthread_mutex_t lock;
   int bvh_built;
@@ -24,9 +26,11 @@ struct glint_world {
 };
 
 /* Commits without building anything yet (glint_render builds only what its
- * backend and accel use). */
-glint_status gli_world_create(const glint_scene *scene, glint_world **world,
-                              glint_error *error);
+ * backend and accel use). `borrow` uses the scene itself instead of a copy:
+ * only for a world that cannot outlive the call that made it, as
+ * glint_render's (a copy of a 32k-triangle mesh costs milliseconds). */
+glint_status gli_world_create(const glint_scene *scene, int borrow,
+                              glint_world **world, glint_error *error);
 void gli_world_retain(glint_world *world);
 void gli_world_release(glint_world *world);
 
