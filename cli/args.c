@@ -16,11 +16,22 @@ void cli_error(const char *format, ...) {
   va_end(args);
 }
 
+void cli_unsupported_backend(const char *name) {
+  const char *cap = getenv("GLINT_ISA");
+  if (cap && *cap)
+    cli_error("backend '%s' is not available with GLINT_ISA=%s (or on this "
+              "CPU)",
+              name, cap);
+  else
+    cli_error("backend '%s' is not supported on this CPU", name);
+}
+
 int arg_is(arg_cursor *c, const char *short_name, const char *long_name) {
   char *a = c->argv[c->i];
   if (short_name && strncmp(a, short_name, 2) == 0 && a[0] == '-' &&
       a[1] != '-') {
-    c->inline_v = a[2] ? a + 2 : NULL;
+    /* -W800, -W=800 and -W 800 alike */
+    c->inline_v = a[2] == '=' ? a + 3 : a[2] ? a + 2 : NULL;
     c->i++;
     return 1;
   }

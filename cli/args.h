@@ -7,8 +7,9 @@
 
 #include <stddef.h>
 
-/* Exit statuses: bad arguments or input get 2 (see glint --help). */
-enum { EXIT_USAGE = 2 };
+/* Exit statuses (see glint --help): bad arguments or input get 2; a render
+ * stopped by Ctrl-C (or SIGTERM, SIGHUP) gets 130, as shells report it. */
+enum { EXIT_USAGE = 2, EXIT_INTERRUPTED = 130 };
 
 typedef struct arg_cursor {
   int argc;
@@ -49,6 +50,10 @@ int arg_flag(arg_cursor *c, const char *short_name, const char *long_name,
 
 /* -h or --help. */
 int arg_is_help(arg_cursor *c);
+
+/* "backend NAME is not supported on this CPU", or, when GLINT_ISA is set,
+ * that it hides it. */
+void cli_unsupported_backend(const char *name);
 
 /* Prints "glint: <message>" to stderr. */
 void cli_error(const char *format, ...)

@@ -26,7 +26,8 @@ static void bench_usage(FILE *f) {
       "and prints the median seconds per depth and backend (the shape of the\n"
       "thesis's tables A.1-A.3), rays per second, speed-ups over\n"
       "scalar-float, SIMD lane utilisation and the stream backends' stages.\n"
-      "Runs are interleaved so that all columns come from the same run.\n"
+      "Runs are interleaved so that all columns come from the same run,\n"
+      "after one untimed warm-up render of each scene and column.\n"
       "\n"
       "Options:\n"
       "  --scenes LIST      built-in scenes or scene files, comma-separated\n"
@@ -259,7 +260,7 @@ int cmd_bench(int argc, char **argv) {
         return EXIT_USAGE;
       }
       if (!glint_backend_supported(b)) {
-        cli_error("backend '%s' is not supported on this CPU", items[i]);
+        cli_unsupported_backend(items[i]);
         return EXIT_USAGE;
       }
       if (nbackends < GLINT_BACKEND_COUNT)
@@ -395,14 +396,20 @@ int bench_scenes(char **names, int nscenes, const int *depths, int ndepths,
   glint_render_settings rs = *base;
   int tty = isatty(STDERR_FILENO), status = 0;
   size_t done = 0, total = ncells * (size_t)runs;
-  for (int r = 0; r < runs && !status; r++)
+  /* Run -1 warms up, untimed: each scene and column once at the first
+   * depth (page faults in fresh scratch memory, cold caches, the clock
+   * ramping up would otherwise land on the first row). */
+  for (int r = -1; r < runs && !status; r++)
     for (int s = 0; s < nscenes && !status; s++)
-      for (int d = 0; d < ndepths && !status; d++)
+      for (int d = 0; d < (r < 0 ? 1 : ndepths) && !status; d++)
         for (int c = 0; c < ncols && !status; c++) {
           rs.max_depth = depths[d];
           rs.backend = cols[c].backend;
           rs.threads = cols[c].threads;
-          if (tty) {
+          if (tty && r < 0) {
+            fprintf(stderr, "\r[warm-up] %s %s\033[K", stems[s], cols[c].name);
+            fflush(stderr);
+          } else if (tty) {
             fprintf(stderr, "\r[%zu/%zu] %s depth %d %s\033[K", ++done, total,
                     stems[s], depths[d], cols[c].name);
             fflush(stderr);
@@ -416,7 +423,8 @@ int bench_scenes(char **names, int nscenes, const int *depths, int ndepths,
             break;
           }
           glint_image_destroy(image);
-          SECONDS(s, d, c)[r] = stats[IDX(s, d, c)].render_seconds;
+          if (r >= 0)
+            SECONDS(s, d, c)[r] = stats[IDX(s, d, c)].render_seconds;
         }
   if (tty)
     fputs("\r\033[K", stderr);

@@ -127,7 +127,8 @@ int bench_spd(const char *dir, const glint_render_settings *base,
   rs.spp = 1;
   rs.max_depth = 5;
   int status = 0, tty = isatty(STDERR_FILENO);
-  for (int r = 0; r < runs && !status; r++)
+  /* Run -1 warms up, untimed (see bench_cmd.c). */
+  for (int r = -1; r < runs && !status; r++)
     for (size_t s = 0; s < SPD_COUNT && !status; s++) {
       for (int b = 0; b < ncols; b++) {
         if (tty)
@@ -143,9 +144,10 @@ int bench_spd(const char *dir, const glint_render_settings *base,
           break;
         }
         glint_image_destroy(im);
-        T(s, b, r) = ST(s, b).render_seconds;
+        if (r >= 0)
+          T(s, b, r) = ST(s, b).render_seconds;
       }
-      for (int k = 0; tachyon && k < ntt; k++) {
+      for (int k = 0; tachyon && r >= 0 && k < ntt; k++) {
         if (tty)
           fprintf(stderr, "\r[run %d/%d] %s tachyon %d thread%s\033[K", r + 1,
                   runs, spd_scenes[s], tthreads[k],

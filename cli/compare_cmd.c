@@ -1,4 +1,5 @@
-/* glint compare A B: the PSNR between two images of the same size. */
+/* glint compare A B: the PSNR between two images of the same size, with a
+ * threshold to fail on and an image of their differences. */
 #include "args.h"
 #include "cli.h"
 
@@ -6,26 +7,96 @@
 
 #include <math.h>
 #include <stdio.h>
+#include <stdlib.h>
 #include <string.h>
 
-int cmd_compare(int argc, char **argv) {
-  if (argc == 1 &&
-      (strcmp(argv[0], "--help") == 0 || strcmp(argv[0], "-h") == 0)) {
-    puts(
-        "Usage: glint compare A B\n\n"
-        "Prints the peak signal-to-noise ratio between two images (.png, .bmp\n"
-        "or .ppm) of the same size, in dB over all channels ('inf' when they\n"
-        "are identical).");
-    return 0;
+/* Differences are scaled up so that an error of a few levels shows. */
+enum { DIFF_GAIN = 16 };
+
+static void compare_usage(FILE *f) {
+  fputs(
+      "Usage: glint compare A B [options]\n"
+      "\n"
+      "Prints the peak signal-to-noise ratio between two images (.png, .bmp\n"
+      "or .ppm) of the same size, in dB over all channels ('inf' when they\n"
+      "are identical).\n"
+      "\n"
+      "Options:\n"
+      "      --min-psnr DB  exit with status 1 when the PSNR is below DB\n"
+      "      --diff FILE    write an image of the differences: each\n"
+      "                     channel's |A - B| times 16, clamped to 255\n"
+      "  -h, --help         this help\n"
+      "\n"
+      "Exit status: 0 when the images compare (and reach --min-psnr), 1 when\n"
+      "they are below it, 2 when an image cannot be read or the sizes\n"
+      "differ.\n",
+      f);
+}
+
+static glint_status write_difference(const glint_image *a, const glint_image *b,
+                                     const char *path, glint_error *err) {
+  glint_image *d;
+  int w = glint_image_width(a), h = glint_image_height(a);
+  glint_status st = glint_image_create(w, h, &d, err);
+  if (st)
+    return st;
+  const uint8_t *pa = glint_image_pixels_const(a);
+  const uint8_t *pb = glint_image_pixels_const(b);
+  uint8_t *pd = glint_image_pixels(d);
+  for (size_t i = 0, n = (size_t)w * (size_t)h * 3; i < n; i++) {
+    int v = abs((int)pa[i] - (int)pb[i]) * DIFF_GAIN;
+    pd[i] = (uint8_t)(v > 255 ? 255 : v);
   }
-  if (argc != 2) {
+  st = glint_image_write(d, path, err);
+  glint_image_destroy(d);
+  return st;
+}
+
+int cmd_compare(int argc, char **argv) {
+  const char *files[2] = {NULL, NULL};
+  char *diff_path = NULL, *min_text = NULL;
+  int nfiles = 0;
+  arg_cursor c = {argc, argv, 0, NULL};
+  while (c.i < argc) {
+    const char *a = argv[c.i];
+    if (arg_is_help(&c)) {
+      compare_usage(stdout);
+      return 0;
+    }
+    int r;
+    if ((r = arg_text(&c, NULL, "--diff", &diff_path)) ||
+        (r = arg_text(&c, NULL, "--min-psnr", &min_text))) {
+      if (r == ARG_BAD)
+        return EXIT_USAGE;
+      continue;
+    }
+    if (a[0] == '-' && a[1] != '\0') {
+      cli_error("unknown option '%s' (see glint compare --help)", a);
+      return EXIT_USAGE;
+    }
+    if (nfiles == 2) {
+      cli_error("compare takes two images, not three ('%s')", a);
+      return EXIT_USAGE;
+    }
+    files[nfiles++] = a;
+    c.i++;
+  }
+  if (nfiles != 2) {
     cli_error("compare needs two images (see glint compare --help)");
+    return EXIT_USAGE;
+  }
+  double min_psnr = -INFINITY;
+  if (min_text && parse_double("--min-psnr", min_text, -INFINITY, &min_psnr))
+    return EXIT_USAGE;
+  if (diff_path &&
+      (glint_image_format_from_path(diff_path) == GLINT_FORMAT_UNKNOWN)) {
+    cli_error("--diff %s: not a .png, .bmp or .ppm file name", diff_path);
     return EXIT_USAGE;
   }
   glint_image *a = NULL, *b = NULL;
   glint_error err;
-  if (glint_image_read(argv[0], &a, &err) ||
-      glint_image_read(argv[1], &b, &err)) {
+  if (glint_image_read(files[0], &a, &err) ||
+      glint_image_read(files[1], &b, &err)) {
     cli_error("%s", err.message);
     glint_image_destroy(a);
     return EXIT_USAGE;
@@ -33,14 +104,22 @@ int cmd_compare(int argc, char **argv) {
   double psnr = glint_image_psnr(a, b);
   int status = 0;
   if (psnr < 0) {
-    cli_error("%s is %dx%d but %s is %dx%d", argv[0], glint_image_width(a),
-              glint_image_height(a), argv[1], glint_image_width(b),
+    cli_error("%s is %dx%d but %s is %dx%d", files[0], glint_image_width(a),
+              glint_image_height(a), files[1], glint_image_width(b),
               glint_image_height(b));
     status = EXIT_USAGE;
-  } else if (isinf(psnr)) {
-    printf("PSNR inf dB (identical)\n");
   } else {
-    printf("PSNR %.2f dB\n", psnr);
+    if (isinf(psnr))
+      printf("PSNR inf dB (identical)\n");
+    else
+      printf("PSNR %.2f dB\n", psnr);
+    if (diff_path && write_difference(a, b, diff_path, &err)) {
+      cli_error("%s", err.message);
+      status = EXIT_USAGE;
+    } else if (psnr < min_psnr) {
+      cli_error("PSNR %.2f dB is below --min-psnr %g", psnr, min_psnr);
+      status = 1;
+    }
   }
   glint_image_destroy(a);
   glint_image_destroy(b);

@@ -18,7 +18,15 @@ static void usage(FILE *f) {
         "  glint --version                 the version\n"
         "\n"
         "Built-in scenes: whitted, giza, billiard, phong.\n"
-        "'glint render --help' and 'glint bench --help' list the options.\n",
+        "'glint render --help' and 'glint bench --help' list the options.\n"
+        "\n"
+        "Environment:\n"
+        "  GLINT_ISA=none|sse|avx2|avx512  use no instruction set beyond\n"
+        "                     this one (to compare them on one machine);\n"
+        "                     it never enables one the CPU lacks\n"
+        "\n"
+        "Exit status: 0 done; 1 out of memory; 2 bad arguments or input\n"
+        "(nothing is written); 130 interrupted (Ctrl-C).\n",
         f);
 }
 
@@ -36,6 +44,12 @@ int main(int argc, char **argv) {
   if (strcmp(cmd, "--version") == 0 || strcmp(cmd, "-V") == 0) {
     printf("glint %s\n", glint_version());
     return 0;
+  }
+  glint_error err;
+  if ((strcmp(cmd, "render") == 0 || strcmp(cmd, "bench") == 0) &&
+      glint_isa_cap_check(&err)) {
+    cli_error("%s", err.message);
+    return EXIT_USAGE;
   }
   if (strcmp(cmd, "render") == 0)
     return cmd_render(argc - 2, argv + 2);

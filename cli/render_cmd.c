@@ -23,9 +23,13 @@ static void render_usage(FILE *f) {
       "Options:\n"
       "  -o, --output FILE    image to write: .png, .bmp or .ppm (8-bit),\n"
       "                       or the linear floating-point film as .pfm or\n"
-      "                       .exr (default: SCENE.png)\n"
+      "                       .exr (default: SCENE.png); - writes the\n"
+      "                       image to standard output in --format\n"
+      "      --format NAME    with -o -: png (default), ppm or bmp\n"
       "  -W, --width N        image width in pixels (default: 640, or the\n"
-      "                       scene file's own)\n"
+      "                       scene file's own); the field of view spans\n"
+      "                       the width, so -W alone widens or narrows\n"
+      "                       the view and changes the aspect ratio\n"
       "  -H, --height N       image height in pixels (default: 480, or the\n"
       "                       scene file's own)\n"
       "  -d, --depth N        recursion depth, 1..64; 1 = local shading with\n"
@@ -35,7 +39,8 @@ static void render_usage(FILE *f) {
       "                       avx512, stream, stream-sse, stream-avx2,\n"
       "                       stream-avx512 (default: auto, the widest the\n"
       "                       CPU supports)\n"
-      "  -t, --threads N      worker threads; 0 = all cores (default: 0)\n"
+      "  -t, --threads N      worker threads; 0 = every CPU this process\n"
+      "                       may use (default: 0)\n"
       "      --math NAME      pow/exp in SIMD backends: minimax, fast,\n"
       "                       taylor, exact (default: minimax)\n"
       "      --no-newton      skip the Newton step after rcp (thesis fig. "
@@ -47,24 +52,47 @@ static void render_usage(FILE *f) {
       "                       fast (default): several times faster to\n"
       "                       write, files 10-90% larger; smallest: zlib's\n"
       "                       best, about 10x slower\n"
-      "      --region X,Y,W,H render only this window of the image (pixels)\n"
+      "      --region X,Y,W,H render only this window of the W x H image;\n"
+      "                       the output is the cropped window, W x H\n"
       "  -q, --quiet          no progress bar and no summary line\n"
       "      --stats          detailed statistics after rendering\n"
       "  -h, --help           this help\n"
       "\n"
       "After rendering, one line gives the wall time, the rays traced and the\n"
-      "rate. Errors exit with status 2 and write no file.\n",
+      "rate. Errors exit with status 2 and write no file; Ctrl-C stops the\n"
+      "render, leaves any existing file untouched and exits with 130. Short\n"
+      "options take -W 800, -W800 or -W=800; -- ends the options.\n",
       f);
+}
+
+/* The signal that asked glint to stop (SIGINT, SIGTERM, SIGHUP), or 0. A
+ * handler can only reach a variable of static storage; the render sees it
+ * through the progress callback and cancels at the next tile. */
+static volatile sig_atomic_t stop_signal;
+
+static void on_stop_signal(int sig) { stop_signal = sig; }
+
+static void catch_stop_signals(void) {
+  struct sigaction sa;
+  memset(&sa, 0, sizeof sa);
+  sa.sa_handler = on_stop_signal;
+  sigemptyset(&sa.sa_mask);
+  sigaction(SIGINT, &sa, NULL);
+  sigaction(SIGTERM, &sa, NULL);
+  sigaction(SIGHUP, &sa, NULL);
 }
 
 typedef struct progress_state {
   int last_percent;
+  int show; /* draw a bar (stderr is a terminal and not --quiet) */
 } progress_state;
 
 static int on_progress(void *user, double fraction) {
   progress_state *p = user;
+  if (stop_signal)
+    return 1; /* cancel */
   int percent = (int)(fraction * 100);
-  if (percent != p->last_percent) {
+  if (p->show && percent != p->last_percent) {
     p->last_percent = percent;
     int filled = percent * 40 / 100;
     fprintf(stderr, "\r[%.*s%*s] %3d%%", filled,
@@ -117,59 +145,68 @@ typedef struct command_times {
   double load, write, total;
 } command_times;
 
-static void print_stats(const glint_stats *s, const command_times *t) {
+static void print_stats(FILE *out, const glint_stats *s,
+                        const command_times *t) {
   uint64_t rays = s->primary_rays + s->secondary_rays + s->shadow_rays;
-  printf("  backend            %s, %d thread%s\n",
-         glint_backend_name(s->backend), s->threads,
-         s->threads == 1 ? "" : "s");
-  printf("  image              %dx%d, %d spp, depth %d\n", s->width, s->height,
-         s->spp, s->max_depth);
-  printf("  prepare            %.3f s (scene %.2f MiB)\n", s->prepare_seconds,
-         (double)s->scene_bytes / 1048576.0);
+  fprintf(out, "  backend            %s, %d thread%s\n",
+          glint_backend_name(s->backend), s->threads,
+          s->threads == 1 ? "" : "s");
+  fprintf(out, "  image              %dx%d, %d spp, depth %d\n", s->width,
+          s->height, s->spp, s->max_depth);
+  fprintf(out, "  prepare            %.3f s (scene %.2f MiB)\n",
+          s->prepare_seconds, (double)s->scene_bytes / 1048576.0);
   if (s->bvh_nodes)
-    printf("  bvh                %llu nodes, %.2f MiB, built in %.1f ms\n",
-           (unsigned long long)s->bvh_nodes, (double)s->bvh_bytes / 1048576.0,
-           s->bvh_build_seconds * 1e3);
-  printf("  render             %.3f s\n", s->render_seconds);
-  printf("  load scene         %.4f s\n", t->load);
-  printf("  write image        %.4f s\n", t->write);
-  printf("  load to written    %.4f s\n", t->total);
-  printf("  rays               %llu (%.2f Mrays/s)\n", (unsigned long long)rays,
-         s->render_seconds > 0 ? mega(rays) / s->render_seconds : 0.0);
-  printf("    primary          %llu\n", (unsigned long long)s->primary_rays);
-  printf("    reflected        %llu\n", (unsigned long long)s->reflected_rays);
-  printf("    refracted        %llu\n", (unsigned long long)s->refracted_rays);
-  printf("    shadow           %llu\n", (unsigned long long)s->shadow_rays);
-  printf("  total internal reflections %llu\n",
-         (unsigned long long)s->total_internal_reflections);
+    fprintf(out,
+            "  bvh                %llu nodes, %.2f MiB, built in %.1f ms\n",
+            (unsigned long long)s->bvh_nodes, (double)s->bvh_bytes / 1048576.0,
+            s->bvh_build_seconds * 1e3);
+  fprintf(out, "  render             %.3f s\n", s->render_seconds);
+  fprintf(out, "  load scene         %.4f s\n", t->load);
+  fprintf(out, "  write image        %.4f s\n", t->write);
+  fprintf(out, "  load to written    %.4f s\n", t->total);
+  fprintf(out, "  rays               %llu (%.2f Mrays/s)\n",
+          (unsigned long long)rays,
+          s->render_seconds > 0 ? mega(rays) / s->render_seconds : 0.0);
+  fprintf(out, "    primary          %llu\n",
+          (unsigned long long)s->primary_rays);
+  fprintf(out, "    reflected        %llu\n",
+          (unsigned long long)s->reflected_rays);
+  fprintf(out, "    refracted        %llu\n",
+          (unsigned long long)s->refracted_rays);
+  fprintf(out, "    shadow           %llu\n",
+          (unsigned long long)s->shadow_rays);
+  fprintf(out, "  total internal reflections %llu\n",
+          (unsigned long long)s->total_internal_reflections);
   int width = glint_backend_width(s->backend);
   if (s->beams) {
-    printf("  beams              %llu, %.2f sub-beams per beam\n",
-           (unsigned long long)s->beams,
-           (double)s->sub_beams / (double)s->beams);
+    fprintf(out, "  beams              %llu, %.2f sub-beams per beam\n",
+            (unsigned long long)s->beams,
+            (double)s->sub_beams / (double)s->beams);
   }
   if (s->packet_tests && width > 1)
-    printf("  lane utilisation   %.1f%% of %d lanes (%.2f active per packet "
-           "test)\n",
-           100.0 * (double)s->active_lanes / ((double)s->packet_tests * width),
-           width, (double)s->active_lanes / (double)s->packet_tests);
+    fprintf(out,
+            "  lane utilisation   %.1f%% of %d lanes (%.2f active per packet "
+            "test)\n",
+            100.0 * (double)s->active_lanes / ((double)s->packet_tests * width),
+            width, (double)s->active_lanes / (double)s->packet_tests);
   if (s->generations) {
-    printf("  generations        rays        packets   lane use\n");
+    fprintf(out, "  generations        rays        packets   lane use\n");
     for (int g = 0; g < s->generations && g < GLINT_STATS_MAX_GENERATIONS; g++)
-      printf("    %2d %19llu %14llu %9.1f%%\n", g,
-             (unsigned long long)s->gen_rays[g],
-             (unsigned long long)s->gen_packets[g],
-             s->gen_packets[g] ? 100.0 * (double)s->gen_active_lanes[g] /
-                                     ((double)s->gen_packets[g] * width)
-                               : 0.0);
-    printf("  stages             generation %.3f s, traversal %.3f s, "
-           "shading %.3f s, compaction %.3f s (summed over threads)\n",
-           s->stage_seconds[0], s->stage_seconds[1], s->stage_seconds[2],
-           s->stage_seconds[3]);
-    printf("  stream memory      %.2f MiB per thread\n",
-           (double)s->stream_bytes_per_thread / 1048576.0);
+      fprintf(out, "    %2d %19llu %14llu %9.1f%%\n", g,
+              (unsigned long long)s->gen_rays[g],
+              (unsigned long long)s->gen_packets[g],
+              s->gen_packets[g] ? 100.0 * (double)s->gen_active_lanes[g] /
+                                      ((double)s->gen_packets[g] * width)
+                                : 0.0);
+    fprintf(out,
+            "  stages             generation %.3f s, traversal %.3f s, "
+            "shading %.3f s, compaction %.3f s (summed over threads)\n",
+            s->stage_seconds[0], s->stage_seconds[1], s->stage_seconds[2],
+            s->stage_seconds[3]);
+    fprintf(out, "  stream memory      %.2f MiB per thread\n",
+            (double)s->stream_bytes_per_thread / 1048576.0);
   }
-  printf("  peak memory (RSS)  %.1f MiB\n", cli_peak_rss_mib());
+  fprintf(out, "  peak memory (RSS)  %.1f MiB\n", cli_peak_rss_mib());
 }
 
 /* .pfm and .exr hold the linear film itself. */
@@ -219,6 +256,7 @@ int cmd_render(int argc, char **argv) {
   char *output = NULL;
   int quiet = 0, want_stats = 0;
   glint_png_compression png_compression = GLINT_PNG_FAST;
+  glint_image_format stream_format = GLINT_FORMAT_UNKNOWN; /* --format */
   glint_render_settings rs;
   glint_render_settings_default(&rs);
   glint_error err;
@@ -241,6 +279,17 @@ int cmd_render(int argc, char **argv) {
         return EXIT_USAGE;
       continue;
     }
+    if (strcmp(a, "--") == 0) { /* the rest are operands: a scene named -x */
+      c.i++;
+      if (c.i < argc && !scene_arg)
+        scene_arg = argv[c.i++];
+      if (c.i < argc) {
+        cli_error("more than one scene given ('%s' and '%s')", scene_arg,
+                  argv[c.i]);
+        return EXIT_USAGE;
+      }
+      continue;
+    }
     if (arg_is(&c, "-b", "--backend")) {
       if (!(v = arg_value(&c, "--backend")))
         return EXIT_USAGE;
@@ -249,7 +298,7 @@ int cmd_render(int argc, char **argv) {
         return EXIT_USAGE;
       }
       if (!glint_backend_supported(rs.backend)) {
-        cli_error("backend '%s' is not supported on this CPU", v);
+        cli_unsupported_backend(v);
         return EXIT_USAGE;
       }
     } else if (arg_is(&c, NULL, "--region")) {
@@ -274,6 +323,17 @@ int cmd_render(int argc, char **argv) {
         cli_error("--png-compression: '%s' is not fast or smallest", v);
         return EXIT_USAGE;
       }
+    } else if (arg_is(&c, NULL, "--format")) {
+      if (!(v = arg_value(&c, "--format")))
+        return EXIT_USAGE;
+      char name[8];
+      snprintf(name, sizeof name, "x.%s", v);
+      stream_format = strlen(v) < 4 ? glint_image_format_from_path(name)
+                                    : GLINT_FORMAT_UNKNOWN;
+      if (stream_format == GLINT_FORMAT_UNKNOWN) {
+        cli_error("--format: '%s' is not png, bmp or ppm", v);
+        return EXIT_USAGE;
+      }
     } else if (arg_is(&c, NULL, "--gamma")) {
       if (parse_double("--gamma", arg_value(&c, "--gamma"), 0, &rs.gamma))
         return EXIT_USAGE;
@@ -290,6 +350,27 @@ int cmd_render(int argc, char **argv) {
   }
   if (!scene_arg)
     scene_arg = "whitted";
+  /* -o -: the image onto standard output, in --format (PNG by default);
+   * the summary then goes to stderr. */
+  int to_stdout = output && strcmp(output, "-") == 0;
+  if (stream_format != GLINT_FORMAT_UNKNOWN && !to_stdout) {
+    cli_error("--format applies to -o - (standard output); a file's format "
+              "is its extension");
+    return EXIT_USAGE;
+  }
+  if (to_stdout && stream_format == GLINT_FORMAT_UNKNOWN)
+    stream_format = GLINT_FORMAT_PNG;
+  if (to_stdout && isatty(STDOUT_FILENO)) {
+    cli_error("-o -: standard output is a terminal; redirect it to a file or "
+              "a program");
+    return EXIT_USAGE;
+  }
+  FILE *info = to_stdout ? stderr : stdout;
+  if (rs.threads > glint_cpu_count())
+    fprintf(stderr,
+            "glint: note: %d threads on the %d CPUs this process may use; "
+            "they will take turns\n",
+            rs.threads, glint_cpu_count());
 
   char stem[256], default_output[300];
   command_times times;
@@ -303,7 +384,7 @@ int cmd_render(int argc, char **argv) {
     output = default_output;
   }
   /* Refuse a bad output path before a long render, not after. */
-  int film_output = is_film_path(output);
+  int film_output = !to_stdout && is_film_path(output);
   if (film_output && rs.gamma != 1) {
     cli_error("%s: --gamma applies to 8-bit images; .pfm and .exr are "
               "linear",
@@ -311,47 +392,47 @@ int cmd_render(int argc, char **argv) {
     glint_scene_destroy(scene);
     return EXIT_USAGE;
   }
-  if (film_output ? glint_film_check_writable(output, &err)
-                  : glint_image_check_writable(output, &err)) {
+  if (!to_stdout && (film_output ? glint_film_check_writable(output, &err)
+                                 : glint_image_check_writable(output, &err))) {
     cli_error("%s", err.message);
     glint_scene_destroy(scene);
     return EXIT_USAGE;
   }
 
-  progress_state ps = {-1};
-  int show_progress = !quiet && isatty(STDERR_FILENO);
-  if (show_progress) {
-    rs.progress = on_progress;
-    rs.progress_user = &ps;
-  }
+  catch_stop_signals(); /* from here on Ctrl-C cancels and says so */
+  progress_state ps = {-1, !quiet && isatty(STDERR_FILENO)};
+  rs.progress = on_progress;
+  rs.progress_user = &ps;
   glint_image *image = NULL;
   glint_film *film = NULL;
   glint_stats stats;
   glint_status st = film_output
                         ? render_film(scene, &rs, &film, &stats, &err)
                         : glint_render(scene, &rs, &image, &stats, &err);
-  if (show_progress)
+  if (ps.show)
     fputs("\r\033[K", stderr);
   glint_scene_destroy(scene);
+  if (stop_signal) {
+    glint_image_destroy(image);
+    glint_film_destroy(film);
+    cli_error("interrupted; %s was not written",
+              to_stdout ? "the image" : output);
+    return EXIT_INTERRUPTED;
+  }
   if (st) {
     cli_error("%s", err.message);
     return st == GLINT_E_MEMORY ? 1 : EXIT_USAGE;
   }
 
-  /* Block termination signals while the file is written and renamed, so an
-   * interrupt cannot strand a temporary file; it takes effect right after. */
-  sigset_t block, old;
-  sigemptyset(&block);
-  sigaddset(&block, SIGINT);
-  sigaddset(&block, SIGTERM);
-  sigaddset(&block, SIGHUP);
-  sigprocmask(SIG_BLOCK, &block, &old);
+  /* A stop signal from here on lets the file be written whole (the handler
+   * only takes note), then says so. */
   double write_start = cli_now();
-  st = film_output
-           ? glint_film_write(film, output, &err)
+  st = film_output ? glint_film_write(film, output, &err)
+       : to_stdout
+           ? glint_image_write_stream(image, stdout, stream_format,
+                                      png_compression, &err)
            : glint_image_write_with(image, output, png_compression, &err);
   times.write = cli_now() - write_start;
-  sigprocmask(SIG_SETMASK, &old, NULL);
   int out_w = film_output ? glint_film_width(film) : glint_image_width(image);
   int out_h = film_output ? glint_film_height(film) : glint_image_height(image);
   glint_image_destroy(image);
@@ -360,20 +441,27 @@ int cmd_render(int argc, char **argv) {
     cli_error("%s", err.message);
     return EXIT_USAGE;
   }
+  if (stop_signal) {
+    cli_error("interrupted after %s was written",
+              to_stdout ? "the image" : output);
+    return EXIT_INTERRUPTED;
+  }
 
   if (!quiet) {
     uint64_t rays =
         stats.primary_rays + stats.secondary_rays + stats.shadow_rays;
-    printf("%s: %dx%d, %s, %.3f s, %.2f M rays (%.2f M primary, %.2f M "
-           "secondary, %.2f M shadow), %.2f Mrays/s\n",
-           output, out_w, out_h, glint_backend_name(stats.backend),
-           stats.render_seconds, mega(rays), mega(stats.primary_rays),
-           mega(stats.secondary_rays), mega(stats.shadow_rays),
-           stats.render_seconds > 0 ? mega(rays) / stats.render_seconds : 0.0);
+    fprintf(info,
+            "%s: %dx%d, %s, %.3f s, %.2f M rays (%.2f M primary, %.2f M "
+            "secondary, %.2f M shadow), %.2f Mrays/s\n",
+            to_stdout ? "(standard output)" : output, out_w, out_h,
+            glint_backend_name(stats.backend), stats.render_seconds, mega(rays),
+            mega(stats.primary_rays), mega(stats.secondary_rays),
+            mega(stats.shadow_rays),
+            stats.render_seconds > 0 ? mega(rays) / stats.render_seconds : 0.0);
   }
   if (want_stats) {
     times.total = cli_now() - t0;
-    print_stats(&stats, &times);
+    print_stats(info, &stats, &times);
   }
   return 0;
 }

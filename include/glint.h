@@ -16,6 +16,7 @@
 
 #include <stddef.h>
 #include <stdint.h>
+#include <stdio.h>
 
 #ifdef __cplusplus
 extern "C" {
@@ -218,8 +219,6 @@ glint_image_format glint_image_format_from_path(const char *path);
  * file, without leaving anything behind. Call it before a long render. */
 glint_status glint_image_check_writable(const char *path, glint_error *error);
 
-/* Writes atomically: into a temporary file beside `path`, then renamed over
- * it. A failure leaves any existing file untouched and no partial file. */
 /* PNG compression: GLINT_PNG_FAST (the default) writes several times faster
  * than zlib's default at a size 10-90% larger (run-length matches on the
  * "sub" filter, chosen by measurement); GLINT_PNG_SMALLEST spends about 10x
@@ -230,11 +229,21 @@ typedef enum glint_png_compression {
   GLINT_PNG_FAST = 0,
   GLINT_PNG_SMALLEST
 } glint_png_compression;
+
+/* Writes atomically, in the format of the extension: into a temporary file
+ * beside `path`, then renamed over it. A failure leaves any existing file
+ * untouched and no partial file. */
 glint_status glint_image_write_with(const glint_image *image, const char *path,
                                     glint_png_compression compression,
                                     glint_error *error);
 glint_status glint_image_write(const glint_image *image, const char *path,
                                glint_error *error);
+/* Encodes onto an open stream (standard output, a pipe) in `format`. There
+ * is nothing to rename here: a failure midway leaves what was written. */
+glint_status glint_image_write_stream(const glint_image *image, FILE *stream,
+                                      glint_image_format format,
+                                      glint_png_compression compression,
+                                      glint_error *error);
 glint_status glint_image_read(const char *path, glint_image **image,
                               glint_error *error);
 
@@ -366,8 +375,16 @@ glint_status glint_trace_primary(const glint_scene *scene,
                                  uint64_t *hits, glint_stats *stats,
                                  glint_error *error);
 
-/* Cores the renderer would use for threads = 0. */
+/* Cores the renderer would use for threads = 0: the CPUs this process may
+ * run on (its affinity mask), at most GLINT_MAX_THREADS. */
 int glint_cpu_count(void);
+
+/* The environment variable GLINT_ISA=none|sse|avx2|avx512 caps the
+ * instruction sets glint detects (to compare them on one machine or test
+ * the fallbacks); it can never add one the CPU lacks. Returns GLINT_OK when
+ * it is unset or one of those values, else GLINT_E_ARGUMENT with a message
+ * (an unknown value caps nothing). */
+glint_status glint_isa_cap_check(glint_error *error);
 
 /* ------------------------------------------------------------------------ */
 /* Film: linear floating-point frame buffers                                */

@@ -1,7 +1,12 @@
 /* The command-line program, run as a user would: every error path exits
  * with status 2, prints one message naming the problem and writes no file;
  * the success paths write the image and the summary line. */
+/* sched_setaffinity, to run glint on one CPU */
+#define _GNU_SOURCE
 #include "test_util.h"
+
+#include <sched.h>
+#include <signal.h>
 
 #include <fcntl.h>
 #include <spawn.h>
@@ -405,20 +410,154 @@ static void missing_instruction_sets(void **state) {
   char p[128];
   snprintf(p, sizeof p, "%s/a.png", dir);
   extra_env = "GLINT_ISA=sse";
-  EXPECT_USAGE_ERROR("backend 'avx512' is not supported on this CPU", "render",
-                     "-b", "avx512");
-  EXPECT_USAGE_ERROR("backend 'avx2' is not supported on this CPU", "render",
-                     "-b", "avx2");
+  EXPECT_USAGE_ERROR("backend 'avx512' is not available with GLINT_ISA=sse",
+                     "render", "-b", "avx512");
+  EXPECT_USAGE_ERROR("backend 'avx2' is not available with GLINT_ISA=sse",
+                     "render", "-b", "avx2");
   assert_int_equal(run("render", "-W", "8", "-H", "8", "-o", "a.png", NULL), 0);
   assert_non_null(strstr(out, ", sse,"));
   unlink(p);
   extra_env = "GLINT_ISA=none";
-  EXPECT_USAGE_ERROR("backend 'sse' is not supported on this CPU", "render",
-                     "-b", "sse");
+  EXPECT_USAGE_ERROR("backend 'sse' is not available with GLINT_ISA=none",
+                     "render", "-b", "sse");
   assert_int_equal(run("render", "-W", "8", "-H", "8", "-o", "a.png", NULL), 0);
   assert_non_null(strstr(out, ", scalar-float,"));
   unlink(p);
+  extra_env = "GLINT_ISA=bogus";
+  EXPECT_USAGE_ERROR("GLINT_ISA='bogus' is not none, sse, avx2 or avx512",
+                     "render", "-W", "8", "-H", "8", "-o", "a.png");
+  EXPECT_USAGE_ERROR("GLINT_ISA='bogus'", "bench", "--runs", "1");
   extra_env = NULL;
+  assert_int_equal(run("--help", NULL), 0);
+  assert_non_null(strstr(out, "GLINT_ISA"));
+}
+
+/* What a newcomer tried: -W=16, --, -o - with --format. */
+static void options_as_people_write_them(void **state) {
+  (void)state;
+  char p[128];
+  assert_int_equal(
+      run("render", "-W=16", "-H=12", "-q", "-o", "a.ppm", "--", "giza", NULL),
+      0);
+  snprintf(p, sizeof p, "%s/a.ppm", dir);
+  char head[16];
+  slurp(p, head, sizeof head);
+  assert_memory_equal(head, "P6\n16 12\n255\n", 13);
+  unlink(p);
+  EXPECT_USAGE_ERROR("more than one scene", "render", "--", "giza", "whitted");
+
+  /* -o -: the image on stdout, the summary on stderr */
+  assert_int_equal(
+      run("render", "-W", "8", "-H", "6", "-o", "-", "--format", "ppm", NULL),
+      0);
+  assert_memory_equal(out, "P6\n8 6\n255\n", 11);
+  assert_non_null(strstr(err, "(standard output): 8x6"));
+  assert_int_equal(run("render", "-W", "8", "-H", "6", "-q", "-o", "-", NULL),
+                   0);
+  assert_memory_equal(out, "\x89PNG", 4);
+  assert_string_equal(err, "");
+  EXPECT_USAGE_ERROR("--format applies to -o -", "render", "--format", "ppm",
+                     "-o", "a.png");
+  EXPECT_USAGE_ERROR("--format: 'jpg' is not png, bmp or ppm", "render", "-o",
+                     "-", "--format", "jpg");
+
+  /* more threads than CPUs: done, with a note */
+  assert_int_equal(run("render", "-W", "8", "-H", "8", "-t", "64", "-q", "-o",
+                       "a.png", NULL),
+                   0);
+  assert_non_null(strstr(err, "64 threads on the"));
+  snprintf(p, sizeof p, "%s/a.png", dir);
+  unlink(p);
+}
+
+/* threads = 0 means the CPUs this process may use, not all online. */
+static void default_threads_follow_the_affinity(void **state) {
+  (void)state;
+  cpu_set_t saved, one;
+  if (sched_getaffinity(0, sizeof saved, &saved) != 0 ||
+      CPU_COUNT(&saved) < 2) {
+    print_message("SKIPPED: needs 2 CPUs to restrict to 1\n");
+    skip();
+  }
+  int first = 0;
+  while (!CPU_ISSET(first, &saved))
+    first++;
+  CPU_ZERO(&one);
+  CPU_SET(first, &one);
+  assert_int_equal(sched_setaffinity(0, sizeof one, &one), 0);
+  int rc = run("render", "-W", "8", "-H", "8", "--stats", "-o", "a.png", NULL);
+  sched_setaffinity(0, sizeof saved, &saved);
+  assert_int_equal(rc, 0);
+  assert_non_null(strstr(out, ", 1 thread\n"));
+  char p[128];
+  snprintf(p, sizeof p, "%s/a.png", dir);
+  unlink(p);
+}
+
+/* Ctrl-C: a message, status 130, the existing file untouched. */
+static void interrupt_keeps_the_old_file(void **state) {
+  (void)state;
+  char p[128], err_path[128];
+  snprintf(p, sizeof p, "%s/keep.png", dir);
+  snprintf(err_path, sizeof err_path, "%s/.stderr", dir);
+  FILE *f = fopen(p, "wb");
+  fputs("precious", f);
+  fclose(f);
+  const char *argv[] = {GLINT_EXE, "render", "billiard", "-d",   "64",
+                        "-s",      "4096",   "-W",       "1024", "-H",
+                        "1024",    "-o",     p,          NULL};
+  posix_spawn_file_actions_t fa;
+  posix_spawn_file_actions_init(&fa);
+  posix_spawn_file_actions_addopen(&fa, 2, err_path,
+                                   O_WRONLY | O_CREAT | O_TRUNC, 0644);
+  pid_t pid;
+  assert_int_equal(
+      posix_spawn(&pid, GLINT_EXE, &fa, NULL, (char *const *)argv, environ), 0);
+  posix_spawn_file_actions_destroy(&fa);
+  usleep(500 * 1000); /* well into the render, minutes from its end */
+  kill(pid, SIGINT);
+  int status;
+  waitpid(pid, &status, 0);
+  slurp(err_path, err, sizeof err);
+  unlink(err_path);
+  assert_true(WIFEXITED(status));
+  assert_int_equal(WEXITSTATUS(status), 130);
+  assert_non_null(strstr(err, "glint: interrupted;"));
+  char buf[32];
+  slurp(p, buf, sizeof buf);
+  assert_string_equal(buf, "precious");
+  unlink(p);
+  assert_true(folder_is_empty()); /* no temporary file left */
+}
+
+static void compare_threshold_and_difference(void **state) {
+  (void)state;
+  assert_int_equal(
+      run("render", "-W", "16", "-H", "12", "-q", "-o", "a.png", NULL), 0);
+  assert_int_equal(run("render", "-W", "16", "-H", "12", "-q", "-d", "1", "-o",
+                       "b.png", NULL),
+                   0);
+  assert_int_equal(run("compare", "a.png", "a.png", "--min-psnr", "99", NULL),
+                   0);
+  assert_non_null(strstr(out, "inf"));
+  assert_int_equal(run("compare", "a.png", "b.png", "--min-psnr", "99",
+                       "--diff", "d.ppm", NULL),
+                   1);
+  assert_non_null(strstr(err, "is below --min-psnr 99"));
+  assert_true(exists("d.ppm"));
+  assert_int_equal(run("compare", "a.png", "b.png", "--min-psnr", "1", NULL),
+                   0);
+  /* (the folder holds the images now: no EXPECT_USAGE_ERROR) */
+  assert_int_equal(run("compare", "a.png", "missing.png", NULL), 2);
+  assert_non_null(strstr(err, "glint: missing.png: No such file"));
+  assert_int_equal(run("compare", "a.png", "b.png", "--min-psnr", "x", NULL),
+                   2);
+  assert_non_null(strstr(err, "--min-psnr: 'x' is not a number"));
+  assert_int_equal(run("compare", "a.png", "b.png", "a.png", NULL), 2);
+  assert_non_null(strstr(err, "compare takes two images"));
+  char cmd[256];
+  snprintf(cmd, sizeof cmd, "rm -f '%s'/*.png '%s'/*.ppm", dir, dir);
+  assert_int_equal(system(cmd), 0);
 }
 
 int main(void) {
@@ -436,6 +575,10 @@ int main(void) {
       cmocka_unit_test(bench_errors),
       cmocka_unit_test(bench_thread_columns),
       cmocka_unit_test(missing_instruction_sets),
+      cmocka_unit_test(options_as_people_write_them),
+      cmocka_unit_test(default_threads_follow_the_affinity),
+      cmocka_unit_test(interrupt_keeps_the_old_file),
+      cmocka_unit_test(compare_threshold_and_difference),
   };
   return cmocka_run_group_tests(tests, setup, teardown);
 }

@@ -1,7 +1,12 @@
+/* sched_getaffinity and CPU_COUNT are GNU extensions of <sched.h>. */
+#define _GNU_SOURCE
 #include "core/cpu.h"
 
+#include "core/error.h"
 #include "glint.h"
 
+#include <sched.h>
+#include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
 #include <unistd.h>
@@ -12,13 +17,31 @@
 static void apply_cap(gli_cpu_features *f) {
   const char *cap = getenv("GLINT_ISA");
   if (!cap || !*cap)
-    return;
+    return; /* an unknown value caps nothing; glint_isa_cap_check says so */
   if (strcmp(cap, "none") == 0 || strcmp(cap, "scalar") == 0)
     f->sse41 = f->avx2 = f->avx512 = 0;
   else if (strcmp(cap, "sse") == 0)
     f->avx2 = f->avx512 = 0;
   else if (strcmp(cap, "avx2") == 0)
     f->avx512 = 0;
+}
+
+glint_status glint_isa_cap_check(glint_error *error) {
+  static const char *const known[] = {"none", "scalar", "sse", "avx2",
+                                      "avx512"};
+  const char *cap = getenv("GLINT_ISA");
+  if (!cap || !*cap)
+    return GLINT_OK;
+  for (size_t i = 0; i < sizeof known / sizeof *known; i++)
+    if (strcmp(cap, known[i]) == 0)
+      return GLINT_OK;
+  char shown[48];
+  snprintf(shown, sizeof shown, "%.40s%s", cap, strlen(cap) > 40 ? "..." : "");
+  for (char *p = shown; *p; p++)
+    if ((unsigned char)*p < 0x20 || (unsigned char)*p >= 0x7f)
+      *p = '?';
+  return gli_fail(error, GLINT_E_ARGUMENT,
+                  "GLINT_ISA='%s' is not none, sse, avx2 or avx512", shown);
 }
 
 #if defined(__x86_64__) || defined(__i386__)
@@ -59,8 +82,15 @@ void gli_cpu_detect(gli_cpu_features *f) {
 void gli_cpu_detect(gli_cpu_features *f) { f->sse41 = f->avx2 = f->avx512 = 0; }
 #endif
 
+/* The CPUs this process may run on (taskset, cgroups' cpusets), not all
+ * that are online: threads beyond them would only take turns. */
 int glint_cpu_count(void) {
   long n = sysconf(_SC_NPROCESSORS_ONLN);
+#ifdef CPU_COUNT
+  cpu_set_t set;
+  if (sched_getaffinity(0, sizeof set, &set) == 0 && CPU_COUNT(&set) > 0)
+    n = CPU_COUNT(&set);
+#endif
   if (n < 1)
     return 1;
   if (n > GLINT_MAX_THREADS)

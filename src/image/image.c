@@ -185,6 +185,27 @@ glint_status glint_image_write_with(const glint_image *im, const char *path,
   return gli_write_atomically(path, encode_image, &job, error);
 }
 
+glint_status glint_image_write_stream(const glint_image *im, FILE *stream,
+                                      glint_image_format format,
+                                      glint_png_compression compression,
+                                      glint_error *error) {
+  if (!im || !stream)
+    return gli_fail(error, GLINT_E_ARGUMENT, "no image or no stream");
+  if (format != GLINT_FORMAT_PNG && format != GLINT_FORMAT_BMP &&
+      format != GLINT_FORMAT_PPM)
+    return gli_fail(error, GLINT_E_ARGUMENT, "unknown image format %d",
+                    (int)format);
+  if ((unsigned)compression > GLINT_PNG_SMALLEST)
+    return gli_fail(error, GLINT_E_ARGUMENT, "unknown PNG compression %d",
+                    (int)compression);
+  encode_job job = {im, format, compression};
+  errno = 0;
+  if (encode_image(&job, stream) || fflush(stream) != 0)
+    return gli_fail(error, GLINT_E_IO, "writing the image failed: %s",
+                    errno ? strerror(errno) : "encoder error");
+  return GLINT_OK;
+}
+
 glint_status glint_image_write(const glint_image *im, const char *path,
                                glint_error *error) {
   return glint_image_write_with(im, path, GLINT_PNG_FAST, error);
