@@ -3,7 +3,9 @@
 BUILD ?= build
 JOBS ?= $(shell nproc 2>/dev/null || echo 2)
 
-.PHONY: render test build deps peers clean format
+PREFIX ?= /usr/local
+
+.PHONY: render test build deps peers clean format install
 
 render: build
 	./$(BUILD)/glint render whitted -o whitted.png
@@ -17,6 +19,10 @@ build: deps
 
 deps:
 	bash scripts/install-deps.sh
+
+# Headers, libraries, the program, glint.pc, the CMake package, man pages.
+install: build
+	cmake --install $(BUILD) --prefix $(PREFIX)
 
 # Optional: Tachyon, Embree 3 and assimp for glint bench's comparisons.
 peers:
