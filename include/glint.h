@@ -118,6 +118,13 @@ glint_status glint_scene_builtin(const char *name, glint_scene **scene,
  */
 glint_status glint_scene_load(const char *path, glint_scene **scene,
                               glint_error *error);
+/* The same from memory: `size` bytes of a scene file's text (not
+ * compressed), read as the format of `name`'s extension. `name` stands for
+ * the file in messages, and a JSON scene's mesh files are found relative to
+ * its folder. */
+glint_status glint_scene_load_memory(const void *data, size_t size,
+                                     const char *name, glint_scene **scene,
+                                     glint_error *error);
 
 glint_status glint_scene_set_camera(glint_scene *scene,
                                     const glint_camera *camera,

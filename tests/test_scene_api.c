@@ -3,6 +3,7 @@
 #include "test_util.h"
 
 #include <math.h>
+#include <stdio.h>
 #include <string.h>
 
 typedef glint_vec3 V;
@@ -244,6 +245,58 @@ static void region_is_a_window_of_the_frame(void **state) {
   glint_scene_destroy(s);
 }
 
+/* A scene from memory is the scene from its file; the name chooses the
+ * format and stands for the file in messages. */
+static void scenes_load_from_memory(void **state) {
+  (void)state;
+  glint_error e;
+  glint_scene *from_file, *from_memory;
+  char path[512];
+  snprintf(path, sizeof path, "%s/scenes/billiard.json", GLINT_SOURCE_DIR);
+  FILE *f = fopen(path, "rb");
+  assert_non_null(f);
+  static char text[1 << 16];
+  size_t n = fread(text, 1, sizeof text, f);
+  fclose(f);
+  assert_true(n > 0 && n < sizeof text);
+  ASSERT_OK(glint_scene_load(path, &from_file, &e));
+  ASSERT_OK(
+      glint_scene_load_memory(text, n, "billiard.json", &from_memory, &e));
+  glint_scene_info a, b;
+  glint_scene_get_info(from_file, &a);
+  glint_scene_get_info(from_memory, &b);
+  assert_int_equal(a.spheres, b.spheres);
+  assert_int_equal(a.materials, b.materials);
+  assert_memory_equal(&a.camera, &b.camera, sizeof a.camera);
+  glint_scene_destroy(from_file);
+  glint_scene_destroy(from_memory);
+
+  static const char nff[] = "b 0 0 1\nv\nfrom 0 0 -8\nat 0 0 0\nup 0 1 0\n"
+                            "angle 45\nhither 1\nresolution 32 24\n"
+                            "l 1 1 -5\nf 1 0 0 1 0 0 0 1\ns 0 0 0 1\n";
+  ASSERT_OK(
+      glint_scene_load_memory(nff, strlen(nff), "ball.nff", &from_memory, &e));
+  glint_scene_get_info(from_memory, &b);
+  assert_int_equal(b.spheres, 1);
+  assert_int_equal(b.width, 32);
+  glint_scene_destroy(from_memory);
+
+  assert_int_equal(
+      glint_scene_load_memory("s 0 0 0 x\n", 10, "bad.nff", &from_memory, &e),
+      GLINT_E_PARSE);
+  assert_non_null(strstr(e.message, "bad.nff:1:"));
+  assert_int_equal(
+      glint_scene_load_memory("{}", 2, "scene.txt", &from_memory, &e),
+      GLINT_E_ARGUMENT);
+  assert_non_null(strstr(e.message, "scene.txt: not a built-in scene"));
+  assert_int_equal(glint_scene_load_memory(NULL, 4, "a.json", &from_memory, &e),
+                   GLINT_E_ARGUMENT);
+  /* empty JSON text is no scene */
+  assert_int_equal(
+      glint_scene_load_memory("", 0, "empty.json", &from_memory, &e),
+      GLINT_E_PARSE);
+}
+
 int main(void) {
   const struct CMUnitTest tests[] = {
       cmocka_unit_test(primitives_refuse_bad_numbers),
@@ -254,6 +307,7 @@ int main(void) {
       cmocka_unit_test(builtin_scenes_match_the_spec),
       cmocka_unit_test(mesh_indices_checked),
       cmocka_unit_test(region_is_a_window_of_the_frame),
+      cmocka_unit_test(scenes_load_from_memory),
   };
   return cmocka_run_group_tests(tests, NULL, NULL);
 }

@@ -91,11 +91,13 @@ glint_status gli_scene_push_triangle(glint_scene *scene, glint_vec3 a,
                                      const glint_vec3 normals[3],
                                      glint_error *error);
 
-/* File readers (scene/nff.c, scene/json.c). */
-glint_status gli_nff_load(const char *path, glint_scene **out,
-                          glint_error *error);
-glint_status gli_json_load(const char *path, glint_scene **out,
-                           glint_error *error);
+/* The scene file readers (scene/formats/nff.c, json.c): `data` is the
+ * file's `size` bytes followed by a NUL; `path` names it in messages and
+ * places the files it refers to (a JSON scene's meshes). */
+glint_status gli_nff_read(const char *path, const char *data, size_t size,
+                          glint_scene **out, glint_error *error);
+glint_status gli_json_read(const char *path, const char *data, size_t size,
+                           glint_scene **out, glint_error *error);
 
 /* Checks a camera as glint_scene_set_camera does (finite, 0 < fov < 180,
  * from != at, up not parallel to the view). */

@@ -11,33 +11,19 @@
 #include <stdlib.h>
 #include <string.h>
 
-#define MAX_FILE_BYTES ((size_t)4 << 30)
-
-glint_status gli_text_open(text_file *t, const char *path, char comment,
-                           glint_error *error) {
+glint_status gli_text_begin(text_file *t, const char *path, const char *data,
+                            size_t size, char comment, glint_error *error) {
   memset(t, 0, sizeof *t);
   t->path = path;
   t->comment = comment;
   t->line = 1;
-  char *data;
-  size_t size;
-  glint_status st =
-      gli_file_read_all(path, MAX_FILE_BYTES, &data, &size, error);
+  glint_status st = gli_file_check_text(path, data, size, 1, error);
   if (st != GLINT_OK)
     return st;
-  if ((st = gli_file_check_text(path, data, size, 1, error)) != GLINT_OK) {
-    free(data);
-    return st;
-  }
   t->data = data;
   t->size = size;
   t->pos = data;
   return GLINT_OK;
-}
-
-void gli_text_close(text_file *t) {
-  free(t->data);
-  t->data = NULL;
 }
 
 /* Skips white space and comments; stops at a newline if `stop_at_eol`. */

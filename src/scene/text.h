@@ -10,7 +10,7 @@
 
 typedef struct text_file {
   const char *path;
-  char *data; /* NUL-terminated */
+  const char *data; /* NUL-terminated; the caller's */
   size_t size;
   const char *pos;
   int line;       /* of the next character */
@@ -18,10 +18,11 @@ typedef struct text_file {
   char comment;   /* starts a comment to the end of the line; 0: none */
 } text_file;
 
-/* Reads `path` (decompressing .gz) into memory. */
-glint_status gli_text_open(text_file *t, const char *path, char comment,
-                           glint_error *error);
-void gli_text_close(text_file *t);
+/* Reads the file's bytes `data` (`size` of them and then a NUL, kept by
+ * the caller while t is in use); `path` names the file in messages. Text
+ * only: binary data is an error. */
+glint_status gli_text_begin(text_file *t, const char *path, const char *data,
+                            size_t size, char comment, glint_error *error);
 
 /* The next token (white space and comments skipped) in place: its first
  * character and *len; NULL at the end of the file. */

@@ -20,10 +20,6 @@
 #include <stdlib.h>
 #include <string.h>
 
-/* cJSON needs several times the text's size for its tree; beyond this, a
- * scene belongs in mesh files. */
-#define MAX_FILE_BYTES ((size_t)1 << 30)
-
 /* Quoted user text for a message, cut to this many bytes. */
 #define QUOTE_LIMIT 64
 
@@ -806,7 +802,7 @@ static void syntax_hint(const char *data, const char **at, char *out,
   }
 }
 
-static glint_status parse_text(const char *path, char *data, size_t size,
+static glint_status parse_text(const char *path, const char *data, size_t size,
                                cJSON **out, glint_error *e) {
   const unsigned char *u = (const unsigned char *)data;
   if (size >= 2 &&
@@ -839,17 +835,10 @@ static glint_status parse_text(const char *path, char *data, size_t size,
                   line, column, hint);
 }
 
-glint_status gli_json_load(const char *path, glint_scene **out,
-                           glint_error *error) {
-  char *data = NULL;
-  size_t size = 0;
+glint_status gli_json_read(const char *path, const char *data, size_t size,
+                           glint_scene **out, glint_error *error) {
   cJSON *root = NULL;
-  glint_status st =
-      gli_file_read_all(path, MAX_FILE_BYTES, &data, &size, error);
-  if (st)
-    return st;
-  st = parse_text(path, data, size, &root, error);
-  free(data); /* cJSON keeps its own copies of the strings */
+  glint_status st = parse_text(path, data, size, &root, error);
   if (st)
     return st;
   json_reader r;

@@ -314,21 +314,17 @@ static glint_status read_nff(nff_reader *r, glint_error *e) {
   return GLINT_OK;
 }
 
-glint_status gli_nff_load(const char *path, glint_scene **out, glint_error *e) {
+glint_status gli_nff_read(const char *path, const char *data, size_t size,
+                          glint_scene **out, glint_error *e) {
   nff_reader r;
   memset(&r, 0, sizeof r);
-  glint_status st = gli_text_open(&r.t, path, '#', e);
-  if (st)
+  glint_status st = gli_text_begin(&r.t, path, data, size, '#', e);
+  if (st || (st = glint_scene_create(&r.scene, e)))
     return st;
-  if ((st = glint_scene_create(&r.scene, e))) {
-    gli_text_close(&r.t);
-    return st;
-  }
   /* NFF's defaults: black background, white ambient light. */
   number_locale locale = gli_number_locale_begin();
   st = read_nff(&r, e);
   gli_number_locale_end(locale);
-  gli_text_close(&r.t);
   free(r.verts);
   free(r.norms);
   if (st) {

@@ -1,19 +1,27 @@
 #include "scene/formats/registry.h"
 
 #include "core/error.h"
+#include "scene/file.h"
 #include "scene/scene.h"
+
+#include <stdlib.h>
 
 #include <string.h>
 #include <strings.h>
 
 typedef struct scene_format {
   const char *extension;
-  glint_status (*load)(const char *path, glint_scene **out, glint_error *error);
+  /* Larger files are refused: they are not scenes we could render anyway,
+   * and cJSON needs several times the text's size for its tree (large
+   * geometry belongs in mesh files). */
+  size_t max_bytes;
+  glint_status (*read)(const char *path, const char *data, size_t size,
+                       glint_scene **out, glint_error *error);
 } scene_format;
 
 static const scene_format scene_formats[] = {
-    {".nff", gli_nff_load},
-    {".json", gli_json_load},
+    {".nff", (size_t)4 << 30, gli_nff_read},
+    {".json", (size_t)1 << 30, gli_json_read},
 };
 
 typedef struct mesh_format {
@@ -37,16 +45,59 @@ static const char *base_name(const char *path) {
   return slash ? slash + 1 : path;
 }
 
-glint_status glint_scene_load(const char *path, glint_scene **out,
-                              glint_error *error) {
-  const char *base = base_name(path);
+static const scene_format *scene_format_of(const char *name) {
+  const char *base = base_name(name);
   for (size_t i = 0; i < sizeof scene_formats / sizeof *scene_formats; i++)
     if (ends_with(base, strlen(base), scene_formats[i].extension))
-      return scene_formats[i].load(path, out, error);
+      return &scene_formats[i];
+  return NULL;
+}
+
+static glint_status not_a_scene(const char *name, glint_error *error) {
   return gli_fail(error, GLINT_E_ARGUMENT,
                   "%s: not a built-in scene nor a scene file (.nff or "
                   ".json)",
-                  path);
+                  name);
+}
+
+glint_status glint_scene_load(const char *path, glint_scene **out,
+                              glint_error *error) {
+  if (!path || !out)
+    return gli_fail(error, GLINT_E_ARGUMENT, "scene file: missing argument");
+  const scene_format *f = scene_format_of(path);
+  if (!f)
+    return not_a_scene(path, error);
+  char *data;
+  size_t size;
+  glint_status st = gli_file_read_all(path, f->max_bytes, &data, &size, error);
+  if (st)
+    return st;
+  st = f->read(path, data, size, out, error);
+  free(data);
+  return st;
+}
+
+glint_status glint_scene_load_memory(const void *data, size_t size,
+                                     const char *name, glint_scene **out,
+                                     glint_error *error) {
+  if ((!data && size) || !name || !out)
+    return gli_fail(error, GLINT_E_ARGUMENT, "scene data: missing argument");
+  const scene_format *f = scene_format_of(name);
+  if (!f)
+    return not_a_scene(name, error);
+  if (size > f->max_bytes)
+    return gli_fail(error, GLINT_E_IO, "%s: larger than %zu bytes", name,
+                    f->max_bytes);
+  /* The readers want a NUL after the last byte. */
+  char *copy = malloc(size + 1);
+  if (!copy)
+    return gli_fail(error, GLINT_E_MEMORY, "%s: out of memory", name);
+  if (size)
+    memcpy(copy, data, size);
+  copy[size] = '\0';
+  glint_status st = f->read(name, copy, size, out, error);
+  free(copy);
+  return st;
 }
 
 gli_mesh_reader gli_mesh_reader_for(const char *path) {
