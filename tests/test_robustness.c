@@ -11,6 +11,7 @@
 #include "test_util.h"
 
 #include "render/scalar_scene.h"
+#include "scene/mesh.h"
 #include "test_views.h"
 
 #include <math.h>
@@ -322,11 +323,74 @@ static void meshes_are_watertight(void **state) {
   glint_scene_destroy(s);
 }
 
+/* Valid files in the shapes people's tools write them: a UTF-8 byte-order
+ * mark, CR LF or CR-only (old Mac) line ends, tabs. Each must load to the
+ * same scene as its plain LF twin; errors keep counting lines. */
+static void unusual_text_files_load(void **state) {
+  (void)state;
+  static const char *const nff_forms[] = {
+      "v\nfrom 0 0 -5\nat 0 0 0\nup 0 1 0\nangle 40\nhither 1\n"
+      "resolution 8 8\nl 0 5 -5\nf 1 1 1 1 0 1 0 1\ns 0 0 0 1\n",
+      "\xEF\xBB\xBFv\r\nfrom 0 0 -5\r\nat 0 0 0\r\nup 0 1 0\r\nangle "
+      "40\r\nhither 1\r\nresolution 8 8\r\nl 0 5 -5\r\nf 1 1 1 1 0 1 0 "
+      "1\r\ns 0 0 0 1\r\n",
+      "v\rfrom 0 0 -5\rat 0 0 0\rup 0 1 0\rangle 40\rhither 1\r"
+      "resolution\t8 8\rl 0 5 -5 # light\rf 1 1 1 1 0 1 0 1\rs 0 0 0 1",
+  };
+  glint_error e;
+  for (size_t i = 0; i < sizeof nff_forms / sizeof *nff_forms; i++) {
+    glint_scene *s;
+    if (glint_scene_load_memory(nff_forms[i], strlen(nff_forms[i]), "a.nff", &s,
+                                &e))
+      fail_msg("form %zu: %s", i, e.message);
+    glint_scene_info info;
+    glint_scene_get_info(s, &info);
+    assert_int_equal(info.spheres, 1);
+    assert_int_equal(info.lights, 1);
+    assert_int_equal(info.width, 8);
+    glint_scene_destroy(s);
+  }
+  glint_scene *s;
+  const char *bad = "v\rfrom 0 0 -5\rs 0 0 x 1\r";
+  assert_int_equal(glint_scene_load_memory(bad, strlen(bad), "b.nff", &s, &e),
+                   GLINT_E_PARSE);
+  assert_non_null(strstr(e.message, "b.nff:3:"));
+
+  static const char *const meshes[][2] = {
+      {"a.obj", "\xEF\xBB\xBFv 0 0 0\rv 1 0 0\rv 0 1 0\rf 1 2 3\r"},
+      {"a.obj", "v 0 0 0\r\nv 1 0 0\r\nv 0 1 0\r\nf\t1 2 3\r\n"},
+      {"a.ply", "ply\rformat ascii 1.0\relement vertex 3\rproperty float "
+                "x\rproperty float y\rproperty float z\relement face "
+                "1\rproperty list uchar int vertex_indices\rend_header\r0 0 "
+                "0\r1 0 0\r0 1 0\r3 0 1 2\r"},
+      {"a.ply", "\xEF\xBB\xBFply\nformat ascii 1.0\nelement vertex "
+                "3\nproperty float x\nproperty float y\nproperty float "
+                "z\nelement face 1\nproperty list uchar int "
+                "vertex_indices\nend_header\n0 0 0\n1 0 0\n0 1 0\n3 0 1 2\n"},
+  };
+  for (size_t i = 0; i < sizeof meshes / sizeof *meshes; i++) {
+    glint_material m;
+    glint_material_default(&m);
+    uint32_t id;
+    ASSERT_OK(glint_scene_create(&s, &e));
+    ASSERT_OK(glint_scene_add_material(s, &m, &id, &e));
+    if (gli_scene_add_mesh_data(s, meshes[i][0], meshes[i][1],
+                                strlen(meshes[i][1]), 1, (glint_vec3){0, 0, 0},
+                                id, &e))
+      fail_msg("mesh %zu: %s", i, e.message);
+    glint_scene_info info;
+    glint_scene_get_info(s, &info);
+    assert_int_equal(info.triangles, 1);
+    glint_scene_destroy(s);
+  }
+}
+
 int main(void) {
   const struct CMUnitTest tests[] = {
       cmocka_unit_test(thin_cylinder),
       cmocka_unit_test(meshes_are_watertight),
       cmocka_unit_test(long_numbers_are_read_whole),
+      cmocka_unit_test(unusual_text_files_load),
   };
   return cmocka_run_group_tests(tests, NULL, NULL);
 }

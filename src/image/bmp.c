@@ -68,6 +68,14 @@ glint_status gli_bmp_decode(FILE *f, const char *path, glint_image **out,
   if (hsize < 40 || get16(hdr + 28) != 24 || get32(hdr + 30) != 0)
     return gli_fail(error, GLINT_E_PARSE,
                     "%s: only uncompressed 24-bit BMP is supported", path);
+  /* A negative height means rows top to bottom; INT32_MIN has no positive
+   * twin, and no size beyond glint's images is worth reading. */
+  if (w < 1 || w > GLINT_MAX_DIMENSION || h == 0 || h < -GLINT_MAX_DIMENSION ||
+      h > GLINT_MAX_DIMENSION)
+    return gli_fail(error, GLINT_E_PARSE,
+                    "%s: a BMP of %ld x %ld pixels (glint reads 1 to %d a "
+                    "side)",
+                    path, (long)w, (long)h, GLINT_MAX_DIMENSION);
   int top_down = h < 0;
   if (top_down)
     h = -h;

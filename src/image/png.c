@@ -5,13 +5,32 @@
 
 #include <png.h>
 #include <setjmp.h>
+#include <stdio.h>
 #include <zlib.h>
 #include <stdlib.h>
 
+/* libpng's complaints become part of glint's one message instead of lines
+ * of their own on stderr: errors are kept for it, warnings dropped. */
+typedef struct png_complaint {
+  char message[128];
+} png_complaint;
+
+static void png_keep_error(png_structp png, png_const_charp message) {
+  png_complaint *c = png_get_error_ptr(png);
+  snprintf(c->message, sizeof c->message, "%s", message);
+  png_longjmp(png, 1);
+}
+
+static void png_drop_warning(png_structp png, png_const_charp message) {
+  (void)png;
+  (void)message;
+}
+
 int gli_png_encode(const glint_image *im, glint_png_compression compression,
                    FILE *f) {
-  png_structp png =
-      png_create_write_struct(PNG_LIBPNG_VER_STRING, NULL, NULL, NULL);
+  png_complaint complaint = {""};
+  png_structp png = png_create_write_struct(PNG_LIBPNG_VER_STRING, &complaint,
+                                            png_keep_error, png_drop_warning);
   if (!png)
     return -1;
   png_infop info = png_create_info_struct(png);
@@ -46,16 +65,20 @@ int gli_png_encode(const glint_image *im, glint_png_compression compression,
 
 glint_status gli_png_decode(FILE *f, const char *path, glint_image **out,
                             glint_error *error) {
-  png_structp png =
-      png_create_read_struct(PNG_LIBPNG_VER_STRING, NULL, NULL, NULL);
+  png_complaint complaint = {"not a PNG file"};
+  png_structp png = png_create_read_struct(PNG_LIBPNG_VER_STRING, &complaint,
+                                           png_keep_error, png_drop_warning);
   if (!png)
     return gli_fail(error, GLINT_E_MEMORY, "out of memory");
   png_infop info = png_create_info_struct(png);
   glint_image *volatile im = NULL;
+  png_bytep *volatile rows = NULL;
   if (!info || setjmp(png_jmpbuf(png))) {
     png_destroy_read_struct(&png, &info, NULL);
     glint_image_destroy(im);
-    return gli_fail(error, GLINT_E_PARSE, "%s: not a valid PNG file", path);
+    free(rows);
+    return gli_fail(error, GLINT_E_PARSE, "%s: not a valid PNG file (%s)", path,
+                    complaint.message);
   }
   png_init_io(png, f);
   png_read_info(png, info);
@@ -79,7 +102,7 @@ glint_status gli_png_decode(FILE *f, const char *path, glint_image **out,
     return error ? error->status : GLINT_E_MEMORY;
   }
   im = tmp;
-  png_bytep *rows = malloc(sizeof *rows * h);
+  rows = malloc(sizeof *rows * h);
   if (!rows) {
     png_destroy_read_struct(&png, &info, NULL);
     glint_image_destroy(tmp);
@@ -90,6 +113,7 @@ glint_status gli_png_decode(FILE *f, const char *path, glint_image **out,
   png_read_image(png, rows);
   png_read_end(png, NULL);
   free(rows);
+  rows = NULL;
   png_destroy_read_struct(&png, &info, NULL);
   *out = tmp;
   return GLINT_OK;

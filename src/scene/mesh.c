@@ -153,14 +153,15 @@ fail: /* leave the scene as it was */
   return st;
 }
 
-glint_status glint_scene_add_mesh_file(glint_scene *scene, const char *path,
-                                       double scale, glint_vec3 translate,
-                                       uint32_t material_id,
-                                       glint_error *error) {
+/* What both entries check before reading a byte, so that a bad call costs
+ * no parse. A negative scale would mirror the mesh and turn its faces
+ * inside out. */
+static glint_status check_mesh_call(const glint_scene *scene, const char *path,
+                                    double scale, glint_vec3 translate,
+                                    uint32_t material_id, gli_mesh_reader *read,
+                                    glint_error *error) {
   if (!scene || !path)
     return gli_fail(error, GLINT_E_ARGUMENT, "mesh file: missing argument");
-  /* Checked before reading so that a bad call costs no parse. A negative
-   * scale would mirror the mesh and turn its faces inside out. */
   if (!isfinite(scale) || !(scale > 0))
     return gli_fail(error, GLINT_E_ARGUMENT,
                     "%s: scale %g must be a finite number > 0", path, scale);
@@ -171,26 +172,85 @@ glint_status glint_scene_add_mesh_file(glint_scene *scene, const char *path,
     return gli_fail(error, GLINT_E_ARGUMENT,
                     "%s: material %u does not exist (the scene has %zu)", path,
                     material_id, scene->material_count);
-  gli_mesh_reader read = gli_mesh_reader_for(path);
-  if (!read)
+  if (!(*read = gli_mesh_reader_for(path)))
     return gli_fail(error, GLINT_E_ARGUMENT,
                     "%s: not a mesh file (.obj or .ply, optionally .gz)", path);
-  char *data = NULL;
-  size_t size = 0;
-  glint_status st =
-      gli_file_read_all(path, MAX_FILE_BYTES, &data, &size, error);
-  if (st)
-    return st;
+  return GLINT_OK;
+}
+
+/* Files from old Macs end their lines with a CR alone, which the readers,
+ * like most, do not take for a line end: such a file gets LFs, in a copy
+ * (NULL when the file's first line ends otherwise). A binary PLY's body is
+ * not text and keeps its bytes. */
+static char *with_lf_line_ends(const char *data, size_t size, int is_ply) {
+  const char *cr = memchr(data, '\r', size), *lf = memchr(data, '\n', size);
+  if (!cr || (lf && lf < cr) || (cr + 1 < data + size && cr[1] == '\n'))
+    return NULL;
+  char *copy = malloc(size + 1);
+  if (!copy)
+    return NULL;
+  memcpy(copy, data, size);
+  copy[size] = '\0';
+  size_t limit = size;
+  const char *end_header = is_ply ? strstr(copy, "end_header") : NULL;
+  if (end_header && !strstr(copy, "format ascii"))
+    limit = (size_t)(end_header - copy) + sizeof "end_header";
+  for (size_t i = 0; i < limit && i < size; i++)
+    if (copy[i] == '\r' && (i + 1 == size || copy[i + 1] != '\n'))
+      copy[i] = '\n';
+  return copy;
+}
+
+static glint_status add_mesh_text(glint_scene *scene, const char *path,
+                                  gli_mesh_reader read, const char *data,
+                                  size_t size, double scale,
+                                  glint_vec3 translate, uint32_t material_id,
+                                  glint_error *error) {
   /* Numbers in mesh files always use '.', whatever LC_NUMERIC the host
    * program chose; uselocale changes this thread only, and only for now. */
+  if (size >= 3 && memcmp(data, "\xEF\xBB\xBF", 3) == 0)
+    data += 3, size -= 3; /* a UTF-8 byte-order mark */
+  char *lf = with_lf_line_ends(data, size, read == gli_ply_parse);
   number_locale locale = gli_number_locale_begin();
   mesh_data m;
   memset(&m, 0, sizeof m);
-  st = read(path, data, size, &m, error);
+  glint_status st = read(path, lf ? lf : data, size, &m, error);
   gli_number_locale_end(locale);
-  free(data);
+  free(lf);
   if (!st)
     st = add_to_scene(scene, path, &m, scale, translate, material_id, error);
   gli_mesh_free(&m);
   return st;
+}
+
+glint_status glint_scene_add_mesh_file(glint_scene *scene, const char *path,
+                                       double scale, glint_vec3 translate,
+                                       uint32_t material_id,
+                                       glint_error *error) {
+  gli_mesh_reader read;
+  glint_status st =
+      check_mesh_call(scene, path, scale, translate, material_id, &read, error);
+  if (st)
+    return st;
+  char *data = NULL;
+  size_t size = 0;
+  if ((st = gli_file_read_all(path, MAX_FILE_BYTES, &data, &size, error)))
+    return st;
+  st = add_mesh_text(scene, path, read, data, size, scale, translate,
+                     material_id, error);
+  free(data);
+  return st;
+}
+
+glint_status gli_scene_add_mesh_data(glint_scene *scene, const char *name,
+                                     const char *data, size_t size,
+                                     double scale, glint_vec3 translate,
+                                     uint32_t material_id, glint_error *error) {
+  gli_mesh_reader read;
+  glint_status st =
+      check_mesh_call(scene, name, scale, translate, material_id, &read, error);
+  if (st)
+    return st;
+  return add_mesh_text(scene, name, read, data, size, scale, translate,
+                       material_id, error);
 }

@@ -48,6 +48,14 @@ glint_status gli_mesh_oom(const char *path, glint_error *e);
  * Returns 0, -1 (out of memory) or GLI_TRIANGULATE_TOO_COMPLEX. */
 int gli_mesh_emit_face(mesh_data *m, int obj, int with_normals);
 
+/* glint_scene_add_mesh_file on a file's bytes already in memory (`size`
+ * of them, then a NUL); `name` chooses the reader and names it in
+ * messages. */
+glint_status gli_scene_add_mesh_data(glint_scene *scene, const char *name,
+                                     const char *data, size_t size,
+                                     double scale, glint_vec3 translate,
+                                     uint32_t material_id, glint_error *error);
+
 /* The readers: `data` is the whole file, NUL-terminated after `size`. */
 glint_status gli_obj_parse(const char *path, const char *data, size_t size,
                            mesh_data *m, glint_error *e);

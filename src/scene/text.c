@@ -23,14 +23,21 @@ glint_status gli_text_begin(text_file *t, const char *path, const char *data,
   t->data = data;
   t->size = size;
   t->pos = data;
+  if (size >= 3 && memcmp(data, "\xEF\xBB\xBF", 3) == 0)
+    t->pos += 3; /* a UTF-8 byte-order mark */
   return GLINT_OK;
 }
 
 /* Skips white space and comments; stops at a newline if `stop_at_eol`. */
+/* A line ends at LF, CR LF, or a CR alone (old Mac files). */
+static int at_line_end(const char *p) {
+  return *p == '\n' || (*p == '\r' && p[1] != '\n');
+}
+
 static void skip(text_file *t, int stop_at_eol) {
   for (;;) {
     char c = *t->pos;
-    if (c == '\n') {
+    if (at_line_end(t->pos)) {
       if (stop_at_eol)
         return;
       t->line++;
@@ -38,7 +45,7 @@ static void skip(text_file *t, int stop_at_eol) {
     } else if (c == ' ' || c == '\t' || c == '\r' || c == '\f' || c == '\v') {
       t->pos++;
     } else if (c != 0 && c == t->comment) {
-      while (*t->pos && *t->pos != '\n')
+      while (*t->pos && !at_line_end(t->pos))
         t->pos++;
     } else {
       return;
@@ -120,7 +127,7 @@ int gli_text_parse_whole(const char **s, const char *end, long long *out) {
 
 int gli_text_more_on_line(text_file *t) {
   skip(t, 1);
-  return *t->pos && *t->pos != '\n';
+  return *t->pos && !at_line_end(t->pos);
 }
 
 glint_status gli_text_number(text_file *t, const char *what, double *out,
