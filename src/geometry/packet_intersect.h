@@ -140,27 +140,22 @@ static ALWAYS_INLINE void packet_cone_roots(const pcone *c, vvec3 o, vvec3 d,
                                             vmask active, vfloat eps,
                                             vfloat tmax, vfloat *t0, vmask *m0,
                                             vfloat *t1, vmask *m1) {
-  /* From the ray's point nearest the axis, o + s d, as cone_roots in
-   * geometry/intersect.h explains; s need not be exact, only the same in
-   * the coefficients and in t = s + r. */
+  /* From the ray's point nearest the base, o + s d, as cone_roots in
+   * geometry/intersect.h explains. */
   vvec3 axis = vv_get(c->axis);
   vvec3 w = vv_sub(o, vv_get(c->base));
   vfloat k = vs_get(&c->k), rb = vs_get(&c->rb), height = vs_get(&c->height);
+  vfloat s = vf_neg(vv_dot(w, d));
+  w = vv_madd(w, s, d);
   vfloat wa = vv_dot(w, axis), da = vv_dot(d, axis);
-  vvec3 wp = vv_madd(w, vf_neg(wa), axis), dp = vv_madd(d, vf_neg(da), axis);
-  vfloat dp2 = vv_dot(dp, dp);
-  vfloat s = vf_keep(
-      vf_gt(dp2, vf_set1(1e-12f)),
-      vf_neg(vf_mul(vv_dot(wp, dp), vf_rcp(vf_max(dp2, vf_set1(1e-12f)), 1))));
-  wp = vv_madd(wp, s, dp);
-  wa = vf_fmadd(s, da, wa);
   vfloat rw = vf_fmadd(k, wa, rb);
-  vfloat qa = vf_fnmadd(vf_mul(k, k), vf_mul(da, da), dp2);
-  vfloat qb = vf_mul(vf_set1(2), vf_fnmadd(vf_mul(k, da), rw, vv_dot(wp, dp)));
-  vfloat qc = vf_fnmadd(rw, rw, vv_dot(wp, wp));
+  vfloat qa = vf_fnmadd(vf_fmadd(k, k, vf_set1(1)), vf_mul(da, da), vf_set1(1));
+  vfloat qb = vf_mul(vf_set1(2), vf_fnmadd(vf_mul(k, da), rw,
+                                           vf_fnmadd(wa, da, vv_dot(w, d))));
+  vfloat qc = vf_fnmadd(rw, rw, vf_fnmadd(wa, wa, vv_dot(w, w)));
+  *m0 = *m1 = vm_false();
   vfloat disc = vf_fnmadd(vf_mul(vf_set1(4), qa), qc, vf_mul(qb, qb));
   vmask m = vm_and(active, vf_ge(disc, vf_zero()));
-  *m0 = *m1 = vm_false();
   if (vm_none(m))
     return;
   vfloat sq = vf_sqrt(vf_max(disc, vf_zero()));
