@@ -1,24 +1,61 @@
 # The two commands of the README. Both install missing Debian packages first
 # (scripts/install-deps.sh), then configure and build a Release build.
+#   make render       renders the Whitted scene to whitted.png
+#   make test         the whole suite: the unit and program tests, the same
+#                     under AddressSanitizer and UBSan, and a short run of
+#                     every fuzz target
 BUILD ?= build
 JOBS ?= $(shell nproc 2>/dev/null || echo 2)
-
 PREFIX ?= /usr/local
+# Seconds per fuzz target in make test (make fuzz: FUZZ_SECONDS each).
+FUZZ_SMOKE_SECONDS ?= 15
+FUZZ_SECONDS ?= 3600
 
-.PHONY: render test build deps peers clean format install
+.PHONY: render test test-unit test-asan fuzz fuzz-smoke build deps peers \
+        clean format install
 
 render: build
-	./$(BUILD)/glint render whitted -o whitted.png
+	@./$(BUILD)/glint render whitted -o whitted.png
 
-test: build
+test: test-unit test-asan fuzz-smoke
+
+test-unit: build
 	ctest --test-dir $(BUILD) --output-on-failure -j $(JOBS)
 
+# Everything built with ASan and UBSan (any report fails the test), then the
+# whole ctest suite but the install test (which compiles programs against
+# the library with a plain compiler, and cannot link an instrumented one).
+test-asan: deps
+	@mkdir -p $(BUILD)-asan
+	@cmake -S . -B $(BUILD)-asan -DCMAKE_BUILD_TYPE=RelWithDebInfo \
+	  -DGLINT_SANITIZE=ON $(QUIET_MAKE) >$(BUILD)-asan/configure.log 2>&1 \
+	  || { cat $(BUILD)-asan/configure.log; exit 1; }
+	@cmake --build $(BUILD)-asan -j $(JOBS) -- --no-print-directory -s
+	ASAN_OPTIONS=detect_leaks=1:abort_on_error=1 \
+	UBSAN_OPTIONS=print_stacktrace=1:halt_on_error=1 \
+	  ctest --test-dir $(BUILD)-asan --output-on-failure -j $(JOBS) \
+	  -E install_and_use
+
+fuzz-smoke: deps
+	bash scripts/fuzz.sh $(FUZZ_SMOKE_SECONDS)
+
+# Long fuzzing runs: FUZZ_SECONDS per target, FUZZ_JOBS in parallel.
+fuzz: deps
+	bash scripts/fuzz.sh $(FUZZ_SECONDS)
+
+# Quiet: the configure summary and the build's warnings, not every file.
+QUIET_MAKE = -DCMAKE_RULE_MESSAGES=OFF -DCMAKE_TARGET_MESSAGES=OFF
+
 build: deps
-	cmake -S . -B $(BUILD) -DCMAKE_BUILD_TYPE=Release
-	cmake --build $(BUILD) -j $(JOBS)
+	@mkdir -p $(BUILD)
+	@cmake -S . -B $(BUILD) -DCMAKE_BUILD_TYPE=Release $(QUIET_MAKE) \
+	  >$(BUILD)/configure.log 2>&1 || { cat $(BUILD)/configure.log; exit 1; }
+	@grep -e '^-- .*\(found\|OpenEXR\|Embree\)' $(BUILD)/configure.log || true
+	@cmake --build $(BUILD) -j $(JOBS) -- --no-print-directory -s
+	@echo "glint: built $(BUILD)/glint"
 
 deps:
-	bash scripts/install-deps.sh
+	@bash scripts/install-deps.sh
 
 # Headers, libraries, the program, glint.pc, the CMake package, man pages.
 install: build
@@ -32,4 +69,4 @@ format:
 	clang-format -i $$(git ls-files '*.c' '*.h')
 
 clean:
-	rm -rf $(BUILD)
+	rm -rf $(BUILD) $(BUILD)-asan build-fuzz

@@ -16,6 +16,8 @@ packages=(
   libcmocka-dev     # the unit-test framework
   libopenexr-dev    # linear film output as .exr (OpenEXRCore)
   gnuplot-nox       # glint bench --plot
+  clang             # the fuzz targets (libFuzzer)
+  libclang-rt-14-dev # libFuzzer and clang's sanitizer runtimes
 )
 if [ "${1:-}" = "--peers" ]; then
   packages+=(

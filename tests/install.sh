@@ -28,7 +28,7 @@ cc -o "$work/orbit-pc" "$source/examples/orbit.c" \
 LD_LIBRARY_PATH=$libdir "$work/orbit-pc" whitted 2 "$work/pc.png"
 # static, through pkg-config --static
 cc -o "$work/orbit-static" "$source/examples/orbit.c" \
-  $(pkg-config --cflags glint) "$libdir/libglint.a" \
+  $(pkg-config --cflags glint) "$(pkg-config --variable=libdir glint)/libglint.a" \
   $(pkg-config --static --libs glint | sed 's/-lglint//') -lm
 if ldd "$work/orbit-static" | grep -q libglint; then
   echo "FAILED: the static build links libglint.so"
