@@ -119,20 +119,22 @@ static glint_status check_color(glint_vec3 c, const char *what,
   return GLINT_OK;
 }
 
+static glint_status set_color(glint_vec3 *field, glint_vec3 c,
+                              const char *what, glint_error *error) {
+  glint_status st = check_color(c, what, error);
+  if (st == GLINT_OK)
+    *field = c;
+  return st;
+}
+
 glint_status glint_scene_set_background(glint_scene *s, glint_vec3 c,
                                         glint_error *error) {
-  glint_status st = check_color(c, "background colour", error);
-  if (st == GLINT_OK)
-    s->background = c;
-  return st;
+  return set_color(&s->background, c, "background colour", error);
 }
 
 glint_status glint_scene_set_ambient(glint_scene *s, glint_vec3 c,
                                      glint_error *error) {
-  glint_status st = check_color(c, "ambient light", error);
-  if (st == GLINT_OK)
-    s->ambient = c;
-  return st;
+  return set_color(&s->ambient, c, "ambient light", error);
 }
 
 glint_status glint_scene_add_light(glint_scene *s, glint_vec3 p, glint_vec3 c,
