@@ -385,12 +385,52 @@ static void unusual_text_files_load(void **state) {
   }
 }
 
+/* Bad input found by trying glint as a new user would: each gets one
+ * message naming the file, the line (or line and column) and the problem. */
+static void bad_input_is_named(void **state) {
+  (void)state;
+  static const char *const cases[][3] = {
+      /* name, content, what the message must hold */
+      {"empty.nff", "", "empty.nff: no scene"},
+      {"blank.nff", "  \n\t\n# only a comment\n", "blank.nff: no scene"},
+      {"ctl.nff", "\x1b[31mred\n", "ctl.nff:1: unknown entity '?[31mred'"},
+      {"esc.json", "{\"materials\": {\"a\\uZZZZ\": {}}}",
+       "esc.json:1:18: JSON syntax error: \\u needs four hexadecimal"},
+      {"nul.json", "{\"materials\": {\"a\\u0000b\": {}}}",
+       "nul.json:1:18: JSON syntax error: \\u0000"},
+      {"bad.json", "{\"materials\": {\"a\\qb\": {}}}",
+       "bad.json:1:18: JSON syntax error: an invalid escape sequence"},
+      {"zero.json", "{\"image\": {\"width\": 064, \"height\": 48}}",
+       "zero.json:1:21: JSON syntax error: a number with a leading zero"},
+      {"tab.json", "{\"materials\": {\"a\tb\": {}}}",
+       "tab.json:1:18: JSON syntax error: a control character"},
+      {"empty.json", "", "empty.json:1:1: JSON syntax error"},
+  };
+  for (size_t i = 0; i < sizeof cases / sizeof *cases; i++) {
+    glint_scene *s = NULL;
+    glint_error e;
+    glint_status st = glint_scene_load_memory(cases[i][1], strlen(cases[i][1]),
+                                              cases[i][0], &s, &e);
+    if (st != GLINT_E_PARSE || !strstr(e.message, cases[i][2]))
+      fail_msg("%s: status %d, message '%s', want '%s'", cases[i][0], st,
+               st ? e.message : "", cases[i][2]);
+  }
+  /* valid JSON numbers stay valid: 0, -0, 0.5, 1e-3, 10 */
+  static const char ok[] = "{\"background\": [0, -0, 0.5], \"ambient\": "
+                           "[1e-3, 10, 0.0]}";
+  glint_scene *s;
+  glint_error e;
+  ASSERT_OK(glint_scene_load_memory(ok, strlen(ok), "ok.json", &s, &e));
+  glint_scene_destroy(s);
+}
+
 int main(void) {
   const struct CMUnitTest tests[] = {
       cmocka_unit_test(thin_cylinder),
       cmocka_unit_test(meshes_are_watertight),
       cmocka_unit_test(long_numbers_are_read_whole),
       cmocka_unit_test(unusual_text_files_load),
+      cmocka_unit_test(bad_input_is_named),
   };
   return cmocka_run_group_tests(tests, NULL, NULL);
 }

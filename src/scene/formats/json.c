@@ -14,6 +14,7 @@
 
 #include <cJSON.h>
 #include <errno.h>
+#include <ctype.h>
 #include <math.h>
 #include <stdarg.h>
 #include <stdio.h>
@@ -802,6 +803,62 @@ static void syntax_hint(const char *data, const char **at, char *out,
   }
 }
 
+/* What cJSON reads but JSON (RFC 8259) refuses, found before it parses, so
+ * that glint is exactly as strict as the format: an escape other than \"
+ * \\ \/ \b \f \n \r \t and \uXXXX (cJSON ends the string at a bad one,
+ * silently cutting a name), \u0000 (no name can hold a NUL), a control
+ * character inside a string, and a number with a leading zero (01). NULL
+ * when the text is clean, else where the problem is and *what it is. */
+static const char *grammar_problem(const char *data, size_t size,
+                                   const char **what) {
+  const char *p = data, *end = data + size;
+  int in_string = 0;
+  for (; p < end; p++) {
+    unsigned char c = (unsigned char)*p;
+    if (in_string) {
+      if (c == '"') {
+        in_string = 0;
+      } else if (c == '\n' || c == '\r') {
+        return NULL; /* a string never closed: cJSON's report says so */
+      } else if (c < 0x20) {
+        *what = "a control character inside a string (write it as an "
+                "escape such as \\n)";
+        return p;
+      } else if (c == '\\') {
+        if (p + 1 >= end || !strchr("\"\\/bfnrtu", p[1]) || p[1] == '\0') {
+          *what = "an invalid escape sequence in a string";
+          return p;
+        }
+        if (p[1] == 'u') {
+          for (int i = 2; i < 6; i++)
+            if (p + i >= end || !isxdigit((unsigned char)p[i])) {
+              *what = "\\u needs four hexadecimal digits";
+              return p;
+            }
+          if (strncmp(p + 2, "0000", 4) == 0) {
+            *what = "\\u0000 (a NUL) inside a string";
+            return p;
+          }
+          p += 5;
+        } else {
+          p++;
+        }
+      }
+    } else if (c == '"') {
+      in_string = 1;
+    } else if ((c == '-' || (c >= '0' && c <= '9')) &&
+               (p == data || !(isalnum((unsigned char)p[-1]) || p[-1] == '.' ||
+                               p[-1] == '-' || p[-1] == '+'))) {
+      const char *q = c == '-' ? p + 1 : p;
+      if (q + 1 < end && q[0] == '0' && q[1] >= '0' && q[1] <= '9') {
+        *what = "a number with a leading zero (JSON allows none)";
+        return p;
+      }
+    }
+  }
+  return NULL;
+}
+
 static glint_status parse_text(const char *path, const char *data, size_t size,
                                cJSON **out, glint_error *e) {
   const unsigned char *u = (const unsigned char *)data;
@@ -817,6 +874,12 @@ static glint_status parse_text(const char *path, const char *data, size_t size,
                     "%s:%zu:%zu: a NUL byte: binary data where JSON text "
                     "was expected",
                     path, line, column);
+  }
+  const char *what, *bad = grammar_problem(data, size, &what);
+  if (bad) {
+    line_column(data, bad, &line, &column);
+    return gli_fail(e, GLINT_E_PARSE, "%s:%zu:%zu: JSON syntax error: %s", path,
+                    line, column, what);
   }
   /* return_parse_end rather than cJSON_GetErrorPtr, which reads a global
    * that another thread's parse may have changed. */

@@ -52,9 +52,11 @@ static glint_status expect_word(nff_reader *r, const char *word,
     return gli_fail(e, GLINT_E_PARSE,
                     "%s:%d: the file ends where '%s' was expected", r->t.path,
                     r->t.line, word);
+  char q[48];
   if (strcmp(tok, word) != 0)
     return gli_fail(e, GLINT_E_PARSE, "%s:%d: expected '%s', found '%s'",
-                    r->t.path, r->t.token_line, word, tok);
+                    r->t.path, r->t.token_line, word,
+                    gli_text_quote(q, sizeof q, tok, strlen(tok)));
   return GLINT_OK;
 }
 
@@ -276,10 +278,12 @@ static glint_status read_polygon(nff_reader *r, int patch, glint_error *e) {
 }
 
 static glint_status read_nff(nff_reader *r, glint_error *e) {
-  char buf[64];
+  char buf[64], q[48];
   const char *tok;
   glint_status st = GLINT_OK;
+  size_t entities = 0;
   while (!st && (tok = gli_text_token(&r->t, buf, sizeof buf))) {
+    entities++;
     if (strcmp(tok, "v") == 0)
       st = read_view(r, e);
     else if (strcmp(tok, "b") == 0) {
@@ -301,10 +305,16 @@ static glint_status read_nff(nff_reader *r, glint_error *e) {
       st = read_polygon(r, 1, e);
     else
       st = gli_fail(e, GLINT_E_PARSE, "%s:%d: unknown entity '%s'", r->t.path,
-                    r->t.token_line, tok);
+                    r->t.token_line,
+                    gli_text_quote(q, sizeof q, tok, strlen(tok)));
   }
   if (st)
     return st;
+  if (entities == 0) /* a blank picture would hide a wrong or truncated file */
+    return gli_fail(e, GLINT_E_PARSE,
+                    "%s: no scene: the file holds nothing but white space "
+                    "and comments",
+                    r->t.path);
   /* Uncoloured lights: 1/sqrt(number of lights) each. */
   double intensity =
       1 / sqrt((double)(r->scene->light_count ? r->scene->light_count : 1));

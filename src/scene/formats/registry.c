@@ -45,10 +45,15 @@ static const char *base_name(const char *path) {
   return slash ? slash + 1 : path;
 }
 
+/* The format of a file name, after an optional .gz (gzip is undone by the
+ * file reader, whatever the name). */
 static const scene_format *scene_format_of(const char *name) {
   const char *base = base_name(name);
+  size_t n = strlen(base);
+  if (ends_with(base, n, ".gz"))
+    n -= 3;
   for (size_t i = 0; i < sizeof scene_formats / sizeof *scene_formats; i++)
-    if (ends_with(base, strlen(base), scene_formats[i].extension))
+    if (ends_with(base, n, scene_formats[i].extension))
       return &scene_formats[i];
   return NULL;
 }
@@ -56,7 +61,7 @@ static const scene_format *scene_format_of(const char *name) {
 static glint_status not_a_scene(const char *name, glint_error *error) {
   return gli_fail(error, GLINT_E_ARGUMENT,
                   "%s: not a built-in scene nor a scene file (.nff or "
-                  ".json)",
+                  ".json, optionally .gz)",
                   name);
 }
 
