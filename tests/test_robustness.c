@@ -415,6 +415,18 @@ static void bad_input_is_named(void **state) {
       fail_msg("%s: status %d, message '%s', want '%s'", cases[i][0], st,
                st ? e.message : "", cases[i][2]);
   }
+  /* NFF, OBJ and PLY read numbers as C's strtod does (so hexadecimal
+   * floating point too, exactly); JSON only as RFC 8259 writes them */
+  static const char hex[] = "v\nfrom 0 0 -9\nat 0 0 0\nup 0 1 0\nangle 40\n"
+                            "hither 1\nresolution 8 8\nf 1 1 1 1 0 1 0 1\n"
+                            "s 0x1p1 -0 0 0x.8p1\n";
+  glint_scene *hs;
+  glint_error he;
+  ASSERT_OK(glint_scene_load_memory(hex, strlen(hex), "hex.nff", &hs, &he));
+  glint_scene_info info;
+  glint_scene_get_info(hs, &info);
+  assert_true(info.bounds_min.x == 1 && info.bounds_max.x == 3);
+  glint_scene_destroy(hs);
   /* valid JSON numbers stay valid: 0, -0, 0.5, 1e-3, 10 */
   static const char ok[] = "{\"background\": [0, -0, 0.5], \"ambient\": "
                            "[1e-3, 10, 0.0]}";
