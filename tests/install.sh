@@ -22,39 +22,60 @@ done
 echo "installed: $(cd "$prefix" && find . -type f -o -type l | sort | tr '\n' ' ')"
 
 export PKG_CONFIG_PATH=$libdir/pkgconfig
+# Runs the three examples built as $1-NAME; their outputs go to $1-*.png.
+run_examples() {
+  LD_LIBRARY_PATH=$libdir "$1-orbit" whitted 2 "$1.png" >/dev/null
+  LD_LIBRARY_PATH=$libdir "$1-build_scene" "$1-built.png" >/dev/null
+  LD_LIBRARY_PATH=$libdir "$1-render_file" "$source/scenes/phong.json" \
+    "$1-phong.png" >/dev/null 2>&1
+}
+examples="orbit build_scene render_file"
 # shared, through pkg-config
-cc -o "$work/orbit-pc" "$source/examples/orbit.c" \
-  $(pkg-config --cflags --libs glint) -lm
-LD_LIBRARY_PATH=$libdir "$work/orbit-pc" whitted 2 "$work/pc.png"
+for ex in $examples; do
+  cc -o "$work/pc-$ex" "$source/examples/$ex.c" \
+    $(pkg-config --cflags --libs glint) -lm
+done
+run_examples "$work/pc"
 # static, through pkg-config --static
-cc -o "$work/orbit-static" "$source/examples/orbit.c" \
-  $(pkg-config --cflags glint) "$(pkg-config --variable=libdir glint)/libglint.a" \
-  $(pkg-config --static --libs glint | sed 's/-lglint//') -lm
-if ldd "$work/orbit-static" | grep -q libglint; then
+for ex in $examples; do
+  cc -o "$work/static-$ex" "$source/examples/$ex.c" \
+    $(pkg-config --cflags glint) "$(pkg-config --variable=libdir glint)/libglint.a" \
+    $(pkg-config --static --libs glint | sed 's/-lglint//') -lm
+done
+if ldd "$work/static-orbit" | grep -q libglint; then
   echo "FAILED: the static build links libglint.so"
   exit 1
 fi
-"$work/orbit-static" whitted 2 "$work/static.png"
-# CMake: find_package(glint 0.5 REQUIRED), glint::glint
+run_examples "$work/static"
+# CMake: find_package(glint 0.5 REQUIRED), glint::glint and glint_static
 mkdir "$work/project"
-cp "$source/examples/orbit.c" "$work/project/"
+cp "$source"/examples/*.c "$work/project/"
 cat > "$work/project/CMakeLists.txt" <<'CMAKE'
 cmake_minimum_required(VERSION 3.20)
 project(uses_glint C)
 find_package(glint 0.5 REQUIRED)
-add_executable(orbit orbit.c)
-target_link_libraries(orbit PRIVATE glint::glint m)
-add_executable(orbit_static orbit.c)
-target_link_libraries(orbit_static PRIVATE glint::glint_static m)
+foreach(ex orbit build_scene render_file)
+  add_executable(cmake-${ex} ${ex}.c)
+  target_link_libraries(cmake-${ex} PRIVATE glint::glint m)
+  add_executable(cmakestatic-${ex} ${ex}.c)
+  target_link_libraries(cmakestatic-${ex} PRIVATE glint::glint_static m)
+endforeach()
 CMAKE
 cmake -S "$work/project" -B "$work/project/build" \
   -DCMAKE_PREFIX_PATH="$prefix" >/dev/null
 cmake --build "$work/project/build" >/dev/null
-"$work/project/build/orbit" whitted 2 "$work/cmake.png"
-"$work/project/build/orbit_static" whitted 2 "$work/cmake-static.png"
-for f in static.png cmake.png cmake-static.png; do
-  cmp -s "$work/pc.png" "$work/$f" ||
-    { echo "FAILED: $f differs from pc.png"; exit 1; }
+run_examples "$work/project/build/cmake"
+run_examples "$work/project/build/cmakestatic"
+for f in static.png project/build/cmake.png project/build/cmakestatic.png \
+         static-built.png project/build/cmake-built.png \
+         static-phong.png project/build/cmakestatic-phong.png; do
+  case $f in
+    *built.png) ref=pc-built.png ;;
+    *phong.png) ref=pc-phong.png ;;
+    *) ref=pc.png ;;
+  esac
+  cmp -s "$work/$ref" "$work/$f" ||
+    { echo "FAILED: $f differs from $ref"; exit 1; }
 done
 # 0.x: a package of 0.5 does not satisfy a request for 0.6.
 sed -i 's/glint 0.5 REQUIRED/glint 0.6 REQUIRED/' "$work/project/CMakeLists.txt"
@@ -63,4 +84,4 @@ if cmake -S "$work/project" -B "$work/project/build6" \
   echo "FAILED: find_package(glint 0.6) accepted 0.5"
   exit 1
 fi
-echo "PASSED: pkg-config (shared and static) and find_package builds run"
+echo "PASSED: examples built through pkg-config (shared, static) and find_package (glint::glint, glint::glint_static) run alike"
