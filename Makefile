@@ -22,26 +22,28 @@ test: test-unit test-asan fuzz-smoke
 test-unit: build
 	ctest --test-dir $(BUILD) --output-on-failure -j $(JOBS)
 
-# Everything built with ASan and UBSan (any report fails the test), then the
-# whole ctest suite but the install test (which compiles programs against
-# the library with a plain compiler, and cannot link an instrumented one).
+# Everything built by clang with ASan and UBSan (any report fails the test)
+# and libFuzzer's coverage, then the whole ctest suite but the install test
+# (which compiles programs against the library with a plain compiler, and
+# cannot link an instrumented one). The fuzz targets share this build.
+SANITIZE_BUILD = $(BUILD)-sanitize
 test-asan: deps
-	@mkdir -p $(BUILD)-asan
-	@cmake -S . -B $(BUILD)-asan -DCMAKE_BUILD_TYPE=RelWithDebInfo \
-	  -DGLINT_SANITIZE=ON $(QUIET_MAKE) >$(BUILD)-asan/configure.log 2>&1 \
-	  || { cat $(BUILD)-asan/configure.log; exit 1; }
-	@cmake --build $(BUILD)-asan -j $(JOBS) -- --no-print-directory -s
+	@mkdir -p $(SANITIZE_BUILD)
+	@CC=clang cmake -S . -B $(SANITIZE_BUILD) -DCMAKE_BUILD_TYPE=RelWithDebInfo \
+	  -DGLINT_FUZZ=ON $(QUIET_MAKE) >$(SANITIZE_BUILD)/configure.log 2>&1 \
+	  || { cat $(SANITIZE_BUILD)/configure.log; exit 1; }
+	@cmake --build $(SANITIZE_BUILD) -j $(JOBS) -- --no-print-directory -s
 	ASAN_OPTIONS=detect_leaks=1:abort_on_error=1 \
 	UBSAN_OPTIONS=print_stacktrace=1:halt_on_error=1 \
-	  ctest --test-dir $(BUILD)-asan --output-on-failure -j $(JOBS) \
+	  ctest --test-dir $(SANITIZE_BUILD) --output-on-failure -j $(JOBS) \
 	  -E install_and_use
 
 fuzz-smoke: deps
-	bash scripts/fuzz.sh $(FUZZ_SMOKE_SECONDS)
+	FUZZ_BUILD=$(SANITIZE_BUILD) bash scripts/fuzz.sh $(FUZZ_SMOKE_SECONDS)
 
 # Long fuzzing runs: FUZZ_SECONDS per target, FUZZ_JOBS in parallel.
 fuzz: deps
-	bash scripts/fuzz.sh $(FUZZ_SECONDS)
+	FUZZ_BUILD=$(SANITIZE_BUILD) bash scripts/fuzz.sh $(FUZZ_SECONDS)
 
 # Quiet: the configure summary and the build's warnings, not every file.
 QUIET_MAKE = -DCMAKE_RULE_MESSAGES=OFF -DCMAKE_TARGET_MESSAGES=OFF
@@ -69,4 +71,4 @@ format:
 	clang-format -i $$(git ls-files '*.c' '*.h')
 
 clean:
-	rm -rf $(BUILD) $(BUILD)-asan build-fuzz
+	rm -rf $(BUILD) $(SANITIZE_BUILD)

@@ -8,8 +8,8 @@
 # (default 1). Targets: nff json obj ply ply_gz png bmp ppm (default: all);
 # fuzz/fuzz_load.c and fuzz/fuzz_image.c say what each does. A crash, leak,
 # sanitizer report or slow input (over 1 s) stops its target, keeps the input
-# in build-fuzz/findings/TARGET/ and fails the run; reproduce it with
-# build-fuzz/fuzz_TARGET FILE. Corpora grow in build-fuzz/corpus/TARGET,
+# in build-sanitize/findings/TARGET/ and fails the run; reproduce it with
+# build-sanitize/fuzz_TARGET FILE. Corpora grow in build-sanitize/corpus/TARGET,
 # seeded from fuzz/corpus/ (and scenes/ for JSON).
 set -euo pipefail
 cd "$(dirname "$0")/.."
@@ -18,7 +18,7 @@ seconds=${1:-30}
 targets=("$@")
 [ ${#targets[@]} -gt 0 ] || targets=(nff json obj ply ply_gz png bmp ppm)
 jobs=${FUZZ_JOBS:-1}
-build=${FUZZ_BUILD:-build-fuzz}
+build=${FUZZ_BUILD:-build-sanitize} # make test-asan's build, shared
 
 if ! command -v clang >/dev/null 2>&1; then
   echo "fuzz: clang is missing (scripts/install-deps.sh installs it)" >&2
@@ -26,7 +26,7 @@ if ! command -v clang >/dev/null 2>&1; then
 fi
 mkdir -p "$build"
 CC=clang cmake -S . -B "$build" -DCMAKE_BUILD_TYPE=RelWithDebInfo \
-  -DGLINT_FUZZ=ON -DGLINT_BUILD_TESTS=OFF -DGLINT_BUILD_EXAMPLES=OFF \
+  -DGLINT_FUZZ=ON \
   >"$build/configure.log" 2>&1 || { cat "$build/configure.log"; exit 1; }
 cmake --build "$build" -j "$(nproc)" \
   --target $(printf 'fuzz_%s ' "${targets[@]}") >"$build/build.log" 2>&1 ||
