@@ -8,7 +8,7 @@ BUILD ?= build
 JOBS ?= $(shell nproc 2>/dev/null || echo 2)
 PREFIX ?= /usr/local
 # Seconds per fuzz target in make test (make fuzz: FUZZ_SECONDS each).
-FUZZ_SMOKE_SECONDS ?= 15
+FUZZ_SMOKE_SECONDS ?= 10
 FUZZ_SECONDS ?= 3600
 
 .PHONY: render test test-unit test-asan fuzz fuzz-smoke build deps peers \
@@ -27,10 +27,14 @@ test-unit: build
 # (which compiles programs against the library with a plain compiler, and
 # cannot link an instrumented one). The fuzz targets share this build.
 SANITIZE_BUILD = $(BUILD)-sanitize
+# -O1 and line tables only: the instrumented SIMD tracers (deeply inlined)
+# compile in a fraction of the time of -O2 -g, with symbolized reports.
+SANITIZE_FLAGS = -DCMAKE_C_FLAGS_RELWITHDEBINFO="-O1 -gline-tables-only"
 test-asan: deps
 	@mkdir -p $(SANITIZE_BUILD)
 	@CC=clang cmake -S . -B $(SANITIZE_BUILD) -DCMAKE_BUILD_TYPE=RelWithDebInfo \
-	  -DGLINT_FUZZ=ON $(QUIET_MAKE) >$(SANITIZE_BUILD)/configure.log 2>&1 \
+	  $(SANITIZE_FLAGS) -DGLINT_FUZZ=ON $(QUIET_MAKE) \
+	  >$(SANITIZE_BUILD)/configure.log 2>&1 \
 	  || { cat $(SANITIZE_BUILD)/configure.log; exit 1; }
 	@cmake --build $(SANITIZE_BUILD) -j $(JOBS) -- --no-print-directory -s
 	ASAN_OPTIONS=detect_leaks=1:abort_on_error=1 \

@@ -26,7 +26,7 @@ if ! command -v clang >/dev/null 2>&1; then
 fi
 mkdir -p "$build"
 CC=clang cmake -S . -B "$build" -DCMAKE_BUILD_TYPE=RelWithDebInfo \
-  -DGLINT_FUZZ=ON \
+  -DCMAKE_C_FLAGS_RELWITHDEBINFO="-O1 -gline-tables-only" -DGLINT_FUZZ=ON \
   >"$build/configure.log" 2>&1 || { cat "$build/configure.log"; exit 1; }
 cmake --build "$build" -j "$(nproc)" \
   --target $(printf 'fuzz_%s ' "${targets[@]}") >"$build/build.log" 2>&1 ||
