@@ -106,6 +106,13 @@ glint_status gli_file_read_all(const char *path, size_t max_bytes, char **out,
   return GLINT_OK;
 }
 
+void gli_file_skip_bom(const char **data, size_t *size) {
+  if (*size >= 3 && memcmp(*data, "\xEF\xBB\xBF", 3) == 0) {
+    *data += 3;
+    *size -= 3;
+  }
+}
+
 glint_status gli_file_check_text(const char *path, const char *data,
                                  size_t size, size_t first_line,
                                  glint_error *e) {

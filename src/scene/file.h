@@ -18,6 +18,9 @@
 glint_status gli_file_read_all(const char *path, size_t max_bytes, char **data,
                                size_t *size, glint_error *error);
 
+/* Steps over a UTF-8 byte-order mark at the start of a text file, if any. */
+void gli_file_skip_bom(const char **data, size_t *size);
+
 /* GLINT_E_PARSE "PATH:LINE: binary data where text was expected" if data
  * holds a NUL byte (it would end a number early and hide the rest of the
  * line); LINE counts from first_line. */

@@ -208,8 +208,7 @@ static glint_status add_mesh_text(glint_scene *scene, const char *path,
                                   glint_error *error) {
   /* Numbers in mesh files always use '.', whatever LC_NUMERIC the host
    * program chose; uselocale changes this thread only, and only for now. */
-  if (size >= 3 && memcmp(data, "\xEF\xBB\xBF", 3) == 0)
-    data += 3, size -= 3; /* a UTF-8 byte-order mark */
+  gli_file_skip_bom(&data, &size);
   char *lf = with_lf_line_ends(data, size, read == gli_ply_parse);
   number_locale locale = gli_number_locale_begin();
   mesh_data m;

@@ -23,8 +23,8 @@ glint_status gli_text_begin(text_file *t, const char *path, const char *data,
   t->data = data;
   t->size = size;
   t->pos = data;
-  if (size >= 3 && memcmp(data, "\xEF\xBB\xBF", 3) == 0)
-    t->pos += 3; /* a UTF-8 byte-order mark */
+  size_t rest = size;
+  gli_file_skip_bom(&t->pos, &rest);
   return GLINT_OK;
 }
 

@@ -40,20 +40,20 @@ static int ends_with(const char *name, size_t n, const char *extension) {
   return n > e && strncasecmp(name + n - e, extension, e) == 0;
 }
 
-static const char *base_name(const char *path) {
+/* Whether the file name ends in `extension`, before an optional .gz (gzip
+ * is undone by the file reader, whatever the name). */
+static int has_extension(const char *path, const char *extension) {
   const char *slash = strrchr(path, '/');
-  return slash ? slash + 1 : path;
-}
-
-/* The format of a file name, after an optional .gz (gzip is undone by the
- * file reader, whatever the name). */
-static const scene_format *scene_format_of(const char *name) {
-  const char *base = base_name(name);
+  const char *base = slash ? slash + 1 : path;
   size_t n = strlen(base);
   if (ends_with(base, n, ".gz"))
     n -= 3;
+  return ends_with(base, n, extension);
+}
+
+static const scene_format *scene_format_of(const char *name) {
   for (size_t i = 0; i < sizeof scene_formats / sizeof *scene_formats; i++)
-    if (ends_with(base, n, scene_formats[i].extension))
+    if (has_extension(name, scene_formats[i].extension))
       return &scene_formats[i];
   return NULL;
 }
@@ -106,12 +106,8 @@ glint_status glint_scene_load_memory(const void *data, size_t size,
 }
 
 gli_mesh_reader gli_mesh_reader_for(const char *path) {
-  const char *base = base_name(path);
-  size_t n = strlen(base);
-  if (ends_with(base, n, ".gz"))
-    n -= 3;
   for (size_t i = 0; i < sizeof mesh_formats / sizeof *mesh_formats; i++)
-    if (ends_with(base, n, mesh_formats[i].extension))
+    if (has_extension(path, mesh_formats[i].extension))
       return mesh_formats[i].read;
   return NULL;
 }
