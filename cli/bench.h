@@ -39,6 +39,11 @@ int bench_spd(const char *dir, const glint_render_settings *base,
 int bench_frames(const char *scene, const glint_render_settings *base,
                  int frames);
 
+/* glint bench --time-to-image: each scene written by `glint render` as a
+ * whole process, against its render time. */
+int bench_time_to_image(char **scenes, int nscenes,
+                        const glint_render_settings *base, int runs);
+
 /* glint bench --meshes DIR */
 int bench_meshes(const char *dir, const glint_render_settings *base,
                  const glint_backend *backends, int nbackends, int runs);

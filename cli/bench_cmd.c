@@ -55,7 +55,13 @@ static void bench_usage(FILE *f) {
       "                     camera orbiting, through one renderer and\n"
       "                     through N glint_render calls: the cost of a\n"
       "                     frame beyond its rendering (first depth,\n"
-      "                     thread count and backend of the lists)\n"
+      "                     thread count and backend of the lists;\n"
+      "                     depth 5 unless --depths is given)\n"
+      "      --time-to-image\n"
+      "                     instead: each scene written by glint render\n"
+      "                     as a whole process (PNG and PPM), against its\n"
+      "                     render time (first depth, thread count and\n"
+      "                     backend, as for --frames)\n"
       "      --meshes DIR   instead: primary-ray throughput on DIR/bunny.obj\n"
       "                     and DIR/dragon_vrip_res2.ply.gz (1024x1024, one\n"
       "                     thread), with Embree 3 on the same rays when\n"
@@ -204,7 +210,7 @@ int cmd_bench(int argc, char **argv) {
   char *scene_list = default_scenes, *depth_list = default_depths;
   char *backend_list = NULL, *thread_list = default_threads;
   char *csv_path = NULL, *plot_dir = NULL, *spd_dir = NULL, *mesh_dir = NULL;
-  int runs = 3, frames = 0;
+  int runs = 3, frames = 0, time_to_image = 0;
   glint_render_settings rs;
   glint_render_settings_default(&rs);
   rs.width = rs.height = 0; /* 0: not given */
@@ -227,7 +233,8 @@ int cmd_bench(int argc, char **argv) {
         (r = arg_text(&c, NULL, "--plot", &plot_dir)) ||
         (r = arg_text(&c, NULL, "--spd", &spd_dir)) ||
         (r = arg_text(&c, NULL, "--meshes", &mesh_dir)) ||
-        (r = arg_int(&c, NULL, "--frames", 1, 100000, &frames))) {
+        (r = arg_int(&c, NULL, "--frames", 1, 100000, &frames)) ||
+        (r = arg_flag(&c, NULL, "--time-to-image", &time_to_image))) {
       if (r == ARG_BAD)
         return EXIT_USAGE;
       continue;
@@ -297,13 +304,20 @@ int cmd_bench(int argc, char **argv) {
   if (mesh_dir) {
     return bench_meshes(mesh_dir, &rs, backends, nbackends, runs);
   }
-  if (frames) {
-    char *first_scene[1];
-    split_list(scene_list, first_scene, 1);
-    rs.max_depth = depths[0];
+  if (frames || time_to_image) {
+    /* One configuration: the first of each list; the render's own depth
+     * when none is given. */
+    rs.max_depth = depth_list == default_depths ? 5 : depths[0];
     rs.threads = threads[0];
     rs.backend = backend_list ? backends[0] : GLINT_BACKEND_AUTO;
-    return bench_frames(first_scene[0], &rs, frames);
+    char *scene_names[MAX_ITEMS];
+    int nscenes = split_list(scene_list, scene_names, MAX_ITEMS);
+    if (nscenes <= 0) {
+      cli_error("--scenes: give at least one scene");
+      return EXIT_USAGE;
+    }
+    return frames ? bench_frames(scene_names[0], &rs, frames)
+                  : bench_time_to_image(scene_names, nscenes, &rs, runs);
   }
 
   FILE *csv = NULL;

@@ -160,9 +160,11 @@ static void print_stats(FILE *out, const glint_stats *s,
             "  bvh                %llu nodes, %.2f MiB, built in %.1f ms\n",
             (unsigned long long)s->bvh_nodes, (double)s->bvh_bytes / 1048576.0,
             s->bvh_build_seconds * 1e3);
-  fprintf(out, "  render             %.3f s\n", s->render_seconds);
+  fprintf(out, "  render             %.4f s\n", s->render_seconds);
   fprintf(out, "  load scene         %.4f s\n", t->load);
-  fprintf(out, "  write image        %.4f s\n", t->write);
+  /* An 8-bit image file is encoded while the frame renders: this is what
+   * writing it costs after the last tile. */
+  fprintf(out, "  write image        %.4f s after rendering\n", t->write);
   fprintf(out, "  load to written    %.4f s\n", t->total);
   fprintf(out, "  rays               %llu (%.2f Mrays/s)\n",
           (unsigned long long)rays,
@@ -216,11 +218,45 @@ static int is_film_path(const char *path) {
   return dot && (strcasecmp(dot, ".pfm") == 0 || strcasecmp(dot, ".exr") == 0);
 }
 
-/* The frame through a committed world and a renderer, into a film. */
+/* The size of the image or film a render produces: the region's, else the
+ * settings', else the scene's. */
+static void output_size(const glint_scene *scene,
+                        const glint_render_settings *rs, int *w, int *h) {
+  glint_scene_info info;
+  glint_scene_get_info(scene, &info);
+  *w = rs->width ? rs->width : info.width;
+  *h = rs->height ? rs->height : info.height;
+  if (rs->region_width)
+    *w = rs->region_width, *h = rs->region_height;
+}
+
+/* Finished tiles go to an image writer, which encodes while the rest of the
+ * frame renders. A failed put (a full disk) cancels the frame. */
+typedef struct tile_sink {
+  glint_image_writer *writer;
+  int origin_x, origin_y; /* the region's: tiles come in frame pixels */
+  int failed;
+  glint_error error;
+} tile_sink;
+
+static int on_tile(void *user, const glint_tile *tile) {
+  tile_sink *sink = user;
+  glint_tile t = *tile;
+  t.x -= sink->origin_x;
+  t.y -= sink->origin_y;
+  if (glint_image_writer_put(sink->writer, &t, &sink->error)) {
+    sink->failed = 1;
+    return 1;
+  }
+  return 0;
+}
+
+/* The frame through a committed world and a renderer: into a film, or
+ * with a `sink` tile by tile into its image writer (no film). */
 static glint_status render_film(const glint_scene *scene,
                                 const glint_render_settings *rs,
-                                glint_film **out, glint_stats *stats,
-                                glint_error *err) {
+                                tile_sink *sink, glint_film **out,
+                                glint_stats *stats, glint_error *err) {
   glint_world *world;
   glint_renderer *renderer;
   glint_stats commit;
@@ -231,17 +267,22 @@ static glint_status render_film(const glint_scene *scene,
   glint_world_destroy(world); /* the renderer holds it */
   if (st)
     return st;
-  glint_scene_info info;
-  glint_scene_get_info(scene, &info);
-  int w = rs->width ? rs->width : info.width;
-  int h = rs->height ? rs->height : info.height;
-  if (rs->region_width)
-    w = rs->region_width, h = rs->region_height;
+  int w, h;
+  output_size(scene, rs, &w, &h);
+  glint_frame_settings frame;
+  glint_frame_settings_default(&frame);
+  if (sink) {
+    frame.tile = on_tile;
+    frame.tile_user = sink;
+  }
   glint_film *film = NULL;
-  st = glint_film_create(w, h, &film, err);
+  if (!sink)
+    st = glint_film_create(w, h, &film, err);
   if (st == GLINT_OK)
-    st = glint_renderer_render(renderer, NULL, film, stats, err);
+    st = glint_renderer_render(renderer, &frame, film, stats, err);
   glint_renderer_destroy(renderer);
+  if (st == GLINT_E_CANCELLED && sink && sink->failed)
+    *err = sink->error, st = err->status;
   if (st) {
     glint_film_destroy(film);
     return st;
@@ -392,8 +433,15 @@ int cmd_render(int argc, char **argv) {
     glint_scene_destroy(scene);
     return EXIT_USAGE;
   }
+  /* An image file is encoded while the frame renders (glint_image_writer);
+   * opening it checks the path. */
+  tile_sink sink = {NULL, rs.region_x, rs.region_y, 0, {0}};
+  int out_w, out_h;
+  output_size(scene, &rs, &out_w, &out_h);
   if (!to_stdout && (film_output ? glint_film_check_writable(output, &err)
-                                 : glint_image_check_writable(output, &err))) {
+                                 : glint_image_writer_open(
+                                       output, out_w, out_h, rs.gamma,
+                                       png_compression, &sink.writer, &err))) {
     cli_error("%s", err.message);
     glint_scene_destroy(scene);
     return EXIT_USAGE;
@@ -406,12 +454,15 @@ int cmd_render(int argc, char **argv) {
   glint_image *image = NULL;
   glint_film *film = NULL;
   glint_stats stats;
-  glint_status st = film_output
-                        ? render_film(scene, &rs, &film, &stats, &err)
-                        : glint_render(scene, &rs, &image, &stats, &err);
+  glint_status st = to_stdout
+                        ? glint_render(scene, &rs, &image, &stats, &err)
+                        : render_film(scene, &rs, sink.writer ? &sink : NULL,
+                                      &film, &stats, &err);
   if (ps.show)
     fputs("\r\033[K", stderr);
   glint_scene_destroy(scene);
+  if (st || stop_signal)
+    glint_image_writer_discard(sink.writer);
   if (stop_signal) {
     glint_image_destroy(image);
     glint_film_destroy(film);
@@ -428,13 +479,10 @@ int cmd_render(int argc, char **argv) {
    * only takes note), then says so. */
   double write_start = cli_now();
   st = film_output ? glint_film_write(film, output, &err)
-       : to_stdout
-           ? glint_image_write_stream(image, stdout, stream_format,
-                                      png_compression, &err)
-           : glint_image_write_with(image, output, png_compression, &err);
+       : to_stdout ? glint_image_write_stream(image, stdout, stream_format,
+                                              png_compression, &err)
+                   : glint_image_writer_finish(sink.writer, &err);
   times.write = cli_now() - write_start;
-  int out_w = film_output ? glint_film_width(film) : glint_image_width(image);
-  int out_h = film_output ? glint_film_height(film) : glint_image_height(image);
   glint_image_destroy(image);
   glint_film_destroy(film);
   if (st) {

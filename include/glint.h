@@ -467,7 +467,9 @@ void glint_renderer_destroy(glint_renderer *renderer);
 /* One finished tile, handed over while the frame renders: pixels
  * [x, x + width) x [y, y + height) of the frame (region coordinates are
  * frame pixels), linear RGB, already stored in the film. `pixels` points at
- * the tile's top-left pixel in the film; rows are `stride` floats apart. */
+ * the tile's top-left pixel in the film (without a film: at the worker's
+ * copy of the tile, valid during the callback); rows are `stride` floats
+ * apart. */
 typedef struct glint_tile {
   int x, y, width, height;
   const float *pixels;
@@ -498,11 +500,55 @@ void glint_frame_settings_default(glint_frame_settings *frame);
 /* Renders one frame into `film`, which must have the frame's (or the
  * region's) size. Nothing is converted, built, allocated or started: the
  * frame costs its rendering. A cancelled frame (GLINT_E_CANCELLED) leaves
- * the film partly written. `frame` may be NULL; `stats` may be NULL. */
+ * the film partly written. `frame` may be NULL; `stats` may be NULL.
+ * `film` may be NULL when the frame has a tile callback: the tiles then go
+ * to the callback only (a glint_image_writer, another process), and no
+ * frame-sized buffer is needed. */
 glint_status glint_renderer_render(glint_renderer *renderer,
                                    const glint_frame_settings *frame,
                                    glint_film *film, glint_stats *stats,
                                    glint_error *error);
+
+/* ------------------------------------------------------------------------ */
+/* Image files written while a frame renders                                */
+/* ------------------------------------------------------------------------ */
+
+/* An 8-bit image file (.png, .bmp or .ppm, by the extension) filled tile by
+ * tile, typically from a glint_tile_fn: each tile is converted as
+ * glint_film_to_image converts (clamp, gamma, round), and a PNG or PPM is
+ * encoded, on a thread of the writer's own, as soon as the rows above it are
+ * complete. The file is therefore finished moments after the last tile
+ * instead of an encoding's time later. It appears, atomically, only at
+ * glint_image_writer_finish: a writer discarded, or one missing pixels,
+ * leaves any existing file untouched and no partial one.
+ *
+ * Puts may come from any thread (from a tile callback, on the renderer's
+ * workers); finish or discard comes once, after the last put, and frees the
+ * writer. */
+typedef struct glint_image_writer glint_image_writer;
+
+/* Creates the temporary file beside `path` (failing here, before a render,
+ * when the folder takes no new file) for a width x height image encoded with
+ * `gamma` (1: linear; PNGs record it) and, for PNG, `compression`. */
+glint_status glint_image_writer_open(const char *path, int width, int height,
+                                     double gamma,
+                                     glint_png_compression compression,
+                                     glint_image_writer **writer,
+                                     glint_error *error);
+/* Converts and takes the tile's pixels. tile->x and tile->y are pixels of
+ * the image: for a frame's region, subtract the region's origin. Each pixel
+ * is put once. Returns an error at once when the tile lies outside the image
+ * or writing has failed (a full disk): a tile callback then cancels the
+ * frame. */
+glint_status glint_image_writer_put(glint_image_writer *writer,
+                                    const glint_tile *tile, glint_error *error);
+/* Waits for the encoder, then flushes, syncs and renames the file into
+ * place. Fails, writing nothing, when a pixel was never put or writing
+ * failed. Frees the writer either way. */
+glint_status glint_image_writer_finish(glint_image_writer *writer,
+                                       glint_error *error);
+/* Abandons the file (an existing one stays untouched) and frees the writer. */
+void glint_image_writer_discard(glint_image_writer *writer);
 
 #if defined(__GNUC__)
 #pragma GCC visibility pop

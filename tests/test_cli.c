@@ -13,6 +13,7 @@
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
+#include <sys/resource.h>
 #include <sys/stat.h>
 #include <sys/wait.h>
 #include <unistd.h>
@@ -179,10 +180,24 @@ static void existing_file_survives_errors(void **state) {
   fclose(f);
   assert_int_equal(run("render", "-d", "99", "-o", "keep.png", NULL), 2);
   assert_int_equal(run("render", "nosuchscene", "-o", "keep.png", NULL), 2);
+  /* Writing fails while the frame renders (the image is encoded as its
+   * tiles arrive): here the file-size limit, as a full disk would. */
+  struct rlimit saved, small;
+  getrlimit(RLIMIT_FSIZE, &saved);
+  small = saved;
+  small.rlim_cur = 20000; /* the .stdout/.stderr captures fit; the PNG not */
+  signal(SIGXFSZ, SIG_IGN);
+  setrlimit(RLIMIT_FSIZE, &small);
+  int rc = run("render", "whitted", "-t", "1", "-o", "keep.png", NULL);
+  setrlimit(RLIMIT_FSIZE, &saved);
+  signal(SIGXFSZ, SIG_DFL);
+  assert_int_equal(rc, 2);
+  assert_non_null(strstr(err, "keep.png: writing failed: File too large"));
   char buf[32];
   slurp(p, buf, sizeof buf);
   assert_string_equal(buf, "precious");
   unlink(p);
+  assert_true(folder_is_empty());
 }
 
 static void help_and_version(void **state) {
@@ -366,6 +381,23 @@ static void bench_runs_and_writes_csv(void **state) {
   assert_non_null(strstr(csv, "scene,depth,backend"));
   assert_non_null(strstr(csv, "phong,2,scalar-float,16,12,1,1,1,"));
   unlink(p);
+}
+
+/* --time-to-image: glint render as a child process, PNG and PPM, against
+ * the render; its images go to a folder of its own that it removes. */
+static void bench_time_to_image(void **state) {
+  (void)state;
+  assert_int_equal(run("bench", "--time-to-image", "--scenes", "whitted,phong",
+                       "--runs", "1", "-W", "16", "-H", "12", "-s", "1",
+                       "--backends", "scalar-float", NULL),
+                   0);
+  assert_non_null(strstr(out, "scalar-float, 1 thread, depth 5, 1 spp"));
+  assert_non_null(strstr(out, "PNG/render"));
+  assert_non_null(strstr(out, "\nwhitted "));
+  assert_non_null(strstr(out, "\nphong "));
+  assert_true(folder_is_empty());
+  EXPECT_USAGE_ERROR("unknown scene 'atlantis'", "bench", "--time-to-image",
+                     "--scenes", "atlantis");
 }
 
 static void bench_errors(void **state) {
@@ -572,6 +604,7 @@ int main(void) {
       cmocka_unit_test(png_compression_and_gamma),
       cmocka_unit_test(defaults_quiet_and_stats),
       cmocka_unit_test(bench_runs_and_writes_csv),
+      cmocka_unit_test(bench_time_to_image),
       cmocka_unit_test(bench_errors),
       cmocka_unit_test(bench_thread_columns),
       cmocka_unit_test(missing_instruction_sets),

@@ -127,41 +127,62 @@ glint_status gli_check_folder_writable(const char *path, glint_error *error) {
   return GLINT_OK;
 }
 
-glint_status gli_write_atomically(const char *path, write_fn write,
-                                  const void *data, glint_error *error) {
-  char *temp;
-  int fd = open_temp(path, &temp, error);
+glint_status gli_atomic_open(const char *path, gli_atomic_file *file,
+                             glint_error *error) {
+  int fd = open_temp(path, &file->temp, error);
   if (fd < 0)
     return error ? error->status : GLINT_E_IO;
   /* mkstemp creates 0600; give the file the usual permissions. */
   mode_t mask = umask(0);
   umask(mask);
   fchmod(fd, 0666 & ~mask);
-  FILE *f = fdopen(fd, "wb");
-  if (!f) {
+  file->path = path;
+  file->f = fdopen(fd, "wb");
+  if (!file->f) {
+    int saved = errno;
     close(fd);
-    unlink(temp);
-    free(temp);
-    return gli_fail(error, GLINT_E_IO, "%s: %s", path, strerror(errno));
+    unlink(file->temp);
+    free(file->temp);
+    return gli_fail(error, GLINT_E_IO, "%s: %s", path, strerror(saved));
   }
-  int bad = write(data, f);
-  int saved = errno;
-  if (!bad && fflush(f) != 0)
-    bad = 1, saved = errno;
-  if (!bad && fsync(fileno(f)) != 0 && errno != EINVAL)
-    bad = 1, saved = errno;
-  if (fclose(f) != 0 && !bad)
-    bad = 1, saved = errno;
-  if (!bad && rename(temp, path) != 0)
-    bad = 1, saved = errno;
-  if (bad) {
-    unlink(temp);
-    free(temp);
-    return gli_fail(error, GLINT_E_IO, "%s: writing failed: %s", path,
-                    saved ? strerror(saved) : "encoder error");
-  }
-  free(temp);
   return GLINT_OK;
+}
+
+glint_status gli_atomic_commit(gli_atomic_file *file, int failed,
+                               int failed_errno, glint_error *error) {
+  int bad = failed, saved = failed_errno;
+  if (!bad && fflush(file->f) != 0)
+    bad = 1, saved = errno;
+  if (!bad && fsync(fileno(file->f)) != 0 && errno != EINVAL)
+    bad = 1, saved = errno;
+  if (fclose(file->f) != 0 && !bad)
+    bad = 1, saved = errno;
+  if (!bad && rename(file->temp, file->path) != 0)
+    bad = 1, saved = errno;
+  if (bad)
+    unlink(file->temp);
+  free(file->temp);
+  if (bad)
+    return gli_fail(error, GLINT_E_IO, "%s: writing failed: %s", file->path,
+                    saved ? strerror(saved) : "encoder error");
+  return GLINT_OK;
+}
+
+void gli_atomic_discard(gli_atomic_file *file) {
+  fclose(file->f);
+  unlink(file->temp);
+  free(file->temp);
+}
+
+glint_status gli_write_atomically(const char *path, write_fn write,
+                                  const void *data, glint_error *error) {
+  gli_atomic_file file;
+  glint_status st = gli_atomic_open(path, &file, error);
+  if (st)
+    return st;
+  errno = 0;
+  int bad = write(data, file.f);
+  return gli_atomic_commit(&file, bad, errno, error);
 }
 
 static int encode_image(const void *data, FILE *f) {

@@ -32,6 +32,20 @@ glint_status gli_check_folder_writable(const char *path, glint_error *error);
 glint_status gli_write_atomically(const char *path, write_fn write,
                                   const void *data, glint_error *error);
 
+/* The same in steps, for files written while their pixels arrive: open the
+ * temporary file, write to `f`, then commit (flush, sync, rename; `failed`
+ * with its errno discards instead and reports the failure) or discard. */
+typedef struct gli_atomic_file {
+  const char *path;
+  char *temp;
+  FILE *f;
+} gli_atomic_file;
+glint_status gli_atomic_open(const char *path, gli_atomic_file *file,
+                             glint_error *error);
+glint_status gli_atomic_commit(gli_atomic_file *file, int failed,
+                               int failed_errno, glint_error *error);
+void gli_atomic_discard(gli_atomic_file *file);
+
 /* Film encoders: 0 on success. EXR returns -1 with errno 0 on a library
  * error, and is absent (GLINT_HAVE_EXR undefined) in builds without
  * OpenEXR. */
@@ -41,8 +55,20 @@ int gli_exr_encode(const glint_film *film, FILE *f);
 /* Encoders write the whole image to an open stream; 0 on success. */
 int gli_png_encode(const glint_image *image, glint_png_compression compression,
                    FILE *f);
+/* The PNG encoder in steps, for rows that arrive over time: begin writes
+ * the header, rows appends `rows` rows (row_bytes apart), end the rest and
+ * frees; abort frees without finishing. NULL or -1 on failure (after which
+ * only abort remains, and end has freed already). */
+typedef struct gli_png_writer gli_png_writer;
+gli_png_writer *gli_png_begin(FILE *f, int width, int height, double gamma,
+                              glint_png_compression compression);
+int gli_png_rows(gli_png_writer *w, const uint8_t *rgb, int rows,
+                 size_t row_bytes);
+int gli_png_end(gli_png_writer *w);
+void gli_png_abort(gli_png_writer *w);
 int gli_bmp_encode(const glint_image *image, FILE *f);
 int gli_ppm_encode(const glint_image *image, FILE *f);
+int gli_ppm_header(FILE *f, int width, int height); /* before the rows */
 
 /* Decoders read a whole image; on failure they fill error naming `path`. */
 glint_status gli_png_decode(FILE *f, const char *path, glint_image **image,

@@ -26,18 +26,27 @@ static void png_drop_warning(png_structp png, png_const_charp message) {
   (void)message;
 }
 
-int gli_png_encode(const glint_image *im, glint_png_compression compression,
-                   FILE *f) {
-  png_complaint complaint = {""};
-  png_structp png = png_create_write_struct(PNG_LIBPNG_VER_STRING, &complaint,
-                                            png_keep_error, png_drop_warning);
-  if (!png)
-    return -1;
-  png_infop info = png_create_info_struct(png);
-  if (!info || setjmp(png_jmpbuf(png))) {
-    png_destroy_write_struct(&png, &info);
-    return -1;
+/* libpng's state for one file being written. Each step sets its own
+ * setjmp, since libpng's longjmp must land in a function still running. */
+struct gli_png_writer {
+  png_structp png;
+  png_infop info;
+  png_complaint complaint; /* libpng holds its address */
+};
+
+void gli_png_abort(gli_png_writer *w) {
+  if (w) {
+    png_destroy_write_struct(&w->png, &w->info);
+    free(w);
   }
+}
+
+/* The header of gli_png_begin; 0 on success. */
+static int png_start(gli_png_writer *w, FILE *f, int width, int height,
+                     double gamma, glint_png_compression compression) {
+  if (setjmp(png_jmpbuf(w->png)))
+    return -1;
+  png_structp png = w->png;
   png_init_io(png, f);
   if (compression == GLINT_PNG_SMALLEST) {
     png_set_compression_level(png, 9);
@@ -50,17 +59,61 @@ int gli_png_encode(const glint_image *im, glint_png_compression compression,
     png_set_compression_strategy(png, Z_RLE);
     png_set_filter(png, 0, PNG_FILTER_SUB);
   }
-  png_set_IHDR(png, info, (png_uint_32)im->width, (png_uint_32)im->height, 8,
+  png_set_IHDR(png, w->info, (png_uint_32)width, (png_uint_32)height, 8,
                PNG_COLOR_TYPE_RGB, PNG_INTERLACE_NONE,
                PNG_COMPRESSION_TYPE_DEFAULT, PNG_FILTER_TYPE_DEFAULT);
   /* The file's gamma is 1/encoding gamma (PNG specification, 11.3.3.2). */
-  png_set_gAMA(png, info, 1.0 / im->gamma);
-  png_write_info(png, info);
-  for (int y = 0; y < im->height; y++)
-    png_write_row(png, im->rgb + (size_t)y * im->width * 3);
-  png_write_end(png, NULL);
-  png_destroy_write_struct(&png, &info);
-  return ferror(f) ? -1 : 0;
+  png_set_gAMA(png, w->info, 1.0 / gamma);
+  png_write_info(png, w->info);
+  return 0;
+}
+
+gli_png_writer *gli_png_begin(FILE *f, int width, int height, double gamma,
+                              glint_png_compression compression) {
+  gli_png_writer *w = calloc(1, sizeof *w);
+  if (!w)
+    return NULL;
+  w->png = png_create_write_struct(PNG_LIBPNG_VER_STRING, &w->complaint,
+                                   png_keep_error, png_drop_warning);
+  if (w->png)
+    w->info = png_create_info_struct(w->png);
+  if (!w->info || png_start(w, f, width, height, gamma, compression)) {
+    gli_png_abort(w);
+    return NULL;
+  }
+  return w;
+}
+
+int gli_png_rows(gli_png_writer *w, const uint8_t *rgb, int rows,
+                 size_t row_bytes) {
+  if (setjmp(png_jmpbuf(w->png)))
+    return -1;
+  for (int y = 0; y < rows; y++)
+    png_write_row(w->png, rgb + (size_t)y * row_bytes);
+  return 0;
+}
+
+int gli_png_end(gli_png_writer *w) {
+  if (setjmp(png_jmpbuf(w->png))) {
+    gli_png_abort(w);
+    return -1;
+  }
+  png_write_end(w->png, NULL);
+  gli_png_abort(w); /* frees */
+  return 0;
+}
+
+int gli_png_encode(const glint_image *im, glint_png_compression compression,
+                   FILE *f) {
+  gli_png_writer *w =
+      gli_png_begin(f, im->width, im->height, im->gamma, compression);
+  if (!w)
+    return -1;
+  if (gli_png_rows(w, im->rgb, im->height, (size_t)im->width * 3)) {
+    gli_png_abort(w);
+    return -1;
+  }
+  return gli_png_end(w) || ferror(f) ? -1 : 0;
 }
 
 glint_status gli_png_decode(FILE *f, const char *path, glint_image **out,

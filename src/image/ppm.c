@@ -5,8 +5,12 @@
 
 #include <ctype.h>
 
+int gli_ppm_header(FILE *f, int width, int height) {
+  return fprintf(f, "P6\n%d %d\n255\n", width, height) < 0 ? -1 : 0;
+}
+
 int gli_ppm_encode(const glint_image *im, FILE *f) {
-  if (fprintf(f, "P6\n%d %d\n255\n", im->width, im->height) < 0)
+  if (gli_ppm_header(f, im->width, im->height))
     return -1;
   size_t n = (size_t)im->width * im->height * 3;
   return fwrite(im->rgb, 1, n, f) == n ? 0 : -1;

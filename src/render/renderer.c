@@ -277,8 +277,9 @@ static void store_tile(const frame_job *job, const tile_rect *t,
   }
 }
 
-/* Hands the tile to the caller's callbacks, one at a time. */
-static void report_tile(frame_job *job, const tile_rect *t) {
+/* Hands the tile to the caller's callbacks, one at a time: its pixels in
+ * the film, or without a film the worker's own copy (`rgb`). */
+static void report_tile(frame_job *job, const tile_rect *t, const float *rgb) {
   if (!job->progress && !job->tile)
     return;
   pthread_mutex_lock(&job->report_lock);
@@ -288,10 +289,13 @@ static void report_tile(frame_job *job, const tile_rect *t) {
     if (job->tile) {
       glint_film *f = job->out->film;
       glint_tile tile = {t->x0,         t->y0, t->x1 - t->x0,
-                         t->y1 - t->y0, NULL,  (size_t)f->width * 3};
-      tile.pixels = f->rgb + ((size_t)(t->y0 - job->y0) * (size_t)f->width +
-                              (size_t)(t->x0 - job->x0)) *
-                                 3;
+                         t->y1 - t->y0, rgb,   (size_t)(t->x1 - t->x0) * 3};
+      if (f) {
+        tile.stride = (size_t)f->width * 3;
+        tile.pixels = f->rgb + ((size_t)(t->y0 - job->y0) * (size_t)f->width +
+                                (size_t)(t->x0 - job->x0)) *
+                                   3;
+      }
       cancel = job->tile(job->tile_user, &tile);
     }
     if (!cancel && job->progress)
@@ -324,7 +328,7 @@ static void work(void *arg, int index) {
     r->ops->render_tile(r->view, &job->params, &t, w->scratch, w->rgb,
                         &w->stats);
     store_tile(job, &t, w->rgb);
-    report_tile(job, &t);
+    report_tile(job, &t, w->rgb);
   }
   denormals_restore(csr);
 }
@@ -390,9 +394,6 @@ glint_status gli_renderer_render(glint_renderer *r,
     return gli_fail(error, GLINT_E_ARGUMENT,
                     "a %dx%d film cannot hold a %dx%d frame", out->film->width,
                     out->film->height, rw, rh);
-  if (frame->tile && !out->film)
-    return gli_fail(error, GLINT_E_ARGUMENT,
-                    "a tile callback needs a film to hand out");
   if (!out->primary_only && (st = grow_scratch(r, depth, error)))
     return st;
   if (spp != r->samples_spp) {
@@ -462,9 +463,10 @@ glint_status glint_renderer_render(glint_renderer *r,
                                    const glint_frame_settings *frame,
                                    glint_film *film, glint_stats *stats,
                                    glint_error *error) {
-  if (!r || !film)
+  if (!r || (!film && !(frame && frame->tile)))
     return gli_fail(error, GLINT_E_ARGUMENT,
-                    r ? "no film to render into" : "no renderer");
+                    r ? "no film to render into and no tile callback"
+                      : "no renderer");
   frame_output out = {film, NULL, 1, 0, 0};
   return gli_renderer_render(r, frame, &out, stats, error);
 }

@@ -1,0 +1,257 @@
+/* Image files written while a frame renders (glint_image_writer): tiles are
+ * converted to 8 bits as they arrive, and a thread of the writer's own
+ * encodes each band of complete rows at once, so that encoding overlaps
+ * rendering and the file is finished moments after the last tile. The file
+ * itself is atomic (gli_atomic_open): it appears whole at finish or not at
+ * all. */
+#include "image/image.h"
+
+#include "core/error.h"
+
+#include <errno.h>
+#include <pthread.h>
+#include <stdlib.h>
+#include <string.h>
+
+struct glint_image_writer {
+  int width, height;
+  double gamma;
+  glint_image_format format;
+  glint_png_compression compression;
+  gli_atomic_file file;
+  glint_image image;   /* the 8-bit pixels, filled by put */
+  int *row_pixels;     /* pixels put in each row so far */
+  gli_png_writer *png; /* PNG only, owned by the encoder thread */
+  pthread_t encoder;
+  pthread_mutex_t lock; /* guards everything below */
+  pthread_cond_t wake;  /* rows became ready, or the writer is closing */
+  int ready;            /* rows [0, ready) are complete */
+  int encoded;          /* rows [0, encoded) are encoded */
+  int signalled;        /* ready when the encoder was last woken */
+  int batch_rows;       /* rows worth waking the encoder for */
+  int closing, discarding;
+  int failed, failed_errno; /* the encoder could not write */
+  int bad_put;              /* a put outside the image or repeated */
+};
+
+/* Encodes rows [from, to); a PNG or PPM row by row, a BMP (bottom row
+ * first) once every row is there. 0 on success. */
+static int encode_rows(glint_image_writer *w, int from, int to) {
+  size_t row_bytes = (size_t)w->width * 3;
+  const uint8_t *rows = w->image.rgb + (size_t)from * row_bytes;
+  switch (w->format) {
+  case GLINT_FORMAT_PNG:
+    if (gli_png_rows(w->png, rows, to - from, row_bytes))
+      return -1;
+    if (to == w->height) {
+      gli_png_writer *png = w->png;
+      w->png = NULL; /* gli_png_end frees it, whatever it returns */
+      return gli_png_end(png);
+    }
+    return 0;
+  case GLINT_FORMAT_PPM:
+    return fwrite(rows, row_bytes, (size_t)(to - from), w->file.f) ==
+                   (size_t)(to - from)
+               ? 0
+               : -1;
+  default: return to == w->height ? gli_bmp_encode(&w->image, w->file.f) : 0;
+  }
+}
+
+static void *encode_loop(void *arg) {
+  glint_image_writer *w = arg;
+  pthread_mutex_lock(&w->lock);
+  while (w->encoded < w->height && !w->discarding) {
+    if (w->ready == w->encoded) {
+      if (w->closing)
+        break; /* rows are missing: finish says so */
+      pthread_cond_wait(&w->wake, &w->lock);
+      continue;
+    }
+    int from = w->encoded, to = w->ready;
+    pthread_mutex_unlock(&w->lock);
+    errno = 0;
+    int bad = encode_rows(w, from, to);
+    int saved = errno;
+    pthread_mutex_lock(&w->lock);
+    if (bad) {
+      w->failed = 1;
+      w->failed_errno = saved;
+      break;
+    }
+    w->encoded = to;
+  }
+  pthread_mutex_unlock(&w->lock);
+  return NULL;
+}
+
+static void writer_free(glint_image_writer *w) {
+  gli_png_abort(w->png);
+  pthread_mutex_destroy(&w->lock);
+  pthread_cond_destroy(&w->wake);
+  free(w->image.rgb);
+  free(w->row_pixels);
+  free(w);
+}
+
+glint_status glint_image_writer_open(const char *path, int width, int height,
+                                     double gamma,
+                                     glint_png_compression compression,
+                                     glint_image_writer **out,
+                                     glint_error *error) {
+  glint_image_format format =
+      path ? glint_image_format_from_path(path) : GLINT_FORMAT_UNKNOWN;
+  if (format == GLINT_FORMAT_UNKNOWN)
+    return gli_fail(error, GLINT_E_ARGUMENT,
+                    "%s: unknown image format (use .png, .bmp or .ppm)",
+                    path ? path : "(no path)");
+  if (width < 1 || height < 1 || width > GLINT_MAX_DIMENSION ||
+      height > GLINT_MAX_DIMENSION)
+    return gli_fail(error, GLINT_E_ARGUMENT,
+                    "image size %dx%d is outside 1..%d", width, height,
+                    GLINT_MAX_DIMENSION);
+  if (!(gamma > 0) || gamma > 1e6)
+    return gli_fail(error, GLINT_E_ARGUMENT, "gamma %g is not positive", gamma);
+  if ((unsigned)compression > GLINT_PNG_SMALLEST)
+    return gli_fail(error, GLINT_E_ARGUMENT, "unknown PNG compression %d",
+                    (int)compression);
+  glint_image_writer *w = calloc(1, sizeof *w);
+  if (!w)
+    return gli_fail(error, GLINT_E_MEMORY, "out of memory");
+  w->width = width;
+  w->height = height;
+  w->gamma = gamma;
+  w->format = format;
+  w->compression = compression;
+  w->batch_rows = height / 16 > 16 ? height / 16 : 16;
+  w->image = (glint_image){width, height, gamma, NULL};
+  w->image.rgb = malloc((size_t)width * (size_t)height * 3);
+  w->row_pixels = calloc((size_t)height, sizeof *w->row_pixels);
+  pthread_mutex_init(&w->lock, NULL);
+  pthread_cond_init(&w->wake, NULL);
+  if (!w->image.rgb || !w->row_pixels) {
+    writer_free(w);
+    return gli_fail(error, GLINT_E_MEMORY, "out of memory for a %dx%d image",
+                    width, height);
+  }
+  glint_status st = gli_atomic_open(path, &w->file, error);
+  if (st) {
+    writer_free(w);
+    return st;
+  }
+  /* The path is the caller's; keep our own for the rename at finish. */
+  char *own_path = strdup(path);
+  int header_bad = 0;
+  if (format == GLINT_FORMAT_PNG)
+    header_bad =
+        !(w->png = gli_png_begin(w->file.f, width, height, gamma, compression));
+  else if (format == GLINT_FORMAT_PPM)
+    header_bad = gli_ppm_header(w->file.f, width, height);
+  if (!own_path || header_bad ||
+      pthread_create(&w->encoder, NULL, encode_loop, w) != 0) {
+    gli_atomic_discard(&w->file);
+    free(own_path);
+    writer_free(w);
+    return gli_fail(error, GLINT_E_MEMORY, "%s: cannot start writing", path);
+  }
+  w->file.path = own_path;
+  *out = w;
+  return GLINT_OK;
+}
+
+glint_status glint_image_writer_put(glint_image_writer *w,
+                                    const glint_tile *tile,
+                                    glint_error *error) {
+  if (!w || !tile)
+    return gli_fail(error, GLINT_E_ARGUMENT, "no writer or no tile");
+  if (tile->x < 0 || tile->y < 0 || tile->width < 1 || tile->height < 1 ||
+      tile->width > w->width - tile->x || tile->height > w->height - tile->y) {
+    pthread_mutex_lock(&w->lock);
+    w->bad_put = 1;
+    pthread_mutex_unlock(&w->lock);
+    return gli_fail(error, GLINT_E_ARGUMENT,
+                    "%s: tile %dx%d at (%d, %d) is outside the %dx%d image",
+                    w->file.path, tile->width, tile->height, tile->x, tile->y,
+                    w->width, w->height);
+  }
+  /* Tiles are disjoint: the conversion needs no lock. */
+  for (int y = 0; y < tile->height; y++)
+    gli_film_span_to_bytes(tile->pixels + (size_t)y * tile->stride,
+                           w->image.rgb +
+                               ((size_t)(tile->y + y) * w->width + tile->x) * 3,
+                           (size_t)tile->width * 3, w->gamma);
+  pthread_mutex_lock(&w->lock);
+  for (int y = tile->y; y < tile->y + tile->height; y++) {
+    w->row_pixels[y] += tile->width;
+    if (w->row_pixels[y] > w->width)
+      w->bad_put = 1;
+  }
+  int ready = w->ready;
+  while (ready < w->height && w->row_pixels[ready] == w->width)
+    ready++;
+  /* Wake the encoder for a batch of rows, not for every band: each wake-up
+   * of a sleeping thread costs the rendering thread a system call (and, in
+   * a virtual machine, an interrupt between CPUs). */
+  if (ready > w->ready) {
+    if (ready == w->height || ready - w->signalled >= w->batch_rows) {
+      pthread_cond_signal(&w->wake);
+      w->signalled = ready;
+    }
+    w->ready = ready;
+  }
+  int failed = w->failed, failed_errno = w->failed_errno, bad = w->bad_put;
+  pthread_mutex_unlock(&w->lock);
+  if (bad)
+    return gli_fail(error, GLINT_E_ARGUMENT,
+                    "%s: a tile repeated pixels already given", w->file.path);
+  if (failed)
+    return gli_fail(error, GLINT_E_IO, "%s: writing failed: %s", w->file.path,
+                    failed_errno ? strerror(failed_errno) : "encoder error");
+  return GLINT_OK;
+}
+
+/* Tells the encoder to stop (after what is ready, or at once) and waits. */
+static void stop_encoder(glint_image_writer *w, int discard) {
+  pthread_mutex_lock(&w->lock);
+  w->closing = 1;
+  w->discarding = discard;
+  pthread_cond_signal(&w->wake);
+  pthread_mutex_unlock(&w->lock);
+  pthread_join(w->encoder, NULL);
+}
+
+glint_status glint_image_writer_finish(glint_image_writer *w,
+                                       glint_error *error) {
+  if (!w)
+    return gli_fail(error, GLINT_E_ARGUMENT, "no writer");
+  stop_encoder(w, 0);
+  char *path = (char *)w->file.path;
+  glint_status st;
+  if (w->bad_put || w->encoded < w->height) {
+    gli_atomic_discard(&w->file);
+    st = w->failed ? gli_fail(error, GLINT_E_IO, "%s: writing failed: %s", path,
+                              w->failed_errno ? strerror(w->failed_errno)
+                                              : "encoder error")
+         : w->bad_put
+             ? gli_fail(error, GLINT_E_ARGUMENT,
+                        "%s: tiles outside the image or repeated", path)
+             : gli_fail(error, GLINT_E_ARGUMENT,
+                        "%s: only %d of the image's %d rows were complete; "
+                        "nothing was written",
+                        path, w->ready, w->height);
+  } else {
+    st = gli_atomic_commit(&w->file, 0, 0, error);
+  }
+  free(path);
+  writer_free(w);
+  return st;
+}
+
+void glint_image_writer_discard(glint_image_writer *w) {
+  if (!w)
+    return;
+  stop_encoder(w, 1);
+  gli_atomic_discard(&w->file);
+  free((char *)w->file.path);
+  writer_free(w);
+}

@@ -1,0 +1,383 @@
+/* Image files written while a frame renders (include/glint.h,
+ * glint_image_writer), through the public API alone:
+ *  - a frame rendered without a film, its tiles put into a writer, is the
+ *    file glint_render and glint_image_write_with make, byte for byte, for
+ *    PNG (gamma 1 and 2.2, both compressions), BMP and PPM;
+ *  - tiles of any size in any order give the image glint_film_to_image
+ *    gives;
+ *  - a writer missing pixels, or discarded, writes nothing, leaves the
+ *    existing file as it was and no temporary file beside it;
+ *  - writing that fails part-way (a full disk) is reported and keeps the
+ *    existing file;
+ *  - tiles outside the image or repeated, and bad paths, sizes and gammas,
+ *    are refused with a message. */
+#include "test_util.h"
+
+#include <dirent.h>
+#include <math.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+#include <signal.h>
+#include <sys/resource.h>
+#include <sys/stat.h>
+#include <sys/wait.h>
+#include <unistd.h>
+
+#define W 83 /* not a multiple of the tile size: partial tiles at the edges */
+#define H 61
+
+static char folder[256];
+
+static int make_folder(void **state) {
+  (void)state;
+  snprintf(folder, sizeof folder, "%s/glint-writer-%d",
+           getenv("TMPDIR") ? getenv("TMPDIR") : "/tmp", (int)getpid());
+  return mkdir(folder, 0755);
+}
+
+static int remove_folder(void **state) {
+  (void)state;
+  DIR *d = opendir(folder);
+  struct dirent *ent;
+  char path[512];
+  while (d && (ent = readdir(d)))
+    if (ent->d_name[0] != '.' ||
+        (strcmp(ent->d_name, ".") != 0 && strcmp(ent->d_name, "..") != 0)) {
+      snprintf(path, sizeof path, "%s/%s", folder, ent->d_name);
+      unlink(path);
+    }
+  if (d)
+    closedir(d);
+  return rmdir(folder);
+}
+
+static const char *in_folder(const char *name) {
+  static char path[512];
+  snprintf(path, sizeof path, "%s/%s", folder, name);
+  return path;
+}
+
+/* The whole file, NUL-terminated; *size its length. */
+static char *slurp(const char *path, long *size) {
+  FILE *f = fopen(path, "rb");
+  assert_non_null(f);
+  fseek(f, 0, SEEK_END);
+  *size = ftell(f);
+  rewind(f);
+  char *data = malloc((size_t)*size + 1);
+  assert_int_equal(fread(data, 1, (size_t)*size, f), (size_t)*size);
+  data[*size] = '\0';
+  fclose(f);
+  return data;
+}
+
+static void assert_same_file(const char *a, const char *b) {
+  long na, nb;
+  char *da = slurp(a, &na), *db = slurp(b, &nb);
+  assert_int_equal(na, nb);
+  assert_memory_equal(da, db, (size_t)na);
+  free(da);
+  free(db);
+}
+
+/* Files in the folder whose names start with '.': temporary files left. */
+static int leftovers(void) {
+  DIR *d = opendir(folder);
+  struct dirent *ent;
+  int n = 0;
+  while ((ent = readdir(d)))
+    n += ent->d_name[0] == '.' && strcmp(ent->d_name, ".") != 0 &&
+         strcmp(ent->d_name, "..") != 0;
+  closedir(d);
+  return n;
+}
+
+static int put_tile(void *user, const glint_tile *tile) {
+  glint_error e;
+  return glint_image_writer_put(user, tile, &e) != GLINT_OK;
+}
+
+static void same_file_as_glint_render(void **state) {
+  (void)state;
+  glint_scene *scene;
+  ASSERT_OK(glint_scene_builtin("whitted", &scene, &e_));
+  struct {
+    const char *name;
+    double gamma;
+    glint_png_compression compression;
+  } cases[] = {{"a.png", 1, GLINT_PNG_FAST},
+               {"b.png", 2.2, GLINT_PNG_FAST},
+               {"c.png", 1, GLINT_PNG_SMALLEST},
+               {"d.bmp", 1, GLINT_PNG_FAST},
+               {"e.ppm", 2.2, GLINT_PNG_FAST}};
+  for (size_t i = 0; i < sizeof cases / sizeof cases[0]; i++) {
+    glint_render_settings rs;
+    glint_render_settings_default(&rs);
+    rs.width = W;
+    rs.height = H;
+    rs.threads = 2;
+    rs.gamma = cases[i].gamma;
+    glint_image *image;
+    ASSERT_OK(glint_render(scene, &rs, &image, NULL, &e_));
+    char reference[512], name[64];
+    snprintf(name, sizeof name, "reference-%s", cases[i].name);
+    snprintf(reference, sizeof reference, "%s", in_folder(name));
+    ASSERT_OK(
+        glint_image_write_with(image, reference, cases[i].compression, &e_));
+    glint_image_destroy(image);
+
+    glint_world *world;
+    glint_renderer *renderer;
+    ASSERT_OK(glint_world_commit(scene, &world, NULL, &e_));
+    ASSERT_OK(glint_renderer_create(world, &rs, &renderer, &e_));
+    glint_world_destroy(world);
+    glint_image_writer *writer;
+    ASSERT_OK(glint_image_writer_open(in_folder(cases[i].name), W, H,
+                                      cases[i].gamma, cases[i].compression,
+                                      &writer, &e_));
+    glint_frame_settings frame;
+    glint_frame_settings_default(&frame);
+    frame.tile = put_tile;
+    frame.tile_user = writer;
+    ASSERT_OK(glint_renderer_render(renderer, &frame, NULL, NULL, &e_));
+    ASSERT_OK(glint_image_writer_finish(writer, &e_));
+    assert_same_file(in_folder(cases[i].name), reference);
+    glint_renderer_destroy(renderer);
+  }
+  assert_int_equal(leftovers(), 0);
+  glint_scene_destroy(scene);
+}
+
+/* A film of every kind of value: below 0, in range, above 1, NaN. */
+static glint_film *pattern(void) {
+  glint_film *film;
+  ASSERT_OK(glint_film_create(W, H, &film, &e_));
+  float *p = glint_film_pixels(film);
+  for (int i = 0; i < W * H * 3; i++)
+    p[i] = i % 97 == 0 ? NAN : (float)(i % 131) / 100.0f - 0.15f;
+  return film;
+}
+
+/* Puts the film's rectangle as a tile with the film's stride. */
+static glint_status put_rect(glint_image_writer *writer, const glint_film *film,
+                             int x, int y, int w, int h, glint_error *error) {
+  glint_tile t = {x, y, w, h, NULL, (size_t)W * 3};
+  t.pixels = glint_film_pixels_const(film) + ((size_t)y * W + x) * 3;
+  return glint_image_writer_put(writer, &t, error);
+}
+
+static void tiles_in_any_order(void **state) {
+  (void)state;
+  glint_film *film = pattern();
+  for (double gamma = 1; gamma < 3; gamma += 1.2) {
+    const char *path = in_folder(gamma == 1 ? "order.png" : "order.ppm");
+    glint_image_writer *writer;
+    ASSERT_OK(glint_image_writer_open(path, W, H, gamma, GLINT_PNG_FAST,
+                                      &writer, &e_));
+    /* Bottom band first, in columns of uneven width, then the rest in rows
+     * of varying height from the bottom up. */
+    int split = 40;
+    for (int x = 0; x < W; x += 30)
+      ASSERT_OK(put_rect(writer, film, x, split, x + 30 <= W ? 30 : W - x,
+                         H - split, &e_));
+    for (int y = split; y > 0;) {
+      int h = y >= 7 ? 7 : y;
+      y -= h;
+      ASSERT_OK(put_rect(writer, film, 0, y, W, h, &e_));
+    }
+    ASSERT_OK(glint_image_writer_finish(writer, &e_));
+    glint_image *expected, *written;
+    ASSERT_OK(glint_image_create(W, H, &expected, &e_));
+    ASSERT_OK(glint_film_to_image(film, gamma, expected, &e_));
+    ASSERT_OK(glint_image_read(path, &written, &e_));
+    assert_memory_equal(glint_image_pixels(written),
+                        glint_image_pixels(expected), (size_t)W * H * 3);
+    glint_image_destroy(expected);
+    glint_image_destroy(written);
+  }
+  glint_film_destroy(film);
+}
+
+static void incomplete_writes_nothing(void **state) {
+  (void)state;
+  glint_film *film = pattern();
+  const char *path = in_folder("keep.png");
+  FILE *f = fopen(path, "wb");
+  fputs("the user's file", f);
+  fclose(f);
+  glint_image_writer *writer;
+  glint_error e;
+
+  /* Missing rows: finish refuses and says how many were complete. */
+  ASSERT_OK(
+      glint_image_writer_open(path, W, H, 1, GLINT_PNG_FAST, &writer, &e_));
+  ASSERT_OK(put_rect(writer, film, 0, 0, W, 20, &e_));
+  ASSERT_OK(put_rect(writer, film, 0, 21, W, H - 21, &e_));
+  assert_int_equal(glint_image_writer_finish(writer, &e), GLINT_E_ARGUMENT);
+  assert_non_null(strstr(e.message, "only 20 of the image's 61 rows"));
+  assert_non_null(strstr(e.message, "keep.png"));
+
+  /* A row short of one pixel. */
+  ASSERT_OK(
+      glint_image_writer_open(path, W, H, 1, GLINT_PNG_FAST, &writer, &e_));
+  ASSERT_OK(put_rect(writer, film, 0, 0, W - 1, H, &e_));
+  assert_int_equal(glint_image_writer_finish(writer, &e), GLINT_E_ARGUMENT);
+
+  /* Discarded, complete or not. */
+  ASSERT_OK(
+      glint_image_writer_open(path, W, H, 1, GLINT_PNG_FAST, &writer, &e_));
+  ASSERT_OK(put_rect(writer, film, 0, 0, W, H, &e_));
+  glint_image_writer_discard(writer);
+  ASSERT_OK(
+      glint_image_writer_open(path, W, H, 1, GLINT_PNG_FAST, &writer, &e_));
+  glint_image_writer_discard(writer);
+  glint_image_writer_discard(NULL);
+
+  long size;
+  char *kept = slurp(path, &size);
+  assert_string_equal(kept, "the user's file");
+  free(kept);
+  assert_int_equal(leftovers(), 0);
+  glint_film_destroy(film);
+}
+
+/* Writing that fails part-way (the file-size limit is hit while the encoder
+ * runs) is reported by finish (and by the puts after it, which lets a tile
+ * callback cancel the frame), and leaves the existing file as it was. */
+static void failed_writing_keeps_existing_file(void **state) {
+  (void)state;
+  const char *formats[] = {"limit.png", "limit.ppm", "limit.bmp"};
+  for (int i = 0; i < 3; i++) {
+    const char *path = in_folder(formats[i]);
+    FILE *f = fopen(path, "wb");
+    fputs("original", f);
+    fclose(f);
+    pid_t pid = fork();
+    if (pid == 0) {
+      signal(SIGXFSZ, SIG_IGN);
+      struct rlimit rl = {1000, 1000};
+      setrlimit(RLIMIT_FSIZE, &rl);
+      glint_film *film = pattern();
+      glint_image_writer *writer;
+      glint_error e;
+      if (glint_image_writer_open(path, W, H, 1, GLINT_PNG_FAST, &writer, &e))
+        _exit(2);
+      for (int y = 0; y < H; y++)
+        put_rect(writer, film, 0, y, W, 1, &e);
+      glint_status st = glint_image_writer_finish(writer, &e);
+      glint_film_destroy(film);
+      _exit(st == GLINT_E_IO && strstr(e.message, formats[i]) &&
+                    strstr(e.message, "writing failed")
+                ? 0
+                : 1);
+    }
+    int status;
+    waitpid(pid, &status, 0);
+    assert_true(WIFEXITED(status) && WEXITSTATUS(status) == 0);
+    long size;
+    char *kept = slurp(path, &size);
+    assert_string_equal(kept, "original");
+    free(kept);
+  }
+  assert_int_equal(leftovers(), 0);
+}
+
+static void refuses_bad_tiles(void **state) {
+  (void)state;
+  glint_film *film = pattern();
+  glint_image_writer *writer;
+  glint_error e;
+  const char *path = in_folder("bad.png");
+  ASSERT_OK(
+      glint_image_writer_open(path, W, H, 1, GLINT_PNG_FAST, &writer, &e_));
+  glint_tile outside = {W - 4, 0, 8, 8, glint_film_pixels_const(film), W * 3};
+  assert_int_equal(glint_image_writer_put(writer, &outside, &e),
+                   GLINT_E_ARGUMENT);
+  assert_non_null(strstr(e.message, "outside the 83x61 image"));
+  glint_tile negative = {-1, 0, 4, 4, glint_film_pixels_const(film), W * 3};
+  assert_int_equal(glint_image_writer_put(writer, &negative, &e),
+                   GLINT_E_ARGUMENT);
+  assert_int_equal(glint_image_writer_put(writer, NULL, &e), GLINT_E_ARGUMENT);
+  assert_int_equal(glint_image_writer_finish(writer, &e), GLINT_E_ARGUMENT);
+  assert_non_null(strstr(e.message, "outside the image or repeated"));
+
+  ASSERT_OK(
+      glint_image_writer_open(path, W, H, 1, GLINT_PNG_FAST, &writer, &e_));
+  ASSERT_OK(put_rect(writer, film, 0, 0, W, 10, &e_));
+  assert_int_equal(put_rect(writer, film, 5, 5, 10, 10, &e), GLINT_E_ARGUMENT);
+  assert_non_null(strstr(e.message, "repeated"));
+  /* The writer stays failed: later puts and finish say so. */
+  assert_int_equal(put_rect(writer, film, 0, 10, W, H - 10, &e),
+                   GLINT_E_ARGUMENT);
+  assert_int_equal(glint_image_writer_finish(writer, &e), GLINT_E_ARGUMENT);
+  assert_int_equal(access(path, F_OK), -1);
+  assert_int_equal(leftovers(), 0);
+  assert_int_equal(glint_image_writer_finish(NULL, &e), GLINT_E_ARGUMENT);
+  glint_film_destroy(film);
+}
+
+static void expect_open_error(const char *path, int w, int h, double gamma,
+                              int compression, const char *words) {
+  glint_image_writer *writer = NULL;
+  glint_error e;
+  assert_int_not_equal(
+      glint_image_writer_open(path, w, h, gamma,
+                              (glint_png_compression)compression, &writer, &e),
+      GLINT_OK);
+  if (!strstr(e.message, words))
+    fail_msg("'%s' %dx%d gamma %g: message '%s' lacks '%s'",
+             path ? path : "(null)", w, h, gamma, e.message, words);
+}
+
+static void refuses_bad_opens(void **state) {
+  (void)state;
+  expect_open_error(in_folder("x.tiff"), W, H, 1, 0, "unknown image format");
+  expect_open_error(NULL, W, H, 1, 0, "unknown image format");
+  expect_open_error("/nonexistent-folder/x.png", W, H, 1, 0,
+                    "cannot write here");
+  expect_open_error(folder, W, H, 1, 0, "unknown image format");
+  char dir[512];
+  snprintf(dir, sizeof dir, "%s", in_folder("dir.png"));
+  mkdir(dir, 0755);
+  expect_open_error(dir, W, H, 1, 0, "is a directory");
+  rmdir(dir);
+  expect_open_error(in_folder("x.png"), 0, H, 1, 0, "image size 0x61");
+  expect_open_error(in_folder("x.png"), W, GLINT_MAX_DIMENSION + 1, 1, 0,
+                    "outside 1..16384");
+  expect_open_error(in_folder("x.png"), W, H, 0, 0, "gamma");
+  expect_open_error(in_folder("x.png"), W, H, NAN, 0, "gamma");
+  expect_open_error(in_folder("x.png"), W, H, 1, 7, "unknown PNG compression");
+  assert_int_equal(leftovers(), 0);
+}
+
+/* A renderer needs somewhere to put the frame: a film or a tile callback. */
+static void needs_a_film_or_tiles(void **state) {
+  (void)state;
+  glint_scene *scene;
+  glint_world *world;
+  glint_renderer *renderer;
+  ASSERT_OK(glint_scene_builtin("whitted", &scene, &e_));
+  ASSERT_OK(glint_world_commit(scene, &world, NULL, &e_));
+  glint_scene_destroy(scene);
+  ASSERT_OK(glint_renderer_create(world, NULL, &renderer, &e_));
+  glint_world_destroy(world);
+  glint_error e;
+  assert_int_equal(glint_renderer_render(renderer, NULL, NULL, NULL, &e),
+                   GLINT_E_ARGUMENT);
+  assert_non_null(strstr(e.message, "no film to render into"));
+  glint_renderer_destroy(renderer);
+}
+
+int main(void) {
+  const struct CMUnitTest tests[] = {
+      cmocka_unit_test(same_file_as_glint_render),
+      cmocka_unit_test(tiles_in_any_order),
+      cmocka_unit_test(incomplete_writes_nothing),
+      cmocka_unit_test(failed_writing_keeps_existing_file),
+      cmocka_unit_test(refuses_bad_tiles),
+      cmocka_unit_test(refuses_bad_opens),
+      cmocka_unit_test(needs_a_film_or_tiles),
+  };
+  return cmocka_run_group_tests(tests, make_folder, remove_folder);
+}
