@@ -56,7 +56,7 @@ build: deps
 	@mkdir -p $(BUILD)
 	@cmake -S . -B $(BUILD) -DCMAKE_BUILD_TYPE=Release $(QUIET_MAKE) \
 	  >$(BUILD)/configure.log 2>&1 || { cat $(BUILD)/configure.log; exit 1; }
-	@grep -e '^-- .*\(found\|OpenEXR\|Embree\)' $(BUILD)/configure.log || true
+	@grep -e '^-- .*\(found\|OpenEXR\|Embree\|SDL2\)' $(BUILD)/configure.log || true
 	@cmake --build $(BUILD) -j $(JOBS) -- --no-print-directory -s
 	@echo "glint: built $(BUILD)/glint"
 

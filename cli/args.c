@@ -168,3 +168,20 @@ int arg_render_setting(arg_cursor *c, glint_render_settings *rs) {
   }
   return r;
 }
+
+int arg_backend(arg_cursor *c, glint_render_settings *rs) {
+  char *v = NULL;
+  glint_error err;
+  int r = arg_text(c, "-b", "--backend", &v);
+  if (r != ARG_TAKEN)
+    return r;
+  if (glint_backend_parse(v, &rs->backend, &err)) {
+    cli_error("--backend: %s", err.message);
+    return ARG_BAD;
+  }
+  if (!glint_backend_supported(rs->backend)) {
+    cli_unsupported_backend(v);
+    return ARG_BAD;
+  }
+  return ARG_TAKEN;
+}

@@ -38,6 +38,10 @@ int parse_double(const char *option, const char *text, double min, double *out);
 enum { ARG_NOT_MINE = 0, ARG_TAKEN, ARG_BAD };
 int arg_render_setting(arg_cursor *c, glint_render_settings *rs);
 
+/* -b/--backend NAME, which must be one this CPU has; answers as
+ * arg_render_setting does. */
+int arg_backend(arg_cursor *c, glint_render_settings *rs);
+
 /* A command's own options, answering as arg_render_setting does (so that a
  * command's loop chains them with ||): a value kept as text, a whole number
  * in [min, max] (messages name the long option), a flag set to 1. */

@@ -14,6 +14,26 @@ typedef struct bench_column {
   char name[40];
 } bench_column;
 
+/* What glint bench was asked for (bench_parse; see cli.h). Lists are
+ * split and checked: backends this CPU has, depths and thread counts in
+ * range; one column per backend and thread count. */
+#define BENCH_MAX_ITEMS 64
+typedef struct bench_options {
+  char *scenes[BENCH_MAX_ITEMS];
+  int nscenes;
+  char default_scenes[32];
+  int depths[BENCH_MAX_ITEMS], ndepths, depths_given;
+  int threads[BENCH_MAX_ITEMS], nthreads;
+  glint_backend backends[GLINT_BACKEND_COUNT];
+  int nbackends, backends_given;
+  bench_column cols[GLINT_BACKEND_COUNT * BENCH_MAX_ITEMS];
+  int ncols;
+  char *csv_path, *plot_dir, *spd_dir, *mesh_dir;
+  int runs, frames, time_to_image, view_frames;
+  glint_render_settings settings;
+} bench_options;
+int bench_parse(int argc, char **argv, bench_options *options);
+
 double bench_median(const double *values, int count);
 uint64_t bench_rays(const glint_stats *stats);
 /* Active lanes over packet tests, as a fraction of the width (1 for the
@@ -43,6 +63,10 @@ int bench_frames(const char *scene, const glint_render_settings *base,
  * whole process, against its render time. */
 int bench_time_to_image(char **scenes, int nscenes,
                         const glint_render_settings *base, int runs);
+
+/* glint bench --view N: glint view --benchmark N on each scene. */
+int bench_view(char **scenes, int nscenes, const glint_render_settings *base,
+               int frames);
 
 /* glint bench --meshes DIR */
 int bench_meshes(const char *dir, const glint_render_settings *base,

@@ -16,7 +16,7 @@
 #include <sys/stat.h>
 #include <unistd.h>
 
-#define MAX_ITEMS 64
+#define MAX_ITEMS BENCH_MAX_ITEMS
 
 static void bench_usage(FILE *f) {
   fputs(
@@ -62,6 +62,8 @@ static void bench_usage(FILE *f) {
       "                     as a whole process (PNG and PPM), against its\n"
       "                     render time (first depth, thread count and\n"
       "                     backend, as for --frames)\n"
+      "      --view N       instead: glint view --benchmark N on each scene\n"
+      "                     (first depth, thread count and backend)\n"
       "      --meshes DIR   instead: primary-ray throughput on DIR/bunny.obj\n"
       "                     and DIR/dragon_vrip_res2.ply.gz (1024x1024, one\n"
       "                     thread), with Embree 3 on the same rays when\n"
@@ -204,16 +206,19 @@ static void print_header(const char *title, const char *scene,
   printf("\n");
 }
 
-int cmd_bench(int argc, char **argv) {
-  char default_scenes[] = "whitted,giza,billiard", default_depths[] = "1-15";
-  char default_threads[] = "1";
-  char *scene_list = default_scenes, *depth_list = default_depths;
-  char *backend_list = NULL, *thread_list = default_threads;
-  char *csv_path = NULL, *plot_dir = NULL, *spd_dir = NULL, *mesh_dir = NULL;
-  int runs = 3, frames = 0, time_to_image = 0;
-  glint_render_settings rs;
-  glint_render_settings_default(&rs);
-  rs.width = rs.height = 0; /* 0: not given */
+int bench_parse(int argc, char **argv, bench_options *o) {
+  char depth_list_default[] = "1-15", threads_default[] = "1";
+  char *depth_list = NULL, *backend_list = NULL, *thread_list = NULL;
+  memset(o, 0, sizeof *o);
+  /* The scene names point into the list, split in place: the default's
+   * copy lives in the options. */
+  snprintf(o->default_scenes, sizeof o->default_scenes, "%s",
+           "whitted,giza,billiard");
+  char *scene_list = o->default_scenes;
+  o->runs = 3;
+  glint_render_settings *rs = &o->settings;
+  glint_render_settings_default(rs);
+  rs->width = rs->height = 0; /* 0: not given */
   glint_error err;
   arg_cursor c = {argc, argv, 0, NULL};
   while (c.i < argc) {
@@ -223,18 +228,19 @@ int cmd_bench(int argc, char **argv) {
       return 0;
     }
     int r;
-    if ((r = arg_render_setting(&c, &rs)) ||
+    if ((r = arg_render_setting(&c, rs)) ||
         (r = arg_text(&c, NULL, "--scenes", &scene_list)) ||
         (r = arg_text(&c, NULL, "--depths", &depth_list)) ||
         (r = arg_text(&c, NULL, "--backends", &backend_list)) ||
-        (r = arg_int(&c, NULL, "--runs", 1, 255, &runs)) ||
+        (r = arg_int(&c, NULL, "--runs", 1, 255, &o->runs)) ||
         (r = arg_text(&c, "-t", "--threads", &thread_list)) ||
-        (r = arg_text(&c, NULL, "--csv", &csv_path)) ||
-        (r = arg_text(&c, NULL, "--plot", &plot_dir)) ||
-        (r = arg_text(&c, NULL, "--spd", &spd_dir)) ||
-        (r = arg_text(&c, NULL, "--meshes", &mesh_dir)) ||
-        (r = arg_int(&c, NULL, "--frames", 1, 100000, &frames)) ||
-        (r = arg_flag(&c, NULL, "--time-to-image", &time_to_image))) {
+        (r = arg_text(&c, NULL, "--csv", &o->csv_path)) ||
+        (r = arg_text(&c, NULL, "--plot", &o->plot_dir)) ||
+        (r = arg_text(&c, NULL, "--spd", &o->spd_dir)) ||
+        (r = arg_text(&c, NULL, "--meshes", &o->mesh_dir)) ||
+        (r = arg_int(&c, NULL, "--frames", 1, 100000, &o->frames)) ||
+        (r = arg_flag(&c, NULL, "--time-to-image", &o->time_to_image)) ||
+        (r = arg_int(&c, NULL, "--view", 1, 1000000, &o->view_frames))) {
       if (r == ARG_BAD)
         return EXIT_USAGE;
       continue;
@@ -243,20 +249,24 @@ int cmd_bench(int argc, char **argv) {
     return EXIT_USAGE;
   }
 
-  int depths[MAX_ITEMS], threads[MAX_ITEMS];
-  int ndepths =
-      parse_range_list("--depths", depth_list, 1, GLINT_MAX_DEPTH, depths);
-  if (ndepths < 0)
+  o->depths_given = depth_list != NULL;
+  o->ndepths =
+      parse_range_list("--depths", depth_list ? depth_list : depth_list_default,
+                       1, GLINT_MAX_DEPTH, o->depths);
+  if (o->ndepths < 0)
     return EXIT_USAGE;
-  int nthreads =
-      parse_range_list("--threads", thread_list, 0, GLINT_MAX_THREADS, threads);
-  if (nthreads < 0)
+  o->nthreads =
+      parse_range_list("--threads", thread_list ? thread_list : threads_default,
+                       0, GLINT_MAX_THREADS, o->threads);
+  if (o->nthreads < 0)
     return EXIT_USAGE;
-  if (plot_dir && check_plot_dir(plot_dir))
+  o->nscenes = split_list(scene_list, o->scenes, MAX_ITEMS);
+  if (o->nscenes <= 0) {
+    cli_error("--scenes: give at least one scene");
     return EXIT_USAGE;
+  }
 
-  glint_backend backends[GLINT_BACKEND_COUNT];
-  int nbackends = 0;
+  o->backends_given = backend_list != NULL;
   if (backend_list) {
     char *items[MAX_ITEMS];
     int n = split_list(backend_list, items, MAX_ITEMS);
@@ -270,10 +280,10 @@ int cmd_bench(int argc, char **argv) {
         cli_unsupported_backend(items[i]);
         return EXIT_USAGE;
       }
-      if (nbackends < GLINT_BACKEND_COUNT)
-        backends[nbackends++] = glint_backend_resolve(b);
+      if (o->nbackends < GLINT_BACKEND_COUNT)
+        o->backends[o->nbackends++] = glint_backend_resolve(b);
     }
-    if (nbackends <= 0) {
+    if (o->nbackends <= 0) {
       cli_error("--backends: the list is empty");
       return EXIT_USAGE;
     }
@@ -281,48 +291,53 @@ int cmd_bench(int argc, char **argv) {
     for (int b = 0; b < GLINT_BACKEND_COUNT; b++)
       if (b != GLINT_BACKEND_AUTO && b != GLINT_BACKEND_STREAM &&
           glint_backend_supported((glint_backend)b))
-        backends[nbackends++] = (glint_backend)b;
+        o->backends[o->nbackends++] = (glint_backend)b;
   }
 
   /* Columns: every backend at every thread count. */
-  bench_column cols[GLINT_BACKEND_COUNT * MAX_ITEMS];
-  int ncols = 0;
-  for (int t = 0; t < nthreads; t++)
-    for (int b = 0; b < nbackends && ncols < GLINT_BACKEND_COUNT * MAX_ITEMS;
+  for (int t = 0; t < o->nthreads; t++)
+    for (int b = 0;
+         b < o->nbackends && o->ncols < GLINT_BACKEND_COUNT * BENCH_MAX_ITEMS;
          b++) {
-      bench_column *col = &cols[ncols++];
-      col->backend = backends[b];
-      col->threads = threads[t];
-      if (nthreads > 1)
+      bench_column *col = &o->cols[o->ncols++];
+      col->backend = o->backends[b];
+      col->threads = o->threads[t];
+      if (o->nthreads > 1)
         snprintf(col->name, sizeof col->name, "%s/%dt",
-                 glint_backend_name(backends[b]), threads[t]);
+                 glint_backend_name(o->backends[b]), o->threads[t]);
       else
         snprintf(col->name, sizeof col->name, "%s",
-                 glint_backend_name(backends[b]));
+                 glint_backend_name(o->backends[b]));
     }
+  return -1;
+}
 
-  if (mesh_dir) {
-    return bench_meshes(mesh_dir, &rs, backends, nbackends, runs);
-  }
-  if (frames || time_to_image) {
+int cmd_bench(int argc, char **argv) {
+  bench_options o;
+  int status = bench_parse(argc, argv, &o);
+  if (status >= 0)
+    return status;
+  glint_render_settings rs = o.settings;
+  if (o.plot_dir && check_plot_dir(o.plot_dir))
+    return EXIT_USAGE;
+  if (o.mesh_dir)
+    return bench_meshes(o.mesh_dir, &rs, o.backends, o.nbackends, o.runs);
+  if (o.frames || o.time_to_image || o.view_frames) {
     /* One configuration: the first of each list; the render's own depth
      * when none is given. */
-    rs.max_depth = depth_list == default_depths ? 5 : depths[0];
-    rs.threads = threads[0];
-    rs.backend = backend_list ? backends[0] : GLINT_BACKEND_AUTO;
-    char *scene_names[MAX_ITEMS];
-    int nscenes = split_list(scene_list, scene_names, MAX_ITEMS);
-    if (nscenes <= 0) {
-      cli_error("--scenes: give at least one scene");
-      return EXIT_USAGE;
-    }
-    return frames ? bench_frames(scene_names[0], &rs, frames)
-                  : bench_time_to_image(scene_names, nscenes, &rs, runs);
+    if (o.depths_given)
+      rs.max_depth = o.depths[0];
+    rs.threads = o.threads[0];
+    rs.backend = o.backends_given ? o.backends[0] : GLINT_BACKEND_AUTO;
+    if (o.view_frames)
+      return bench_view(o.scenes, o.nscenes, &rs, o.view_frames);
+    return o.frames ? bench_frames(o.scenes[0], &rs, o.frames)
+                    : bench_time_to_image(o.scenes, o.nscenes, &rs, o.runs);
   }
 
   FILE *csv = NULL;
-  if (csv_path && !(csv = fopen(csv_path, "w"))) {
-    cli_error("%s: cannot write the CSV file", csv_path);
+  if (o.csv_path && !(csv = fopen(o.csv_path, "w"))) {
+    cli_error("%s: cannot write the CSV file", o.csv_path);
     return EXIT_USAGE;
   }
   if (csv)
@@ -331,22 +346,13 @@ int cmd_bench(int argc, char **argv) {
                  "mrays_per_s,lane_utilisation,sub_beams_per_beam,"
                  "generate_s,traverse_s,shade_s,compact_s,"
                  "generation_lane_use\n");
-  int status;
-  if (spd_dir) {
-    status = bench_spd(spd_dir, &rs, cols, ncols, runs, csv);
-  } else {
-    char *scene_names[MAX_ITEMS];
-    int nscenes = split_list(scene_list, scene_names, MAX_ITEMS);
-    if (nscenes <= 0) {
-      cli_error("--scenes: give at least one scene");
-      status = EXIT_USAGE;
-    } else {
-      status = bench_scenes(scene_names, nscenes, depths, ndepths, &rs, cols,
-                            ncols, runs, csv, plot_dir);
-    }
-  }
+  if (o.spd_dir)
+    status = bench_spd(o.spd_dir, &rs, o.cols, o.ncols, o.runs, csv);
+  else
+    status = bench_scenes(o.scenes, o.nscenes, o.depths, o.ndepths, &rs, o.cols,
+                          o.ncols, o.runs, csv, o.plot_dir);
   if (csv && fclose(csv) != 0 && !status) {
-    cli_error("%s: writing the CSV file failed", csv_path);
+    cli_error("%s: writing the CSV file failed", o.csv_path);
     status = EXIT_USAGE;
   }
   return status;

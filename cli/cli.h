@@ -1,9 +1,44 @@
 #ifndef GLINT_CLI_CLI_H
 #define GLINT_CLI_CLI_H
 
+#include <glint.h>
+
+/* Each command in two steps: parse its arguments (which reads no file and
+ * starts nothing; fuzz/fuzz_cli.c runs them alone), then run. A parser
+ * returns -1 to go on, or the exit status to end with (0 after --help; 2
+ * after printing what is wrong). */
 int cmd_render(int argc, char **argv);
 int cmd_bench(int argc, char **argv);
 int cmd_compare(int argc, char **argv);
+
+typedef struct render_options {
+  const char *scene; /* a built-in's name or a file */
+  char *output;      /* NULL: SCENE.png; "-": standard output */
+  int to_stdout, quiet, stats;
+  glint_png_compression png_compression;
+  glint_image_format stream_format; /* with -o - */
+  glint_render_settings settings;
+} render_options;
+int render_parse(int argc, char **argv, render_options *options);
+
+typedef struct view_options {
+  const char *scene;
+  glint_render_settings settings; /* width, height 0: the scene's */
+  int benchmark_frames;           /* 0: interactive */
+  double budget_ms;               /* a moving frame's time before the
+                                     resolution is lowered */
+} view_options;
+int cmd_view(int argc, char **argv);
+int view_parse(int argc, char **argv, view_options *options);
+/* The window (cli/view_window.c; without SDL2, cli/view_none.c says so). */
+int view_run(const view_options *options);
+
+typedef struct compare_options {
+  const char *files[2];
+  char *diff_path;
+  double min_psnr;
+} compare_options;
+int compare_parse(int argc, char **argv, compare_options *options);
 
 /* Loads a built-in scene by name, or a scene file when the argument names
  * one (it has a '.' or a '/'); prints one message and returns NULL on error.

@@ -52,10 +52,11 @@ static glint_status write_difference(const glint_image *a, const glint_image *b,
   return st;
 }
 
-int cmd_compare(int argc, char **argv) {
-  const char *files[2] = {NULL, NULL};
-  char *diff_path = NULL, *min_text = NULL;
+int compare_parse(int argc, char **argv, compare_options *o) {
+  char *min_text = NULL;
   int nfiles = 0;
+  memset(o, 0, sizeof *o);
+  o->min_psnr = -INFINITY;
   arg_cursor c = {argc, argv, 0, NULL};
   while (c.i < argc) {
     const char *a = argv[c.i];
@@ -64,7 +65,7 @@ int cmd_compare(int argc, char **argv) {
       return 0;
     }
     int r;
-    if ((r = arg_text(&c, NULL, "--diff", &diff_path)) ||
+    if ((r = arg_text(&c, NULL, "--diff", &o->diff_path)) ||
         (r = arg_text(&c, NULL, "--min-psnr", &min_text))) {
       if (r == ARG_BAD)
         return EXIT_USAGE;
@@ -78,21 +79,31 @@ int cmd_compare(int argc, char **argv) {
       cli_error("compare takes two images, not three ('%s')", a);
       return EXIT_USAGE;
     }
-    files[nfiles++] = a;
+    o->files[nfiles++] = a;
     c.i++;
   }
   if (nfiles != 2) {
     cli_error("compare needs two images (see glint compare --help)");
     return EXIT_USAGE;
   }
-  double min_psnr = -INFINITY;
-  if (min_text && parse_double("--min-psnr", min_text, -INFINITY, &min_psnr))
+  if (min_text && parse_double("--min-psnr", min_text, -INFINITY, &o->min_psnr))
     return EXIT_USAGE;
-  if (diff_path &&
-      (glint_image_format_from_path(diff_path) == GLINT_FORMAT_UNKNOWN)) {
-    cli_error("--diff %s: not a .png, .bmp or .ppm file name", diff_path);
+  if (o->diff_path &&
+      (glint_image_format_from_path(o->diff_path) == GLINT_FORMAT_UNKNOWN)) {
+    cli_error("--diff %s: not a .png, .bmp or .ppm file name", o->diff_path);
     return EXIT_USAGE;
   }
+  return -1;
+}
+
+int cmd_compare(int argc, char **argv) {
+  compare_options o;
+  int status = compare_parse(argc, argv, &o);
+  if (status >= 0)
+    return status;
+  const char *const *files = o.files;
+  const char *diff_path = o.diff_path;
+  double min_psnr = o.min_psnr;
   glint_image *a = NULL, *b = NULL;
   glint_error err;
   if (glint_image_read(files[0], &a, &err) ||
@@ -102,7 +113,7 @@ int cmd_compare(int argc, char **argv) {
     return EXIT_USAGE;
   }
   double psnr = glint_image_psnr(a, b);
-  int status = 0;
+  status = 0;
   if (psnr < 0) {
     cli_error("%s is %dx%d but %s is %dx%d", files[0], glint_image_width(a),
               glint_image_height(a), files[1], glint_image_width(b),

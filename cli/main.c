@@ -12,13 +12,15 @@ static void usage(FILE *f) {
         "\n"
         "Usage:\n"
         "  glint render [SCENE] [options]  render a built-in scene or a file\n"
+        "  glint view [SCENE] [options]    an interactive window onto a "
+        "scene\n"
         "  glint bench [options]           time scenes x depths x backends\n"
         "  glint compare A B               PSNR between two images\n"
         "  glint --help                    this help\n"
         "  glint --version                 the version\n"
         "\n"
         "Built-in scenes: whitted, giza, billiard, phong.\n"
-        "'glint render --help' and 'glint bench --help' list the options.\n"
+        "'glint COMMAND --help' lists a command's options.\n"
         "\n"
         "Environment:\n"
         "  GLINT_ISA=none|sse|avx2|avx512  use no instruction set beyond\n"
@@ -46,7 +48,8 @@ int main(int argc, char **argv) {
     return 0;
   }
   glint_error err;
-  if ((strcmp(cmd, "render") == 0 || strcmp(cmd, "bench") == 0) &&
+  if ((strcmp(cmd, "render") == 0 || strcmp(cmd, "bench") == 0 ||
+       strcmp(cmd, "view") == 0) &&
       glint_isa_cap_check(&err)) {
     cli_error("%s", err.message);
     return EXIT_USAGE;
@@ -55,6 +58,8 @@ int main(int argc, char **argv) {
     return cmd_render(argc - 2, argv + 2);
   if (strcmp(cmd, "bench") == 0)
     return cmd_bench(argc - 2, argv + 2);
+  if (strcmp(cmd, "view") == 0)
+    return cmd_view(argc - 2, argv + 2);
   if (strcmp(cmd, "compare") == 0)
     return cmd_compare(argc - 2, argv + 2);
   cli_error("unknown command '%s' (see glint --help)", cmd);

@@ -292,15 +292,13 @@ static glint_status render_film(const glint_scene *scene,
   return GLINT_OK;
 }
 
-int cmd_render(int argc, char **argv) {
-  const char *scene_arg = NULL, *v;
-  char *output = NULL;
-  int quiet = 0, want_stats = 0;
-  glint_png_compression png_compression = GLINT_PNG_FAST;
-  glint_image_format stream_format = GLINT_FORMAT_UNKNOWN; /* --format */
-  glint_render_settings rs;
-  glint_render_settings_default(&rs);
-  glint_error err;
+int render_parse(int argc, char **argv, render_options *o) {
+  const char *v;
+  memset(o, 0, sizeof *o);
+  o->png_compression = GLINT_PNG_FAST;
+  o->stream_format = GLINT_FORMAT_UNKNOWN; /* --format */
+  glint_render_settings_default(&o->settings);
+  glint_render_settings *rs = &o->settings;
   arg_cursor c = {argc, argv, 0, NULL};
   while (c.i < argc) {
     const char *a = argv[c.i];
@@ -309,47 +307,37 @@ int cmd_render(int argc, char **argv) {
       return 0;
     }
     int r;
-    if ((r = arg_render_setting(&c, &rs)) ||
-        (r = arg_text(&c, "-o", "--output", &output)) ||
-        (r = arg_int(&c, "-d", "--depth", 1, GLINT_MAX_DEPTH, &rs.max_depth)) ||
+    if ((r = arg_render_setting(&c, rs)) || (r = arg_backend(&c, rs)) ||
+        (r = arg_text(&c, "-o", "--output", &o->output)) ||
+        (r = arg_int(&c, "-d", "--depth", 1, GLINT_MAX_DEPTH,
+                     &rs->max_depth)) ||
         (r = arg_int(&c, "-t", "--threads", 0, GLINT_MAX_THREADS,
-                     &rs.threads)) ||
-        (r = arg_flag(&c, "-q", "--quiet", &quiet)) ||
-        (r = arg_flag(&c, NULL, "--stats", &want_stats))) {
+                     &rs->threads)) ||
+        (r = arg_flag(&c, "-q", "--quiet", &o->quiet)) ||
+        (r = arg_flag(&c, NULL, "--stats", &o->stats))) {
       if (r == ARG_BAD)
         return EXIT_USAGE;
       continue;
     }
     if (strcmp(a, "--") == 0) { /* the rest are operands: a scene named -x */
       c.i++;
-      if (c.i < argc && !scene_arg)
-        scene_arg = argv[c.i++];
+      if (c.i < argc && !o->scene)
+        o->scene = argv[c.i++];
       if (c.i < argc) {
-        cli_error("more than one scene given ('%s' and '%s')", scene_arg,
+        cli_error("more than one scene given ('%s' and '%s')", o->scene,
                   argv[c.i]);
         return EXIT_USAGE;
       }
       continue;
     }
-    if (arg_is(&c, "-b", "--backend")) {
-      if (!(v = arg_value(&c, "--backend")))
-        return EXIT_USAGE;
-      if (glint_backend_parse(v, &rs.backend, &err)) {
-        cli_error("--backend: %s", err.message);
-        return EXIT_USAGE;
-      }
-      if (!glint_backend_supported(rs.backend)) {
-        cli_unsupported_backend(v);
-        return EXIT_USAGE;
-      }
-    } else if (arg_is(&c, NULL, "--region")) {
+    if (arg_is(&c, NULL, "--region")) {
       if (!(v = arg_value(&c, "--region")))
         return EXIT_USAGE;
       char extra;
-      if (sscanf(v, "%d,%d,%d,%d%c", &rs.region_x, &rs.region_y,
-                 &rs.region_width, &rs.region_height, &extra) != 4 ||
-          rs.region_width < 1 || rs.region_height < 1 || rs.region_x < 0 ||
-          rs.region_y < 0) {
+      if (sscanf(v, "%d,%d,%d,%d%c", &rs->region_x, &rs->region_y,
+                 &rs->region_width, &rs->region_height, &extra) != 4 ||
+          rs->region_width < 1 || rs->region_height < 1 || rs->region_x < 0 ||
+          rs->region_y < 0) {
         cli_error("--region: '%s' is not X,Y,WIDTH,HEIGHT in pixels", v);
         return EXIT_USAGE;
       }
@@ -357,9 +345,9 @@ int cmd_render(int argc, char **argv) {
       if (!(v = arg_value(&c, "--png-compression")))
         return EXIT_USAGE;
       if (strcmp(v, "fast") == 0)
-        png_compression = GLINT_PNG_FAST;
+        o->png_compression = GLINT_PNG_FAST;
       else if (strcmp(v, "smallest") == 0)
-        png_compression = GLINT_PNG_SMALLEST;
+        o->png_compression = GLINT_PNG_SMALLEST;
       else {
         cli_error("--png-compression: '%s' is not fast or smallest", v);
         return EXIT_USAGE;
@@ -369,38 +357,53 @@ int cmd_render(int argc, char **argv) {
         return EXIT_USAGE;
       char name[8];
       snprintf(name, sizeof name, "x.%s", v);
-      stream_format = strlen(v) < 4 ? glint_image_format_from_path(name)
-                                    : GLINT_FORMAT_UNKNOWN;
-      if (stream_format == GLINT_FORMAT_UNKNOWN) {
+      o->stream_format = strlen(v) < 4 ? glint_image_format_from_path(name)
+                                       : GLINT_FORMAT_UNKNOWN;
+      if (o->stream_format == GLINT_FORMAT_UNKNOWN) {
         cli_error("--format: '%s' is not png, bmp or ppm", v);
         return EXIT_USAGE;
       }
     } else if (arg_is(&c, NULL, "--gamma")) {
-      if (parse_double("--gamma", arg_value(&c, "--gamma"), 0, &rs.gamma))
+      if (parse_double("--gamma", arg_value(&c, "--gamma"), 0, &rs->gamma))
         return EXIT_USAGE;
     } else if (a[0] == '-' && a[1] != '\0') {
       cli_error("unknown option '%s' (see glint render --help)", a);
       return EXIT_USAGE;
-    } else if (!scene_arg) {
-      scene_arg = a;
+    } else if (!o->scene) {
+      o->scene = a;
       c.i++;
     } else {
-      cli_error("more than one scene given ('%s' and '%s')", scene_arg, a);
+      cli_error("more than one scene given ('%s' and '%s')", o->scene, a);
       return EXIT_USAGE;
     }
   }
-  if (!scene_arg)
-    scene_arg = "whitted";
+  if (!o->scene)
+    o->scene = "whitted";
   /* -o -: the image onto standard output, in --format (PNG by default);
    * the summary then goes to stderr. */
-  int to_stdout = output && strcmp(output, "-") == 0;
-  if (stream_format != GLINT_FORMAT_UNKNOWN && !to_stdout) {
+  o->to_stdout = o->output && strcmp(o->output, "-") == 0;
+  if (o->stream_format != GLINT_FORMAT_UNKNOWN && !o->to_stdout) {
     cli_error("--format applies to -o - (standard output); a file's format "
               "is its extension");
     return EXIT_USAGE;
   }
-  if (to_stdout && stream_format == GLINT_FORMAT_UNKNOWN)
-    stream_format = GLINT_FORMAT_PNG;
+  if (o->to_stdout && o->stream_format == GLINT_FORMAT_UNKNOWN)
+    o->stream_format = GLINT_FORMAT_PNG;
+  return -1;
+}
+
+int cmd_render(int argc, char **argv) {
+  render_options o;
+  int status = render_parse(argc, argv, &o);
+  if (status >= 0)
+    return status;
+  glint_render_settings rs = o.settings;
+  const char *scene_arg = o.scene;
+  char *output = o.output;
+  int quiet = o.quiet, want_stats = o.stats, to_stdout = o.to_stdout;
+  glint_png_compression png_compression = o.png_compression;
+  glint_image_format stream_format = o.stream_format;
+  glint_error err;
   if (to_stdout && isatty(STDOUT_FILENO)) {
     cli_error("-o -: standard output is a terminal; redirect it to a file or "
               "a program");

@@ -488,6 +488,11 @@ typedef struct glint_frame_settings {
   int region_x, region_y, region_width, region_height;
   int max_depth;              /* 0: the renderer's */
   int spp;                    /* 0: the renderer's */
+  /* Progressive rendering: only samples [sample_first, sample_first +
+   * sample_count) of the spp-sample pattern (docs/specification.md §5),
+   * averaged into the film; sample_count = 0: the rest (all from 0). The
+   * passes over all spp samples average to the spp-sample image. */
+  int sample_first, sample_count;
   glint_progress_fn progress; /* NULL: the renderer's */
   void *progress_user;
   glint_tile_fn tile; /* NULL: none */

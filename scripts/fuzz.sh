@@ -5,10 +5,10 @@
 #   scripts/fuzz.sh [SECONDS] [TARGET...]
 #
 # runs each TARGET for SECONDS (default 30) with FUZZ_JOBS parallel jobs
-# (default 1). Targets: nff json obj ply ply_gz png bmp ppm (default: all);
-# fuzz/fuzz_load.c and fuzz/fuzz_image.c say what each does. A crash, leak,
-# sanitizer report or slow input (over 1 s) stops its target, keeps the input
-# in build-sanitize/findings/TARGET/ and fails the run; reproduce it with
+# (default 1). Targets: nff json obj ply ply_gz png bmp ppm cli (default:
+# all); fuzz/fuzz_load.c, fuzz/fuzz_image.c and fuzz/fuzz_cli.c say what each
+# does. A crash, leak, sanitizer report or slow input (over 1 s) stops its
+# target, keeps the input in build-sanitize/findings/TARGET/ and fails the run; reproduce it with
 # build-sanitize/fuzz_TARGET FILE. Corpora grow in build-sanitize/corpus/TARGET,
 # seeded from fuzz/corpus/ (and scenes/ for JSON).
 set -euo pipefail
@@ -16,7 +16,7 @@ cd "$(dirname "$0")/.."
 seconds=${1:-30}
 [ $# -gt 0 ] && shift
 targets=("$@")
-[ ${#targets[@]} -gt 0 ] || targets=(nff json obj ply ply_gz png bmp ppm)
+[ ${#targets[@]} -gt 0 ] || targets=(nff json obj ply ply_gz png bmp ppm cli)
 jobs=${FUZZ_JOBS:-1}
 build=${FUZZ_BUILD:-build-sanitize} # make test-asan's build, shared
 
@@ -39,7 +39,12 @@ for t in "${targets[@]}"; do
   cp -n fuzz/corpus/"$t"/* "$corpus"/ 2>/dev/null || true
   [ "$t" = json ] && cp -n scenes/*.json "$corpus"/
   log=$build/fuzz_$t.log
+  # The parsers print their messages and --help: keep them out of the log
+  # (sanitizer reports still reach it).
+  quiet=0
+  [ "$t" = cli ] && quiet=3
   if "$build/fuzz_$t" -max_total_time="$seconds" -timeout=1 \
+      -close_fd_mask=$quiet \
       -rss_limit_mb=2048 -max_len=65536 -jobs="$jobs" -workers="$jobs" \
       -print_final_stats=1 -artifact_prefix="$findings/" "$corpus" \
       >"$log" 2>&1; then

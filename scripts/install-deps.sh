@@ -18,6 +18,9 @@ packages=(
   gnuplot-nox       # glint bench --plot
   clang             # the fuzz targets (libFuzzer)
   libclang-rt-14-dev # libFuzzer and clang's sanitizer runtimes
+  libsdl2-dev       # glint view's window
+  xvfb              # a display for the window test
+  xdotool           # keys and mouse for the window test
 )
 if [ "${1:-}" = "--peers" ]; then
   packages+=(

@@ -1,12 +1,12 @@
 #!/bin/sh
-# Every option that `glint --help`, `glint render --help`, `glint bench
-# --help` and `glint compare --help` list appears in glint(1), and every
+# Every option that `glint --help` and each command's --help (render, view,
+# bench, compare) list appears in glint(1), and every
 # built-in scene and backend too: the manual page keeps up with the program.
 set -eu
 glint=$1 man1=$2 man5=$3
 page=$(sed 's/\\-/-/g; s/\\f[BIRP]//g' "$man1")
 missing=0
-for cmd in "" render bench compare; do
+for cmd in "" render view bench compare; do
   help=$("$glint" $cmd --help)
   for opt in $(printf '%s\n' "$help" | grep -o -- '--[a-z][a-z0-9-]*' | sort -u) \
              $(printf '%s\n' "$help" | grep -o -- '^ *-[A-Za-z],' | tr -d ' ,' | sort -u); do

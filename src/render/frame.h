@@ -38,7 +38,8 @@ typedef struct tile_rect {
 
 /* docs/specification.md §5: the sample positions of a pixel, as offsets from
  * its centre. One sample is the centre; five are the thesis's centre and (±1/4,
- * ±1/4); any other count is a deterministic Hammersley set. */
+ * ±1/4); fewer are a deterministic Hammersley set, and more are the
+ * thesis's five followed by a Hammersley set shifted half a pixel. */
 void gli_sample_offsets(int spp, float (*offsets)[2]);
 
 #endif

@@ -385,6 +385,13 @@ glint_status gli_renderer_render(glint_renderer *r,
       frame_check(width, height, depth, spp, rx, ry, rw, rh, error);
   if (st)
     return st;
+  int first = frame->sample_first, count = frame->sample_count;
+  if (first < 0 || count < 0 || first >= spp || count > spp - first)
+    return gli_fail(error, GLINT_E_ARGUMENT,
+                    "samples %d..%d are not among the %d of the pattern",
+                    first, first + count - 1, spp);
+  if (count == 0)
+    count = spp - first;
   if (!rw)
     rx = 0, ry = 0, rw = width, rh = height;
   const glint_camera *camera = frame->camera ? frame->camera : &scene->camera;
@@ -403,11 +410,11 @@ glint_status gli_renderer_render(glint_renderer *r,
 
   frame_job *job = &r->job;
   gli_camera_basis_init(&job->params.camera, camera, width, height);
-  job->params.spp = spp;
+  job->params.spp = count;
   job->params.max_depth = depth;
   job->params.math = s->math;
   job->params.rcp_newton = s->rcp_newton;
-  job->params.samples = (const float(*)[2])r->samples;
+  job->params.samples = (const float(*)[2])r->samples + first;
   job->x0 = rx;
   job->y0 = ry;
   job->x1 = rx + rw;

@@ -1,0 +1,50 @@
+/* glint bench --view N: glint view's benchmark (its documented orbit, N
+ * frames) on each scene, each in a process of its own as a user runs it,
+ * without a display when there is none. */
+#include "args.h"
+#include "bench.h"
+#include "cli.h"
+
+#include <glint.h>
+
+#include <stdio.h>
+#include <string.h>
+
+int bench_view(char **scenes, int nscenes, const glint_render_settings *base,
+               int frames) {
+  char nframes[16], depth[16], threads[16], width[16], height[16];
+  snprintf(nframes, sizeof nframes, "%d", frames);
+  snprintf(depth, sizeof depth, "%d", base->max_depth);
+  snprintf(threads, sizeof threads, "%d", base->threads);
+  snprintf(width, sizeof width, "%d", base->width);
+  snprintf(height, sizeof height, "%d", base->height);
+  static char output[1 << 14];
+  int status = 0;
+  for (int s = 0; s < nscenes; s++) {
+    char *argv[] = {"/proc/self/exe",
+                    "view",
+                    scenes[s],
+                    "--benchmark",
+                    nframes,
+                    "-b",
+                    (char *)glint_backend_name(base->backend),
+                    "-d",
+                    depth,
+                    "-t",
+                    threads,
+                    base->width ? "-W" : NULL,
+                    width,
+                    "-H",
+                    height,
+                    NULL};
+    int rc = bench_run_capture(argv, output, sizeof output);
+    if (rc != 0) {
+      cli_error("'glint view %s --benchmark %d' failed:\n%s", scenes[s], frames,
+                output);
+      status = rc == EXIT_USAGE ? EXIT_USAGE : 1;
+      continue;
+    }
+    fputs(output, stdout);
+  }
+  return status;
+}

@@ -1,0 +1,106 @@
+/* The viewer's camera moves: rotations about the scene's up axis and the
+ * camera's right axis (Rodrigues' rotation formula), pans and dollies along
+ * the camera's own frame. */
+#include "view_camera.h"
+
+#include <math.h>
+#include <stdio.h>
+
+static const double degrees = 3.14159265358979323846 / 180.0;
+
+static glint_vec3 add(glint_vec3 a, glint_vec3 b) {
+  return (glint_vec3){a.x + b.x, a.y + b.y, a.z + b.z};
+}
+static glint_vec3 sub(glint_vec3 a, glint_vec3 b) {
+  return (glint_vec3){a.x - b.x, a.y - b.y, a.z - b.z};
+}
+static glint_vec3 scale(glint_vec3 a, double s) {
+  return (glint_vec3){a.x * s, a.y * s, a.z * s};
+}
+static double dot(glint_vec3 a, glint_vec3 b) {
+  return a.x * b.x + a.y * b.y + a.z * b.z;
+}
+static glint_vec3 cross(glint_vec3 a, glint_vec3 b) {
+  return (glint_vec3){a.y * b.z - a.z * b.y, a.z * b.x - a.x * b.z,
+                      a.x * b.y - a.y * b.x};
+}
+static double length(glint_vec3 a) { return sqrt(dot(a, a)); }
+static glint_vec3 normalise(glint_vec3 a) {
+  double l = length(a);
+  return l > 0 ? scale(a, 1 / l) : a;
+}
+
+/* v rotated by `angle` radians about the unit axis k (Rodrigues):
+ * v cos + (k x v) sin + k (k . v)(1 - cos). */
+static glint_vec3 rotate(glint_vec3 v, glint_vec3 k, double angle) {
+  double c = cos(angle), s = sin(angle);
+  return add(add(scale(v, c), scale(cross(k, v), s)),
+             scale(k, dot(k, v) * (1 - c)));
+}
+
+/* The camera's unit up (the scene's) and right axes for a view direction. */
+static glint_vec3 right_axis(const glint_camera *c, glint_vec3 view) {
+  return normalise(cross(view, normalise(c->up)));
+}
+
+/* Rotates `v` (a view direction) by yaw about up and pitch about right,
+ * keeping it at least 1 degree away from up and down. */
+static glint_vec3 swing(const glint_camera *c, glint_vec3 v, double yaw,
+                        double pitch) {
+  glint_vec3 up = normalise(c->up);
+  v = rotate(v, up, yaw * degrees);
+  double len = length(v);
+  double elevation = asin(fmax(-1.0, fmin(1.0, dot(v, up) / len)));
+  double limit = (90.0 - 1.0) * degrees;
+  double target = fmax(-limit, fmin(limit, elevation + pitch * degrees));
+  return rotate(v, right_axis(c, v), target - elevation);
+}
+
+void view_orbit(glint_camera *c, double yaw, double pitch) {
+  /* The eye moves on the sphere around at: swing the vector at -> from the
+   * other way, so that dragging right turns the scene right. */
+  glint_vec3 back = sub(c->from, c->at);
+  c->from = add(c->at, swing(c, back, -yaw, -pitch));
+}
+
+void view_turn(glint_camera *c, double yaw, double pitch) {
+  glint_vec3 view = sub(c->at, c->from);
+  c->at = add(c->from, swing(c, view, yaw, pitch));
+}
+
+void view_pan(glint_camera *c, double dx, double dy, double aspect) {
+  glint_vec3 view = sub(c->at, c->from);
+  double distance = length(view);
+  double half_width = distance * tan(0.5 * c->fov_x_degrees * degrees);
+  glint_vec3 right = right_axis(c, view);
+  glint_vec3 up = normalise(cross(right, view));
+  glint_vec3 move = add(scale(right, -dx * 2 * half_width),
+                        scale(up, -dy * 2 * half_width / aspect));
+  c->from = add(c->from, move);
+  c->at = add(c->at, move);
+}
+
+void view_dolly(glint_camera *c, double factor) {
+  glint_vec3 back = sub(c->from, c->at);
+  double distance = length(back) * factor;
+  if (distance < 1e-3)
+    distance = 1e-3;
+  c->from = add(c->at, scale(normalise(back), distance));
+}
+
+void view_fly(glint_camera *c, double forward, double right, double up) {
+  glint_vec3 view = normalise(sub(c->at, c->from));
+  glint_vec3 move =
+      add(add(scale(view, forward), scale(right_axis(c, view), right)),
+          scale(normalise(c->up), up));
+  c->from = add(c->from, move);
+  c->at = add(c->at, move);
+}
+
+void view_camera_json(const glint_camera *c, char *buf, unsigned long size) {
+  snprintf(buf, size,
+           "\"camera\": {\"from\": [%.6g, %.6g, %.6g], \"at\": [%.6g, %.6g, "
+           "%.6g], \"up\": [%.6g, %.6g, %.6g], \"fov\": %.6g}",
+           c->from.x, c->from.y, c->from.z, c->at.x, c->at.y, c->at.z, c->up.x,
+           c->up.y, c->up.z, c->fov_x_degrees);
+}

@@ -1,0 +1,616 @@
+/* glint view's window (SDL2): events, camera moves, progressive frames, the
+ * on-screen display, reloading, screenshots and the benchmark. See
+ * cli/view_cmd.c for what it does and cli/view_camera.c for the moves. */
+#include "args.h"
+#include "cli.h"
+#include "view_camera.h"
+#include "view_font.h"
+
+#include <glint.h>
+
+#include <SDL.h>
+#include <errno.h>
+#include <math.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+#include <sys/stat.h>
+
+enum { MAX_BACKENDS = GLINT_BACKEND_COUNT };
+static const double min_scale = 0.125;
+
+typedef struct frame_record {
+  double ms;
+  uint64_t rays;
+} frame_record;
+
+typedef struct viewer {
+  const view_options *opt;
+  /* The scene: the file's (reloaded when it changes) or a built-in's. */
+  glint_scene *scene;
+  char stem[256];
+  int is_file;
+  struct timespec mtime;
+  char error[sizeof((glint_error *)0)->message]; /* the last reload's message,
+                                                    shown until a good one */
+  glint_renderer *renderer;
+  glint_render_settings rs; /* backend, math, depth, spp as now chosen */
+  glint_camera camera, home;
+  double speed; /* fly speed multiplier */
+  /* The window and what is on it. */
+  SDL_Window *window;
+  SDL_Renderer *sdl;
+  SDL_Texture *texture;
+  int win_w, win_h;       /* the window's pixels: the frame size */
+  double user_scale;      /* [ and ] */
+  double auto_scale;      /* lowered while moving to keep the budget */
+  int rw, rh;             /* the size rendered at now */
+  glint_film *pass, *sum; /* this pass; the passes so far, summed */
+  glint_film *average;
+  glint_image *image; /* the average, 8-bit, at rw x rh */
+  uint8_t *screen;    /* the window's pixels with the display on top */
+  int samples;        /* passes summed into `sum` */
+  int moving;         /* the camera moved since the last frame */
+  int osd, help;
+  int redraw; /* the display changed: present without rendering */
+  double frame_ms, fps, mrays;
+  uint64_t rays; /* the last pass's */
+  double last_frame_end;
+} viewer;
+
+static int backend_cycle(glint_backend current, glint_backend *next) {
+  for (int step = 1; step <= GLINT_BACKEND_COUNT; step++) {
+    glint_backend b = (glint_backend)((current + step) % GLINT_BACKEND_COUNT);
+    if (b != GLINT_BACKEND_AUTO && b != GLINT_BACKEND_STREAM &&
+        glint_backend_supported(b)) {
+      *next = b;
+      return 1;
+    }
+  }
+  return 0;
+}
+
+static int file_mtime(const char *path, struct timespec *out) {
+  struct stat sb;
+  if (stat(path, &sb) != 0)
+    return -1;
+  *out = sb.st_mtim;
+  return 0;
+}
+
+/* A renderer for the current scene and settings (backend, maths, threads
+ * are fixed for a renderer's life). */
+static int make_renderer(viewer *v, glint_error *err) {
+  glint_world *world;
+  glint_renderer *renderer;
+  if (glint_world_commit(v->scene, &world, NULL, err))
+    return -1;
+  glint_status st = glint_renderer_create(world, &v->rs, &renderer, err);
+  glint_world_destroy(world);
+  if (st)
+    return -1;
+  glint_renderer_destroy(v->renderer);
+  v->renderer = renderer;
+  v->samples = 0;
+  return 0;
+}
+
+static void free_buffers(viewer *v) {
+  glint_film_destroy(v->pass);
+  glint_film_destroy(v->sum);
+  glint_film_destroy(v->average);
+  glint_image_destroy(v->image);
+  free(v->screen);
+  v->pass = v->sum = v->average = NULL;
+  v->image = NULL;
+  v->screen = NULL;
+  if (v->texture)
+    SDL_DestroyTexture(v->texture);
+  v->texture = NULL;
+}
+
+/* Buffers for rendering at rw x rh and showing at the window's size. */
+static int size_buffers(viewer *v, int rw, int rh) {
+  if (v->pass && rw == v->rw && rh == v->rh && v->texture)
+    return 0;
+  free_buffers(v);
+  glint_error err;
+  v->rw = rw;
+  v->rh = rh;
+  v->samples = 0;
+  if (glint_film_create(rw, rh, &v->pass, &err) ||
+      glint_film_create(rw, rh, &v->sum, &err) ||
+      glint_film_create(rw, rh, &v->average, &err) ||
+      glint_image_create(rw, rh, &v->image, &err) ||
+      !(v->screen = malloc((size_t)v->win_w * v->win_h * 3))) {
+    cli_error("view: out of memory for a %dx%d frame", rw, rh);
+    return -1;
+  }
+  v->texture =
+      SDL_CreateTexture(v->sdl, SDL_PIXELFORMAT_RGB24,
+                        SDL_TEXTUREACCESS_STREAMING, v->win_w, v->win_h);
+  if (!v->texture) {
+    cli_error("view: %s", SDL_GetError());
+    return -1;
+  }
+  return 0;
+}
+
+static double scale_now(const viewer *v) {
+  return v->moving ? fmin(v->auto_scale, v->user_scale) : v->user_scale;
+}
+
+/* One pass: sample 0 while moving (starting over), else the next sample of
+ * the pattern, summed in. Returns -1 on failure. */
+static int render_pass(viewer *v) {
+  double scale = scale_now(v);
+  int rw = (int)(v->win_w * scale + 0.5), rh = (int)(v->win_h * scale + 0.5);
+  rw = rw < 1 ? 1 : rw;
+  rh = rh < 1 ? 1 : rh;
+  if (size_buffers(v, rw, rh))
+    return -1;
+  if (v->moving)
+    v->samples = 0;
+  /* The field of view spans the width: rendering the window's aspect at a
+   * lower resolution keeps the picture. */
+  glint_frame_settings frame;
+  glint_frame_settings_default(&frame);
+  frame.camera = &v->camera;
+  frame.width = rw;
+  frame.height = rh;
+  frame.spp = v->rs.spp;
+  frame.max_depth = v->rs.max_depth;
+  frame.sample_first = v->samples;
+  frame.sample_count = 1;
+  glint_stats st;
+  glint_error err;
+  double t0 = cli_now();
+  if (glint_renderer_render(v->renderer, &frame, v->pass, &st, &err)) {
+    cli_error("view: %s", err.message);
+    return -1;
+  }
+  size_t n = (size_t)rw * rh * 3;
+  const float *p = glint_film_pixels(v->pass);
+  float *sum = glint_film_pixels(v->sum), *avg = glint_film_pixels(v->average);
+  if (v->samples == 0)
+    memcpy(sum, p, n * sizeof *sum);
+  else
+    for (size_t i = 0; i < n; i++)
+      sum[i] += p[i];
+  v->samples++;
+  float inv = 1.0f / (float)v->samples;
+  for (size_t i = 0; i < n; i++)
+    avg[i] = sum[i] * inv;
+  glint_film_to_image(v->average, v->rs.gamma, v->image, &err);
+  double ms = (cli_now() - t0) * 1e3;
+  v->frame_ms = ms;
+  v->rays = st.primary_rays + st.secondary_rays + st.shadow_rays;
+  v->mrays = (double)v->rays / (ms * 1e3);
+  /* Keep the budget while moving: lower the scale when a frame overran it,
+   * and give it back when there is room. */
+  if (v->moving && !v->opt->benchmark_frames) {
+    if (ms > v->opt->budget_ms)
+      v->auto_scale = fmax(min_scale, fmin(v->auto_scale, scale) * 0.75);
+    else if (ms < 0.5 * v->opt->budget_ms)
+      v->auto_scale = fmin(1.0, v->auto_scale / 0.8);
+  }
+  return 0;
+}
+
+static const char *const math_names[] = {"minimax", "fast", "taylor", "exact"};
+
+/* The rendered image scaled to the window, with the display on top. */
+static void present(viewer *v) {
+  const uint8_t *src = glint_image_pixels_const(v->image);
+  for (int y = 0; y < v->win_h; y++) {
+    int sy = (int)((long)y * v->rh / v->win_h);
+    for (int x = 0; x < v->win_w; x++) {
+      int sx = (int)((long)x * v->rw / v->win_w);
+      memcpy(v->screen + ((size_t)y * v->win_w + x) * 3,
+             src + ((size_t)sy * v->rw + sx) * 3, 3);
+    }
+  }
+  /* Twice the font's size where the help's widest line fits. */
+  int text_scale =
+      v->win_w >= view_text_width("1-9: DEPTH   B: BACKEND   M: MATHS   [ ]: "
+                                  "SCALE  ",
+                                  2)
+          ? 2
+          : 1;
+  int line = (VIEW_GLYPH_H + 3) * text_scale;
+  static const uint8_t white[3] = {255, 255, 255}, red[3] = {255, 90, 80};
+  if (v->osd) {
+    char lines[4][sizeof((glint_error *)0)->message + 8];
+    int nl = 0;
+    double scale = scale_now(v);
+    snprintf(lines[nl++], sizeof lines[0], "%s  %dX%d  SCALE %.2f%s", v->stem,
+             v->rw, v->rh, scale,
+             v->moving && scale < v->user_scale ? " (AUTO)" : "");
+    snprintf(lines[nl++], sizeof lines[0], "%.1f FPS  %.1f MS  %.1f MRAYS/S",
+             v->fps, v->frame_ms, v->mrays);
+    snprintf(lines[nl++], sizeof lines[0], "SPP %d/%d  DEPTH %d  %s  %s",
+             v->samples, v->rs.spp, v->rs.max_depth,
+             glint_backend_name(glint_backend_resolve(v->rs.backend)),
+             math_names[v->rs.math]);
+    if (v->error[0])
+      snprintf(lines[nl++], sizeof lines[0], "%s", v->error);
+    int width = 0;
+    for (int i = 0; i < nl; i++) {
+      int w = view_text_width(lines[i], text_scale);
+      width = w > width ? w : width;
+    }
+    view_shade_box(v->screen, v->win_w, v->win_h, 0, 0, width + 8 * text_scale,
+                   nl * line + 4 * text_scale);
+    for (int i = 0; i < nl; i++)
+      view_draw_text(v->screen, v->win_w, v->win_h, 4 * text_scale,
+                     4 * text_scale + i * line, lines[i], text_scale,
+                     v->error[0] && i == nl - 1 ? red : white);
+  }
+  if (v->help) {
+    static const char *const help[] = {
+        "LEFT DRAG: ORBIT   RIGHT DRAG, WHEEL: DOLLY",
+        "MIDDLE OR SHIFT+LEFT DRAG: PAN",
+        "WASD QE: FLY   ARROWS: TURN   PGUP/PGDN: SPEED",
+        "1-9: DEPTH   B: BACKEND   M: MATHS   [ ]: SCALE",
+        "R: RESET   F: FULLSCREEN   H: DISPLAY   F1: HELP",
+        "P: PRINT CAMERA   SPACE, F12: SCREENSHOT",
+        "ESC, CTRL+Q: QUIT"};
+    int n = (int)(sizeof help / sizeof help[0]);
+    int y0 = v->win_h - n * line - 4 * text_scale;
+    view_shade_box(v->screen, v->win_w, v->win_h, 0, y0, v->win_w, v->win_h);
+    for (int i = 0; i < n; i++)
+      view_draw_text(v->screen, v->win_w, v->win_h, 4 * text_scale,
+                     y0 + 2 * text_scale + i * line, help[i], text_scale,
+                     white);
+  }
+  SDL_UpdateTexture(v->texture, NULL, v->screen, v->win_w * 3);
+  SDL_RenderClear(v->sdl);
+  SDL_RenderCopy(v->sdl, v->texture, NULL, NULL);
+  SDL_RenderPresent(v->sdl);
+}
+
+/* Reloads the scene file if it changed; on a parse error keeps the scene on
+ * screen and says why (on the display and stderr). */
+static void reload_if_changed(viewer *v) {
+  struct timespec now;
+  if (!v->is_file || file_mtime(v->opt->scene, &now) != 0 ||
+      (now.tv_sec == v->mtime.tv_sec && now.tv_nsec == v->mtime.tv_nsec))
+    return;
+  v->mtime = now;
+  glint_scene *scene;
+  glint_error err;
+  if (glint_scene_load(v->opt->scene, &scene, &err)) {
+    snprintf(v->error, sizeof v->error, "%s", err.message);
+    fprintf(stderr, "glint: %s (still showing the last good scene)\n",
+            err.message);
+    v->redraw = 1;
+    return;
+  }
+  glint_scene *old = v->scene;
+  v->scene = scene;
+  if (make_renderer(v, &err)) {
+    v->scene = old;
+    glint_scene_destroy(scene);
+    snprintf(v->error, sizeof v->error, "%s", err.message);
+    fprintf(stderr, "glint: %s\n", err.message);
+    return;
+  }
+  glint_scene_destroy(old);
+  glint_scene_info info;
+  glint_scene_get_info(v->scene, &info);
+  v->home = info.camera;
+  v->error[0] = '\0';
+  v->samples = 0;
+  fprintf(stderr, "glint: reloaded %s\n", v->opt->scene);
+}
+
+/* SCENE-NNNN.png, the first that does not exist, rendered by glint_render
+ * at the window's size with the current camera and settings. */
+static void screenshot(viewer *v) {
+  char path[400];
+  struct stat sb;
+  for (int i = 1; i < 100000; i++) {
+    snprintf(path, sizeof path, "%s-%04d.png", v->stem, i);
+    if (stat(path, &sb) != 0 && errno == ENOENT)
+      break;
+  }
+  glint_error err;
+  glint_render_settings rs = v->rs;
+  rs.width = v->win_w;
+  rs.height = v->win_h;
+  glint_image *image = NULL;
+  glint_camera saved;
+  glint_scene_info info;
+  glint_scene_get_info(v->scene, &info);
+  saved = info.camera;
+  if (glint_scene_set_camera(v->scene, &v->camera, &err) ||
+      glint_render(v->scene, &rs, &image, NULL, &err) ||
+      glint_image_write(image, path, &err)) {
+    cli_error("screenshot: %s", err.message);
+  } else {
+    char json[256];
+    view_camera_json(&v->camera, json, sizeof json);
+    printf("wrote %s (%dx%d, %d spp, depth %d, %s), %s\n", path, rs.width,
+           rs.height, rs.spp, rs.max_depth,
+           glint_backend_name(glint_backend_resolve(rs.backend)), json);
+    fflush(stdout);
+  }
+  glint_image_destroy(image);
+  glint_scene_set_camera(v->scene, &saved, &err);
+}
+
+static int open_window(viewer *v, int w, int h) {
+  v->win_w = w;
+  v->win_h = h;
+  char title[300];
+  snprintf(title, sizeof title, "glint view: %s", v->stem);
+  v->window =
+      SDL_CreateWindow(title, SDL_WINDOWPOS_UNDEFINED, SDL_WINDOWPOS_UNDEFINED,
+                       w, h, SDL_WINDOW_RESIZABLE);
+  if (!v->window)
+    return -1;
+  v->sdl = SDL_CreateRenderer(v->window, -1, 0);
+  if (!v->sdl)
+    v->sdl = SDL_CreateRenderer(v->window, -1, SDL_RENDERER_SOFTWARE);
+  return v->sdl ? 0 : -1;
+}
+
+static int compare_ms(const void *a, const void *b) {
+  double x = ((const frame_record *)a)->ms, y = ((const frame_record *)b)->ms;
+  return (x > y) - (x < y);
+}
+
+/* --benchmark N: the documented orbit, one sample per pixel a frame. */
+static int run_benchmark(viewer *v) {
+  int n = v->opt->benchmark_frames;
+  frame_record *frames = calloc((size_t)n, sizeof *frames);
+  if (!frames)
+    return 1;
+  glint_camera start = v->camera;
+  double total_ms = 0;
+  uint64_t total_rays = 0;
+  double t_start = cli_now();
+  for (int i = 0; i < n; i++) {
+    SDL_Event ev;
+    while (SDL_PollEvent(&ev))
+      if (ev.type == SDL_QUIT) {
+        free(frames);
+        return 130;
+      }
+    v->camera = start;
+    view_orbit(&v->camera, 360.0 * i / n, 0);
+    v->moving = 1;
+    double t0 = cli_now();
+    if (render_pass(v)) {
+      free(frames);
+      return EXIT_USAGE;
+    }
+    present(v);
+    frames[i].ms = (cli_now() - t0) * 1e3;
+    frames[i].rays = v->rays;
+    total_ms += frames[i].ms;
+    total_rays += frames[i].rays;
+    v->fps = 1e3 / frames[i].ms;
+  }
+  double wall = cli_now() - t_start;
+  qsort(frames, (size_t)n, sizeof *frames, compare_ms);
+  double median = n % 2 ? frames[n / 2].ms
+                        : 0.5 * (frames[n / 2 - 1].ms + frames[n / 2].ms);
+  int i95 = (int)ceil(0.95 * n) - 1;
+  printf("%s: %d frames at %dx%d, 1 spp, depth %d, %s, %d threads\n", v->stem,
+         n, v->rw, v->rh, v->rs.max_depth,
+         glint_backend_name(glint_backend_resolve(v->rs.backend)),
+         v->rs.threads ? v->rs.threads : glint_cpu_count());
+  printf("frame ms: median %.2f, 95th percentile %.2f; %.1f fps; %.1f "
+         "Mrays/s\n",
+         median, frames[i95 < 0 ? 0 : i95].ms, n / wall,
+         (double)total_rays / (total_ms * 1e3));
+  free(frames);
+  return 0;
+}
+
+/* Keys held down move the camera every frame by their speed x the time. */
+static int fly_keys(viewer *v, double dt) {
+  const Uint8 *k = SDL_GetKeyboardState(NULL);
+  SDL_Keymod mod = SDL_GetModState();
+  double distance = 0;
+  glint_vec3 d = {v->camera.at.x - v->camera.from.x,
+                  v->camera.at.y - v->camera.from.y,
+                  v->camera.at.z - v->camera.from.z};
+  distance = sqrt(d.x * d.x + d.y * d.y + d.z * d.z);
+  double step = distance * 0.5 * v->speed * dt, turn = 60 * dt;
+  double fwd = (k[SDL_SCANCODE_W] - k[SDL_SCANCODE_S]) * step;
+  double right = (k[SDL_SCANCODE_D] - k[SDL_SCANCODE_A]) * step;
+  double up =
+      (k[SDL_SCANCODE_E] - (k[SDL_SCANCODE_Q] && !(mod & KMOD_CTRL) ? 1 : 0)) *
+      step;
+  double yaw = (k[SDL_SCANCODE_LEFT] - k[SDL_SCANCODE_RIGHT]) * turn;
+  double pitch = (k[SDL_SCANCODE_UP] - k[SDL_SCANCODE_DOWN]) * turn;
+  if (fwd == 0 && right == 0 && up == 0 && yaw == 0 && pitch == 0)
+    return 0;
+  view_fly(&v->camera, fwd, right, up);
+  view_turn(&v->camera, yaw, pitch);
+  return 1;
+}
+
+/* A key press; returns 0 to quit. */
+static int on_key(viewer *v, const SDL_KeyboardEvent *key) {
+  SDL_Keycode k = key->keysym.sym;
+  glint_error err;
+  if (k == SDLK_ESCAPE || (k == SDLK_q && (key->keysym.mod & KMOD_CTRL)))
+    return 0;
+  if (k >= SDLK_1 && k <= SDLK_9) {
+    v->rs.max_depth = (int)(k - SDLK_0);
+    v->samples = 0;
+  } else if (k == SDLK_b || k == SDLK_m) {
+    glint_render_settings before = v->rs;
+    if (k == SDLK_b)
+      backend_cycle(glint_backend_resolve(v->rs.backend), &v->rs.backend);
+    else
+      v->rs.math = (glint_math)((v->rs.math + 1) % 4);
+    if (make_renderer(v, &err)) {
+      cli_error("view: %s", err.message);
+      v->rs = before;
+    }
+  } else if (k == SDLK_LEFTBRACKET || k == SDLK_RIGHTBRACKET) {
+    double s = v->user_scale * (k == SDLK_LEFTBRACKET ? 0.5 : 2.0);
+    v->user_scale = fmax(min_scale, fmin(1.0, s));
+    v->auto_scale = v->user_scale;
+    v->samples = 0;
+  } else if (k == SDLK_h) {
+    v->osd = !v->osd;
+    v->redraw = 1;
+  } else if (k == SDLK_F1) {
+    v->help = !v->help;
+    v->redraw = 1;
+  } else if (k == SDLK_r) {
+    v->camera = v->home;
+    v->moving = 1;
+  } else if (k == SDLK_f) {
+    Uint32 flags = SDL_GetWindowFlags(v->window);
+    SDL_SetWindowFullscreen(v->window, flags & SDL_WINDOW_FULLSCREEN_DESKTOP
+                                           ? 0
+                                           : SDL_WINDOW_FULLSCREEN_DESKTOP);
+  } else if (k == SDLK_PAGEUP) {
+    v->speed *= 2;
+  } else if (k == SDLK_PAGEDOWN) {
+    v->speed /= 2;
+  } else if (k == SDLK_p) {
+    char json[256];
+    view_camera_json(&v->camera, json, sizeof json);
+    printf("%s\n", json);
+    fflush(stdout);
+  } else if (k == SDLK_SPACE || k == SDLK_F12) {
+    screenshot(v);
+  }
+  return 1;
+}
+
+static void on_mouse_motion(viewer *v, const SDL_MouseMotionEvent *m) {
+  if (!m->state)
+    return;
+  int shift = SDL_GetModState() & KMOD_SHIFT;
+  double aspect = (double)v->win_w / v->win_h;
+  if ((m->state & SDL_BUTTON_MMASK) || ((m->state & SDL_BUTTON_LMASK) && shift))
+    view_pan(&v->camera, (double)m->xrel / v->win_w,
+             -(double)m->yrel / v->win_h, aspect);
+  else if (m->state & SDL_BUTTON_LMASK)
+    view_orbit(&v->camera, 0.3 * m->xrel, 0.3 * m->yrel);
+  else if (m->state & SDL_BUTTON_RMASK)
+    view_dolly(&v->camera, exp(0.01 * m->yrel));
+  else
+    return;
+  v->moving = 1;
+}
+
+static void on_resize(viewer *v, int w, int h) {
+  if (w < 1 || h < 1 || (w == v->win_w && h == v->win_h))
+    return;
+  v->win_w = w > GLINT_MAX_DIMENSION ? GLINT_MAX_DIMENSION : w;
+  v->win_h = h > GLINT_MAX_DIMENSION ? GLINT_MAX_DIMENSION : h;
+  free_buffers(v);
+  v->samples = 0;
+}
+
+static int run_interactive(viewer *v) {
+  double last = cli_now(), last_poll = 0;
+  for (;;) {
+    int done = v->samples >= v->rs.spp && !v->moving;
+    SDL_Event ev;
+    /* Idle (refined, nothing held): sleep in the event queue, waking a few
+     * times a second to look at the scene file. */
+    int got = done ? SDL_WaitEventTimeout(&ev, 250) : SDL_PollEvent(&ev);
+    while (got) {
+      switch (ev.type) {
+      case SDL_QUIT: return 0;
+      case SDL_KEYDOWN:
+        if (!on_key(v, &ev.key))
+          return 0;
+        break;
+      case SDL_MOUSEMOTION: on_mouse_motion(v, &ev.motion); break;
+      case SDL_MOUSEWHEEL:
+        view_dolly(&v->camera, pow(0.9, ev.wheel.y));
+        v->moving = 1;
+        break;
+      case SDL_WINDOWEVENT:
+        if (ev.window.event == SDL_WINDOWEVENT_SIZE_CHANGED)
+          on_resize(v, ev.window.data1, ev.window.data2);
+        else if (ev.window.event == SDL_WINDOWEVENT_EXPOSED && v->image)
+          present(v);
+        break;
+      }
+      got = SDL_PollEvent(&ev);
+    }
+    double now = cli_now();
+    if (fly_keys(v, fmin(now - last, 0.1)))
+      v->moving = 1;
+    last = now;
+    if (now - last_poll > 0.25) {
+      reload_if_changed(v);
+      last_poll = now;
+    }
+    if (v->samples >= v->rs.spp && !v->moving && v->texture) {
+      if (v->redraw)
+        present(v);
+      v->redraw = 0;
+      continue;
+    }
+    int was_moving = v->moving;
+    if (render_pass(v))
+      return EXIT_USAGE;
+    double end = cli_now();
+    v->fps = end > v->last_frame_end ? 1.0 / (end - v->last_frame_end) : 0;
+    v->last_frame_end = end;
+    present(v);
+    /* A frame that moved shows sample 0; refinement starts once a frame
+     * passes with nothing moving. */
+    if (was_moving)
+      v->moving = 0;
+  }
+}
+
+int view_run(const view_options *o) {
+  viewer v;
+  memset(&v, 0, sizeof v);
+  v.opt = o;
+  v.rs = o->settings;
+  v.osd = 1;
+  v.speed = 1;
+  v.user_scale = v.auto_scale = 1;
+  v.scene = cli_load_scene(o->scene, v.stem, sizeof v.stem);
+  if (!v.scene)
+    return EXIT_USAGE;
+  v.is_file = strchr(o->scene, '.') || strchr(o->scene, '/');
+  if (v.is_file)
+    file_mtime(o->scene, &v.mtime);
+  glint_scene_info info;
+  glint_scene_get_info(v.scene, &info);
+  v.camera = v.home = info.camera;
+  int w = v.rs.width ? v.rs.width : info.width;
+  int h = v.rs.height ? v.rs.height : info.height;
+  glint_error err;
+  if (make_renderer(&v, &err)) {
+    cli_error("%s", err.message);
+    glint_scene_destroy(v.scene);
+    return EXIT_USAGE;
+  }
+  /* A benchmark needs no display: without one, SDL's dummy driver. */
+  if (o->benchmark_frames && !getenv("DISPLAY") && !getenv("WAYLAND_DISPLAY"))
+    SDL_SetHint(SDL_HINT_VIDEODRIVER, "dummy");
+  int status = 0;
+  if (SDL_Init(SDL_INIT_VIDEO) != 0 || open_window(&v, w, h) != 0) {
+    cli_error("view: cannot open a window: %s", SDL_GetError());
+    status = EXIT_USAGE;
+  } else {
+    status = o->benchmark_frames ? run_benchmark(&v) : run_interactive(&v);
+  }
+  free_buffers(&v);
+  if (v.sdl)
+    SDL_DestroyRenderer(v.sdl);
+  if (v.window)
+    SDL_DestroyWindow(v.window);
+  SDL_Quit();
+  glint_renderer_destroy(v.renderer);
+  glint_scene_destroy(v.scene);
+  return status;
+}

@@ -1,0 +1,187 @@
+/* glint view's pieces that need no window (cli/view_camera.c,
+ * cli/view_font.c, the option parser), against hand-computed values:
+ *  - orbiting keeps the point looked at and the distance, 360 degrees come
+ *    back, and pitching stops short of the up axis;
+ *  - turning keeps the eye; panning and flying move eye and target alike;
+ *    dollying scales the distance and never reaches the target;
+ *  - the printed camera pastes into a scene file as the same camera;
+ *  - every glyph fits its 5x7 cell, letters draw as capitals, unknown
+ *    characters as '?';
+ *  - the options: defaults, and each error named. */
+#include "test_util.h"
+
+#include "cli.h"
+#include "view_camera.h"
+#include "view_font.h"
+
+#include <math.h>
+#include <stdio.h>
+#include <string.h>
+
+static const glint_camera start = {{0, 2, 6}, {0, 1, 0}, {0, 1, 0}, 60};
+
+static double dist(glint_vec3 a, glint_vec3 b) {
+  return sqrt((a.x - b.x) * (a.x - b.x) + (a.y - b.y) * (a.y - b.y) +
+              (a.z - b.z) * (a.z - b.z));
+}
+
+static void assert_vec(glint_vec3 a, glint_vec3 b, double tol) {
+  if (dist(a, b) > tol)
+    fail_msg("(%g, %g, %g) != (%g, %g, %g)", a.x, a.y, a.z, b.x, b.y, b.z);
+}
+
+static void orbit_keeps_target_and_distance(void **state) {
+  (void)state;
+  glint_camera c = start;
+  double d0 = dist(c.from, c.at);
+  view_orbit(&c, 90, 0);
+  assert_vec(c.at, start.at, 0);
+  assert_true(fabs(dist(c.from, c.at) - d0) < 1e-12);
+  /* A quarter turn about +y: the eye, 6 in front (+z) of the target's
+   * axis, is now beside it on the x axis, at the same height. */
+  assert_true(fabs(fabs(c.from.x) - 6) < 1e-12);
+  assert_true(fabs(c.from.y - 2) < 1e-12);
+  assert_true(fabs(c.from.z) < 1e-12);
+  for (int i = 0; i < 3; i++)
+    view_orbit(&c, 90, 0);
+  assert_vec(c.from, start.from, 1e-12);
+  /* Pitching far over the top stops 1 degree short of up. */
+  view_orbit(&c, 0, -500);
+  double up_angle = acos((c.from.y - c.at.y) / dist(c.from, c.at));
+  assert_true(fabs(up_angle - 1.0 * 3.14159265358979323846 / 180) < 1e-9);
+  assert_true(fabs(dist(c.from, c.at) - d0) < 1e-12);
+}
+
+static void turn_pan_fly_and_dolly(void **state) {
+  (void)state;
+  glint_camera c = start;
+  double d0 = dist(c.from, c.at);
+  view_turn(&c, 30, 10);
+  assert_vec(c.from, start.from, 0);
+  assert_true(fabs(dist(c.from, c.at) - d0) < 1e-12);
+
+  c = start;
+  view_pan(&c, 0.5, 0, 4.0 / 3.0);
+  /* Half the visible width at the target's distance, to the left (the
+   * scene moves with the mouse): d tan(30 deg) . */
+  double shift = d0 * tan(30 * 3.14159265358979323846 / 180);
+  assert_vec(c.from, (glint_vec3){-shift, 2, 6}, 1e-12);
+  assert_vec(c.at, (glint_vec3){-shift, 1, 0}, 1e-12);
+
+  c = start;
+  view_fly(&c, 1, 0, 0);
+  glint_vec3 dir = {0, -1 / d0, -6 / d0};
+  assert_vec(c.from, (glint_vec3){0, 2 + dir.y, 6 + dir.z}, 1e-12);
+  assert_vec(c.at, (glint_vec3){0, 1 + dir.y, dir.z}, 1e-12);
+  c = start;
+  view_fly(&c, 0, 2, 3);
+  assert_vec(c.from, (glint_vec3){2, 5, 6}, 1e-12);
+
+  c = start;
+  view_dolly(&c, 0.5);
+  assert_true(fabs(dist(c.from, c.at) - d0 / 2) < 1e-12);
+  assert_vec(c.at, start.at, 0);
+  view_dolly(&c, 1e-9);
+  assert_true(dist(c.from, c.at) > 0);
+}
+
+static void camera_json_pastes_into_a_scene(void **state) {
+  (void)state;
+  glint_camera c = start;
+  view_orbit(&c, 37, 12);
+  c.fov_x_degrees = 47.5;
+  char json[256], scene_text[512];
+  view_camera_json(&c, json, sizeof json);
+  snprintf(scene_text, sizeof scene_text, "{%s, \"objects\": []}", json);
+  glint_scene *scene;
+  ASSERT_OK(glint_scene_load_memory(scene_text, strlen(scene_text),
+                                    "pasted.json", &scene, &e_));
+  glint_scene_info info;
+  glint_scene_get_info(scene, &info);
+  assert_vec(info.camera.from, c.from, 1e-5);
+  assert_vec(info.camera.at, c.at, 1e-5);
+  assert_true(info.camera.fov_x_degrees == 47.5);
+  glint_scene_destroy(scene);
+}
+
+/* Draws `text` at scale 1 into a buffer one cell wider and taller than the
+ * text needs; returns the count of inked pixels. */
+static int ink(const char *text, uint8_t *buf, int w, int h) {
+  memset(buf, 0, (size_t)w * h * 3);
+  static const uint8_t white[3] = {255, 255, 255};
+  view_draw_text(buf, w, h, 0, 0, text, 1, white);
+  int n = 0;
+  for (int i = 0; i < w * h; i++)
+    n += buf[3 * i] != 0;
+  return n;
+}
+
+static void glyphs_fit_their_cells(void **state) {
+  (void)state;
+  enum { W = 2 * (VIEW_GLYPH_W + 1), H = VIEW_GLYPH_H + 2 };
+  uint8_t buf[W * H * 3], question[W * H * 3];
+  ink("?", question, W, H);
+  for (int c = 32; c < 127; c++) {
+    char text[2] = {(char)c, 0};
+    int n = ink(text, buf, W, H);
+    /* Nothing outside the first 5x7 cell. */
+    for (int y = 0; y < H; y++)
+      for (int x = 0; x < W; x++)
+        if (buf[3 * (y * W + x)] && (x >= VIEW_GLYPH_W || y >= VIEW_GLYPH_H))
+          fail_msg("'%c' inks (%d, %d), outside its cell", c, x, y);
+    if (c == ' ')
+      assert_int_equal(n, 0);
+    else
+      assert_true(n > 0);
+  }
+  uint8_t upper[W * H * 3];
+  ink("G", upper, W, H);
+  ink("g", buf, W, H);
+  assert_memory_equal(buf, upper, sizeof buf);
+  ink("~", buf, W, H); /* no glyph */
+  assert_memory_equal(buf, question, sizeof buf);
+  assert_int_equal(view_text_width("AB", 2), 2 * (VIEW_GLYPH_W + 1) * 2);
+  /* '1': a top pixel, a flag of 2, four rows of 1, a foot of 3. */
+  assert_int_equal(ink("1", buf, W, H), 1 + 2 + 1 * 4 + 3);
+}
+
+static void options(void **state) {
+  (void)state;
+  view_options o;
+  char *none[] = {NULL};
+  assert_int_equal(view_parse(0, none, &o), -1);
+  assert_string_equal(o.scene, "whitted");
+  assert_int_equal(o.settings.spp, 5);
+  assert_int_equal(o.benchmark_frames, 0);
+  assert_true(o.budget_ms == 40);
+  char *args[] = {"giza.json", "-s", "9", "-d3", "--benchmark=12",
+                  "--budget", "16.5", "-W", "320", "--gamma", "2.2", NULL};
+  assert_int_equal(view_parse(11, args, &o), -1);
+  assert_string_equal(o.scene, "giza.json");
+  assert_int_equal(o.settings.spp, 9);
+  assert_int_equal(o.settings.max_depth, 3);
+  assert_int_equal(o.benchmark_frames, 12);
+  assert_true(o.budget_ms == 16.5);
+  assert_int_equal(o.settings.width, 320);
+  assert_true(o.settings.gamma == 2.2);
+  char *bad[][3] = {{"--benchmark", "0", NULL},
+                    {"--budget", "0.5", NULL},
+                    {"--frobnicate", NULL, NULL},
+                    {"-b", "quantum", NULL},
+                    {"a.nff", "b.nff", NULL}};
+  for (size_t i = 0; i < sizeof bad / sizeof bad[0]; i++) {
+    int n = bad[i][1] ? 2 : 1;
+    assert_int_equal(view_parse(n, bad[i], &o), 2);
+  }
+}
+
+int main(void) {
+  const struct CMUnitTest tests[] = {
+      cmocka_unit_test(orbit_keeps_target_and_distance),
+      cmocka_unit_test(turn_pan_fly_and_dolly),
+      cmocka_unit_test(camera_json_pastes_into_a_scene),
+      cmocka_unit_test(glyphs_fit_their_cells),
+      cmocka_unit_test(options),
+  };
+  return cmocka_run_group_tests(tests, NULL, NULL);
+}

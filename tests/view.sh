@@ -1,0 +1,165 @@
+#!/usr/bin/env bash
+# glint view in a real window: Xvfb for the display, xdotool for the keys
+# and the mouse. It checks that
+#  - P prints the camera as JSON, and a left drag orbits it;
+#  - Space writes SCENE-0001.png, byte for byte what glint render writes for
+#    the printed camera pasted into the scene, and never overwrites a file;
+#  - an idle window (refined to its spp) uses no CPU;
+#  - a scene file that stops parsing leaves the window running and names
+#    FILE:LINE on stderr; fixed, it is reloaded;
+#  - depth, backend, maths, scale, display and help keys and a resize keep it
+#    running, and a screenshot after the resize has the window's new size;
+#  - Esc quits with status 0.
+# SKIPPED (exit 77) without Xvfb or xdotool.
+#   tests/view.sh GLINT
+set -u
+glint=$1
+for tool in Xvfb xdotool; do
+  if ! command -v $tool >/dev/null 2>&1; then
+    echo "view: SKIPPED ($tool is missing; scripts/install-deps.sh installs it)"
+    exit 77
+  fi
+done
+work=$(mktemp -d)
+xvfb=
+viewer=
+cleanup() {
+  [ -n "$viewer" ] && kill "$viewer" 2>/dev/null
+  [ -n "$xvfb" ] && kill "$xvfb" 2>/dev/null
+  rm -rf "$work"
+}
+trap cleanup EXIT
+fail() {
+  echo "view: FAILED: $*"
+  echo "--- stdout"; cat "$work/out.txt" 2>/dev/null
+  echo "--- stderr"; cat "$work/err.txt" 2>/dev/null
+  exit 1
+}
+# Waits up to $1 seconds for the command after it to succeed.
+wait_for() {
+  local limit=$1
+  shift
+  for _ in $(seq $((limit * 20))); do
+    "$@" && return 0
+    sleep 0.05
+  done
+  return 1
+}
+
+# A display of our own: the first free number from 90.
+display=90
+while [ -e /tmp/.X$display-lock ] || [ -e /tmp/.X11-unix/X$display ]; do
+  display=$((display + 1))
+done
+Xvfb :$display -screen 0 640x480x24 -nolisten tcp >/dev/null 2>&1 &
+xvfb=$!
+export DISPLAY=:$display
+wait_for 10 xdotool getdisplaygeometry >/dev/null 2>&1 || fail "Xvfb did not start"
+
+cd "$work"
+scene() { # $1: the camera line; $2: the sphere's radius
+  cat <<EOF
+{
+  $1,
+  "image": {"width": 160, "height": 120},
+  "background": [0.2, 0.3, 0.6],
+  "lights": [{"position": [-4, 8, 6], "color": [1, 1, 1]}],
+  "materials": {"red": {"color": [0.9, 0.2, 0.2], "kd": 0.8, "ks": 0.3, "h": 20},
+                "glass": {"color": [1, 1, 1], "kd": 0.1, "kt": 0.8, "ior": 1.5}},
+  "objects": [
+    {"type": "sphere", "center": [0, 1, 0], "radius": $2, "material": "glass"},
+    {"type": "sphere", "center": [1.5, 0.5, -1], "radius": 0.5, "material": "red"},
+    {"type": "plane", "point": [0, 0, 0], "normal": [0, 1, 0], "material": "red"}
+  ]
+}
+EOF
+}
+home='"camera": {"from": [0, 2, 6], "at": [0, 1, 0], "up": [0, 1, 0], "fov": 60}'
+scene "$home" 1 > scene.json
+"$glint" view scene.json -s 2 -t 1 >out.txt 2>err.txt &
+viewer=$!
+window=
+for _ in $(seq 200); do
+  window=$(xdotool search --name "glint view: scene" 2>/dev/null | head -1)
+  [ -n "$window" ] && break
+  sleep 0.05
+done
+[ -n "$window" ] || fail "no window"
+xdotool windowfocus --sync "$window" 2>/dev/null || true
+lines() { grep -c "$1" out.txt 2>/dev/null; }
+has_lines() { [ "$(lines "$1")" -ge "$2" ]; }
+
+# P: the camera as JSON, the scene's own to begin with.
+xdotool key p
+wait_for 5 has_lines '"camera"' 1 || fail "P printed nothing"
+[ "$(head -1 out.txt)" = "$home" ] || fail "P printed '$(head -1 out.txt)'"
+
+# A left drag orbits: the eye moves, the point looked at stays.
+xdotool mousemove --window "$window" 60 60 mousedown 1
+for _ in 1 2 3 4 5; do
+  xdotool mousemove_relative 6 2
+  sleep 0.05
+done
+xdotool mouseup 1
+sleep 0.3
+xdotool key p
+wait_for 5 has_lines '"camera"' 2 || fail "P printed nothing after the drag"
+moved=$(sed -n 2p out.txt)
+[ "$moved" != "$home" ] || fail "the drag did not move the camera"
+case "$moved" in
+*'"at": [0, 1, 0]'*) ;;
+*) fail "orbiting moved the point looked at: $moved" ;;
+esac
+
+# Space: a screenshot, what glint render writes for that camera.
+touch scene-0001.png # taken: the screenshot must not overwrite it
+xdotool key space
+wait_for 30 test -s scene-0002.png || fail "no screenshot"
+[ ! -s scene-0001.png ] || fail "the screenshot overwrote a file"
+shot=$(grep '^wrote scene-0002.png' out.txt | sed 's/.*, "camera"/"camera"/')
+[ -n "$shot" ] || fail "the screenshot's line is missing"
+scene "$shot" 1 > pasted.json
+"$glint" render pasted.json -s 2 -o pasted.png -q || fail "glint render failed"
+cmp -s pasted.png scene-0002.png || fail "the screenshot differs from glint render"
+
+# Idle: refined to 2 spp, the window waits without using the CPU.
+sleep 1
+ticks() { awk '{print $14 + $15}' "/proc/$viewer/stat"; }
+before=$(ticks)
+sleep 2
+used=$(($(ticks) - before))
+[ "$used" -le 20 ] || fail "an idle window used $used clock ticks in 2 s"
+
+# A broken scene file: the last good scene stays, stderr says FILE:LINE.
+sleep 1.1 # a new modification time, whatever the file system's resolution
+printf '{\n  "camera": {"from": [0, 2, 6]\n  oops\n}\n' > scene.json
+wait_for 10 grep -q "scene.json:3" err.txt || fail "no FILE:LINE for the broken scene"
+kill -0 "$viewer" 2>/dev/null || fail "the broken scene ended the viewer"
+sleep 1.1
+scene "$home" 0.7 > scene.json
+wait_for 10 grep -q "reloaded scene.json" err.txt || fail "the fixed scene was not reloaded"
+
+# Keys that change what is rendered, and a resize.
+for key in 3 b m bracketleft bracketright h F1 h F1 1 5; do
+  xdotool key $key
+  sleep 0.1
+done
+xdotool windowsize "$window" 200 150
+sleep 0.5
+kill -0 "$viewer" 2>/dev/null || fail "the viewer ended after keys and a resize"
+xdotool key space
+wait_for 30 test -s scene-0003.png || fail "no screenshot after the resize"
+grep -q '^wrote scene-0003.png (200x150' out.txt || fail "the screenshot after the resize is not 200x150"
+
+# Esc quits, with status 0.
+xdotool key Escape
+for _ in $(seq 100); do
+  kill -0 "$viewer" 2>/dev/null || break
+  sleep 0.05
+done
+kill -0 "$viewer" 2>/dev/null && fail "Esc did not quit"
+wait "$viewer"
+status=$?
+viewer=
+[ "$status" -eq 0 ] || fail "exit status $status"
+echo "view: PASSED"
