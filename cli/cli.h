@@ -27,6 +27,7 @@ typedef struct view_options {
   int benchmark_frames;           /* 0: interactive */
   double budget_ms;               /* a moving frame's time before the
                                      resolution is lowered */
+  const char *script_path;        /* --script: input from a file */
 } view_options;
 int cmd_view(int argc, char **argv);
 int view_parse(int argc, char **argv, view_options *options);

@@ -45,6 +45,8 @@ static void view_usage(FILE *f) {
       "      --benchmark N    fly the benchmark path for N frames without\n"
       "                       input and print frame-time percentiles, fps and\n"
       "                       Mrays/s (works without a display)\n"
+      "      --script FILE    input from FILE, one command a line, before\n"
+      "                       the frames it concerns (see below)\n"
       "  -h, --help           this help\n"
       "\n"
       "Controls:\n"
@@ -66,6 +68,26 @@ static void view_usage(FILE *f) {
       "  Space, F12           screenshot: SCENE-NNNN.png, rendered as glint\n"
       "                       render renders (never overwrites a file)\n"
       "  Esc, Ctrl+Q          quit (Q alone flies down)\n"
+      "\n"
+      "Flying moves half the distance to the point looked at per second;\n"
+      "dragging across the window's width orbits 0.3 degrees a pixel.\n"
+      "\n"
+      "A --script FILE holds commands run in order, each before the next\n"
+      "frame (# starts a comment):\n"
+      "  key NAME             press and release a key (SDL's key names:\n"
+      "                       p, space, escape, f1, 3, [, ...)\n"
+      "  hold NAME SECONDS    hold a key down (flying, turning)\n"
+      "  drag BUTTON DX DY    drag by DX, DY pixels with left, middle,\n"
+      "                       right or shift-left\n"
+      "  wheel N              turn the wheel N notches (away: positive)\n"
+      "  resize W H           resize the window\n"
+      "  wait                 until the image is refined to its spp\n"
+      "  sleep SECONDS        let time pass, frames or not\n"
+      "  copy FROM TO         copy a file (to change the scene on disk)\n"
+      "  print camera|state   the camera as JSON (as P); or the frames\n"
+      "                       rendered, samples, depth, scale, backend\n"
+      "  capture FILE         write what the window shows (.png, .ppm)\n"
+      "  quit                 end, as Esc does\n"
       "\n"
       "The benchmark path orbits the scene's look-at point once, at the\n"
       "camera's distance and height, in N equal steps; each frame is one\n"
@@ -100,6 +122,9 @@ int view_parse(int argc, char **argv, view_options *o) {
     }
     if (arg_is(&c, NULL, "--gamma")) {
       if (parse_double("--gamma", arg_value(&c, "--gamma"), 0, &rs->gamma))
+        return EXIT_USAGE;
+    } else if (arg_is(&c, NULL, "--script")) {
+      if (!(o->script_path = arg_value(&c, "--script")))
         return EXIT_USAGE;
     } else if (arg_is(&c, NULL, "--budget")) {
       if (parse_double("--budget", arg_value(&c, "--budget"), 1, &o->budget_ms))

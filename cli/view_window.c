@@ -3,6 +3,7 @@
  * cli/view_cmd.c for what it does and cli/view_camera.c for the moves. */
 #include "args.h"
 #include "cli.h"
+#include "view.h"
 #include "view_camera.h"
 #include "view_font.h"
 
@@ -16,47 +17,12 @@
 #include <string.h>
 #include <sys/stat.h>
 
-enum { MAX_BACKENDS = GLINT_BACKEND_COUNT };
 static const double min_scale = 0.125;
 
 typedef struct frame_record {
   double ms;
   uint64_t rays;
 } frame_record;
-
-typedef struct viewer {
-  const view_options *opt;
-  /* The scene: the file's (reloaded when it changes) or a built-in's. */
-  glint_scene *scene;
-  char stem[256];
-  int is_file;
-  struct timespec mtime;
-  char error[sizeof((glint_error *)0)->message]; /* the last reload's message,
-                                                    shown until a good one */
-  glint_renderer *renderer;
-  glint_render_settings rs; /* backend, math, depth, spp as now chosen */
-  glint_camera camera, home;
-  double speed; /* fly speed multiplier */
-  /* The window and what is on it. */
-  SDL_Window *window;
-  SDL_Renderer *sdl;
-  SDL_Texture *texture;
-  int win_w, win_h;       /* the window's pixels: the frame size */
-  double user_scale;      /* [ and ] */
-  double auto_scale;      /* lowered while moving to keep the budget */
-  int rw, rh;             /* the size rendered at now */
-  glint_film *pass, *sum; /* this pass; the passes so far, summed */
-  glint_film *average;
-  glint_image *image; /* the average, 8-bit, at rw x rh */
-  uint8_t *screen;    /* the window's pixels with the display on top */
-  int samples;        /* passes summed into `sum` */
-  int moving;         /* the camera moved since the last frame */
-  int osd, help;
-  int redraw; /* the display changed: present without rendering */
-  double frame_ms, fps, mrays;
-  uint64_t rays; /* the last pass's */
-  double last_frame_end;
-} viewer;
 
 static int backend_cycle(glint_backend current, glint_backend *next) {
   for (int step = 1; step <= GLINT_BACKEND_COUNT; step++) {
@@ -178,6 +144,7 @@ static int render_pass(viewer *v) {
     for (size_t i = 0; i < n; i++)
       sum[i] += p[i];
   v->samples++;
+  v->frames++;
   float inv = 1.0f / (float)v->samples;
   for (size_t i = 0; i < n; i++)
     avg[i] = sum[i] * inv;
@@ -339,6 +306,26 @@ static void screenshot(viewer *v) {
   glint_scene_set_camera(v->scene, &saved, &err);
 }
 
+int view_idle(const viewer *v) {
+  return v->samples >= v->rs.spp && !v->moving && v->texture;
+}
+
+void view_print_camera(const viewer *v) {
+  char json[256];
+  view_camera_json(&v->camera, json, sizeof json);
+  printf("%s\n", json);
+  fflush(stdout);
+}
+
+glint_image *view_capture(const viewer *v) {
+  glint_image *image;
+  glint_error err;
+  if (!v->screen || glint_image_create(v->win_w, v->win_h, &image, &err))
+    return NULL;
+  memcpy(glint_image_pixels(image), v->screen, (size_t)v->win_w * v->win_h * 3);
+  return image;
+}
+
 static int open_window(viewer *v, int w, int h) {
   v->win_w = w;
   v->win_h = h;
@@ -411,8 +398,8 @@ static int run_benchmark(viewer *v) {
 
 /* Keys held down move the camera every frame by their speed x the time. */
 static int fly_keys(viewer *v, double dt) {
-  const Uint8 *k = SDL_GetKeyboardState(NULL);
-  SDL_Keymod mod = SDL_GetModState();
+  const Uint8 *k = v->held;
+  int ctrl = k[SDL_SCANCODE_LCTRL] || k[SDL_SCANCODE_RCTRL];
   double distance = 0;
   glint_vec3 d = {v->camera.at.x - v->camera.from.x,
                   v->camera.at.y - v->camera.from.y,
@@ -421,9 +408,7 @@ static int fly_keys(viewer *v, double dt) {
   double step = distance * 0.5 * v->speed * dt, turn = 60 * dt;
   double fwd = (k[SDL_SCANCODE_W] - k[SDL_SCANCODE_S]) * step;
   double right = (k[SDL_SCANCODE_D] - k[SDL_SCANCODE_A]) * step;
-  double up =
-      (k[SDL_SCANCODE_E] - (k[SDL_SCANCODE_Q] && !(mod & KMOD_CTRL) ? 1 : 0)) *
-      step;
+  double up = (k[SDL_SCANCODE_E] - (k[SDL_SCANCODE_Q] && !ctrl ? 1 : 0)) * step;
   double yaw = (k[SDL_SCANCODE_LEFT] - k[SDL_SCANCODE_RIGHT]) * turn;
   double pitch = (k[SDL_SCANCODE_UP] - k[SDL_SCANCODE_DOWN]) * turn;
   if (fwd == 0 && right == 0 && up == 0 && yaw == 0 && pitch == 0)
@@ -437,7 +422,9 @@ static int fly_keys(viewer *v, double dt) {
 static int on_key(viewer *v, const SDL_KeyboardEvent *key) {
   SDL_Keycode k = key->keysym.sym;
   glint_error err;
-  if (k == SDLK_ESCAPE || (k == SDLK_q && (key->keysym.mod & KMOD_CTRL)))
+  int ctrl = (key->keysym.mod & KMOD_CTRL) || v->held[SDL_SCANCODE_LCTRL] ||
+             v->held[SDL_SCANCODE_RCTRL];
+  if (k == SDLK_ESCAPE || (k == SDLK_q && ctrl))
     return 0;
   if (k >= SDLK_1 && k <= SDLK_9) {
     v->rs.max_depth = (int)(k - SDLK_0);
@@ -476,10 +463,7 @@ static int on_key(viewer *v, const SDL_KeyboardEvent *key) {
   } else if (k == SDLK_PAGEDOWN) {
     v->speed /= 2;
   } else if (k == SDLK_p) {
-    char json[256];
-    view_camera_json(&v->camera, json, sizeof json);
-    printf("%s\n", json);
-    fflush(stdout);
+    view_print_camera(v);
   } else if (k == SDLK_SPACE || k == SDLK_F12) {
     screenshot(v);
   }
@@ -489,7 +473,7 @@ static int on_key(viewer *v, const SDL_KeyboardEvent *key) {
 static void on_mouse_motion(viewer *v, const SDL_MouseMotionEvent *m) {
   if (!m->state)
     return;
-  int shift = SDL_GetModState() & KMOD_SHIFT;
+  int shift = v->held[SDL_SCANCODE_LSHIFT] || v->held[SDL_SCANCODE_RSHIFT];
   double aspect = (double)v->win_w / v->win_h;
   if ((m->state & SDL_BUTTON_MMASK) || ((m->state & SDL_BUTTON_LMASK) && shift))
     view_pan(&v->camera, (double)m->xrel / v->win_w,
@@ -503,7 +487,7 @@ static void on_mouse_motion(viewer *v, const SDL_MouseMotionEvent *m) {
   v->moving = 1;
 }
 
-static void on_resize(viewer *v, int w, int h) {
+void view_resize(viewer *v, int w, int h) {
   if (w < 1 || h < 1 || (w == v->win_w && h == v->win_h))
     return;
   v->win_w = w > GLINT_MAX_DIMENSION ? GLINT_MAX_DIMENSION : w;
@@ -515,18 +499,29 @@ static void on_resize(viewer *v, int w, int h) {
 static int run_interactive(viewer *v) {
   double last = cli_now(), last_poll = 0;
   for (;;) {
-    int done = v->samples >= v->rs.spp && !v->moving;
+    if (v->script) {
+      int more = view_script_step(v->script, v);
+      if (more < 0)
+        return EXIT_USAGE;
+      if (more == 0) {
+        view_script_free(v->script);
+        v->script = NULL;
+      }
+    }
     SDL_Event ev;
     /* Idle (refined, nothing held): sleep in the event queue, waking a few
-     * times a second to look at the scene file. */
-    int got = done ? SDL_WaitEventTimeout(&ev, 250) : SDL_PollEvent(&ev);
+     * times a second to look at the scene file (or at the script's clock). */
+    int got = view_idle(v) ? SDL_WaitEventTimeout(&ev, v->script ? 5 : 250)
+                           : SDL_PollEvent(&ev);
     while (got) {
       switch (ev.type) {
       case SDL_QUIT: return 0;
       case SDL_KEYDOWN:
+        v->held[ev.key.keysym.scancode] = 1;
         if (!on_key(v, &ev.key))
           return 0;
         break;
+      case SDL_KEYUP: v->held[ev.key.keysym.scancode] = 0; break;
       case SDL_MOUSEMOTION: on_mouse_motion(v, &ev.motion); break;
       case SDL_MOUSEWHEEL:
         view_dolly(&v->camera, pow(0.9, ev.wheel.y));
@@ -534,7 +529,9 @@ static int run_interactive(viewer *v) {
         break;
       case SDL_WINDOWEVENT:
         if (ev.window.event == SDL_WINDOWEVENT_SIZE_CHANGED)
-          on_resize(v, ev.window.data1, ev.window.data2);
+          view_resize(v, ev.window.data1, ev.window.data2);
+        else if (ev.window.event == SDL_WINDOWEVENT_FOCUS_LOST)
+          memset(v->held, 0, sizeof v->held); /* their key-ups go elsewhere */
         else if (ev.window.event == SDL_WINDOWEVENT_EXPOSED && v->image)
           present(v);
         break;
@@ -549,7 +546,7 @@ static int run_interactive(viewer *v) {
       reload_if_changed(v);
       last_poll = now;
     }
-    if (v->samples >= v->rs.spp && !v->moving && v->texture) {
+    if (view_idle(v)) {
       if (v->redraw)
         present(v);
       v->redraw = 0;
@@ -577,9 +574,13 @@ int view_run(const view_options *o) {
   v.osd = 1;
   v.speed = 1;
   v.user_scale = v.auto_scale = 1;
-  v.scene = cli_load_scene(o->scene, v.stem, sizeof v.stem);
-  if (!v.scene)
+  if (o->script_path && !(v.script = view_script_load(o->script_path)))
     return EXIT_USAGE;
+  v.scene = cli_load_scene(o->scene, v.stem, sizeof v.stem);
+  if (!v.scene) {
+    view_script_free(v.script);
+    return EXIT_USAGE;
+  }
   v.is_file = strchr(o->scene, '.') || strchr(o->scene, '/');
   if (v.is_file)
     file_mtime(o->scene, &v.mtime);
@@ -612,5 +613,6 @@ int view_run(const view_options *o) {
   SDL_Quit();
   glint_renderer_destroy(v.renderer);
   glint_scene_destroy(v.scene);
+  view_script_free(v.script);
   return status;
 }

@@ -1,0 +1,156 @@
+#!/usr/bin/env bash
+# glint view without a display (SDL's dummy video driver), driven by
+# --script, against hand-computed cameras (docs: glint view --help):
+#  - a left drag of 100 pixels orbits 30 degrees about up, keeping the
+#    point looked at; the wheel dollies to 0.9 of the distance, a right drag
+#    of 50 pixels to exp(0.5) of it; a Shift+left drag of half the width pans
+#    by half the visible width; holding W flies eye and target together
+#    along the view; R goes back to the scene's camera;
+#  - the window, refined to 2 samples with the display off, is byte for byte
+#    glint render -s 2 (the accumulation reaches the same image), and the
+#    screenshot is what glint render writes;
+#  - a key's effect is on the very next frame (depth 3 one frame later);
+#  - an idle window renders no frames;
+#  - a scene file that stops parsing keeps the last scene and names
+#    FILE:LINE; fixed, it is reloaded; a resize renders at the new size.
+#   tests/view_headless.sh GLINT
+set -u
+glint=$1
+work=$(mktemp -d)
+trap 'rm -rf "$work"' EXIT
+cd "$work"
+unset DISPLAY WAYLAND_DISPLAY
+export SDL_VIDEODRIVER=dummy
+fail() {
+  echo "view_headless: FAILED: $*"
+  echo "--- stdout"; cat out.txt
+  echo "--- stderr"; cat err.txt
+  exit 1
+}
+
+scene() { # $1: the sphere's radius
+  cat <<EOF
+{
+  "camera": {"from": [0, 2, 6], "at": [0, 1, 0], "up": [0, 1, 0], "fov": 60},
+  "image": {"width": 160, "height": 120},
+  "background": [0.2, 0.3, 0.6],
+  "lights": [{"position": [-4, 8, 6], "color": [1, 1, 1]}],
+  "materials": {"red": {"color": [0.9, 0.2, 0.2], "kd": 0.8, "ks": 0.3, "h": 20},
+                "glass": {"color": [1, 1, 1], "kd": 0.1, "kt": 0.8, "ior": 1.5}},
+  "objects": [
+    {"type": "sphere", "center": [0, 1, 0], "radius": $1, "material": "glass"},
+    {"type": "sphere", "center": [1.5, 0.5, -1], "radius": 0.5, "material": "red"},
+    {"type": "plane", "point": [0, 0, 0], "normal": [0, 1, 0], "material": "red"}
+  ]
+}
+EOF
+}
+scene 1 > scene.json
+scene 1 > good.json
+scene 0.6 > changed.json
+printf '{\n  "camera": {"from": [0, 2, 6]\n  oops\n}\n' > broken.json
+
+cat > input.txt <<'EOF'
+# the cameras
+print camera
+drag left 100 0
+wait
+print camera
+key r
+wheel 1
+wait
+print camera
+key r
+drag right 0 50
+wait
+print camera
+key r
+drag shift-left 80 0
+wait
+print camera
+key r
+hold w 0.3
+wait
+print camera
+key r
+wait
+# the window and a screenshot, refined to 2 samples
+key h
+sleep 0.2
+capture shown.ppm
+key space
+wait
+# idle: no frames
+print state
+sleep 1
+print state
+# a key shows on the next frame
+key 3
+print state
+key 5
+wait
+# reloading
+copy broken.json scene.json
+sleep 1
+print state
+copy changed.json scene.json
+sleep 1
+wait
+print camera
+resize 200 150
+wait
+print state
+quit
+EOF
+"$glint" view scene.json -s 2 -t 2 --script input.txt >out.txt 2>err.txt ||
+  fail "exit status $?"
+
+# The Nth camera printed (P or print camera), as its numbers.
+camera() {
+  grep '^"camera"' out.txt | sed -n "${1}p" | sed 's/"[a-z]*": //g' |
+    tr -c '0-9.e+-' ' '
+}
+# Compares the numbers of a printed camera with the expected ones, to 1e-4.
+expect_camera() { # $1: which; $2: from x y z at x y z
+  local got
+  got=$(camera "$1")
+  awk -v got="$got" -v want="$2" -v which="$1" 'BEGIN {
+    n = split(got, g, " "); split(want, w, " ")
+    for (i = 1; i <= 6; i++) {
+      d = g[i] - w[i]; if (d < 0) d = -d
+      if (d > 1e-4) { print "camera " which ": " got " is not " want; exit 1 }
+    }
+  }' || fail "camera $1"
+}
+expect_camera 1 "0 2 6 0 1 0"
+expect_camera 2 "-3 2 5.196152 0 1 0"            # orbit: 30 degrees about y
+expect_camera 3 "0 1.9 5.4 0 1 0"                # wheel: 0.9 of the distance
+expect_camera 4 "0 2.648721 9.892308 0 1 0"      # right drag: exp(0.5)
+expect_camera 5 "-3.511885 2 6 -3.511885 1 0"    # pan: sqrt(37) tan 30 deg
+# Flying forward: eye and target together along (0, -1, -6).
+fly=$(camera 6)
+awk -v c="$fly" 'BEGIN { split(c, v, " ")
+  t = (6 - v[3]) / 6
+  if (v[1] != 0 || v[4] != 0 || t < 0.05 ||
+      (v[2] - (2 - t)) ^ 2 > 1e-8 || (v[5] - (1 - t)) ^ 2 > 1e-8 ||
+      (v[6] + 6 * t) ^ 2 > 1e-8) exit 1 }' || fail "flying: $fly"
+# (each move above starts from R, the scene's camera)
+expect_camera 7 "0 2 6 0 1 0"                    # a reload keeps the camera
+
+"$glint" render good.json -s 2 -t 2 -o rendered.ppm -q || fail "glint render"
+cmp -s shown.ppm rendered.ppm || fail "the window is not glint render's image"
+"$glint" render good.json -s 2 -t 2 -o rendered.png -q || fail "glint render"
+cmp -s scene-0001.png rendered.png || fail "the screenshot is not glint render's"
+
+states=$(grep '^state:' out.txt)
+frames() { printf '%s\n' "$states" | sed -n "${1}p" | sed 's/.*frames \([0-9]*\).*/\1/'; }
+[ "$(frames 1)" = "$(frames 2)" ] || fail "an idle window rendered frames"
+printf '%s\n' "$states" | sed -n 1p | grep -q 'samples 2/2' || fail "not refined"
+[ "$(frames 3)" = "$(($(frames 2) + 1))" ] || fail "the key took more than a frame"
+printf '%s\n' "$states" | sed -n 3p | grep -q 'depth 3' || fail "depth 3 not shown"
+grep -q 'scene.json:3:3: JSON syntax error' err.txt || fail "no FILE:LINE for the broken scene"
+printf '%s\n' "$states" | sed -n 4p | grep -q 'depth 5' || fail "state after the broken scene"
+grep -q 'reloaded scene.json' err.txt || fail "the changed scene was not reloaded"
+printf '%s\n' "$states" | sed -n 5p | grep -q '200x150 at scale 1.000' ||
+  fail "the resize did not render at 200x150"
+echo "view_headless: PASSED"
