@@ -45,6 +45,8 @@ typedef struct viewer {
   uint64_t rays; /* the last pass's */
   double last_frame_end;
   long frames;                   /* passes rendered since the start */
+  double stopped_at, refined_at; /* when the camera last stopped; when the
+                                    image then reached spp samples */
   Uint8 held[SDL_NUM_SCANCODES]; /* keys down now, from the events seen */
   view_script *script;           /* --script, or NULL */
 } viewer;

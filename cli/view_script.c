@@ -247,10 +247,14 @@ static void push_drag(const viewer *v, const command *c) {
 
 static void print_state(const viewer *v) {
   printf("state: frames %ld, samples %d/%d, depth %d, %dx%d at scale %.3f, "
-         "%s\n",
+         "%s",
          v->frames, v->samples, v->rs.spp, v->rs.max_depth, v->rw, v->rh,
          (double)v->rw / v->win_w,
          glint_backend_name(glint_backend_resolve(v->rs.backend)));
+  if (v->refined_at > v->stopped_at && v->stopped_at > 0)
+    printf(", refined %.3f s after the camera stopped",
+           v->refined_at - v->stopped_at);
+  printf("\n");
   fflush(stdout);
 }
 

@@ -131,24 +131,28 @@ static int render_pass(viewer *v) {
   glint_stats st;
   glint_error err;
   double t0 = cli_now();
-  if (glint_renderer_render(v->renderer, &frame, v->pass, &st, &err)) {
+  /* The first sample goes straight into the sum (and is the average); later
+   * ones are added to it. */
+  if (glint_renderer_render(v->renderer, &frame,
+                            v->samples == 0 ? v->sum : v->pass, &st, &err)) {
     cli_error("view: %s", err.message);
     return -1;
   }
   size_t n = (size_t)rw * rh * 3;
   const float *p = glint_film_pixels(v->pass);
   float *sum = glint_film_pixels(v->sum), *avg = glint_film_pixels(v->average);
-  if (v->samples == 0)
-    memcpy(sum, p, n * sizeof *sum);
-  else
+  if (v->samples > 0)
     for (size_t i = 0; i < n; i++)
       sum[i] += p[i];
   v->samples++;
   v->frames++;
-  float inv = 1.0f / (float)v->samples;
-  for (size_t i = 0; i < n; i++)
-    avg[i] = sum[i] * inv;
-  glint_film_to_image(v->average, v->rs.gamma, v->image, &err);
+  if (v->samples > 1) {
+    float inv = 1.0f / (float)v->samples;
+    for (size_t i = 0; i < n; i++)
+      avg[i] = sum[i] * inv;
+  }
+  glint_film_to_image(v->samples > 1 ? v->average : v->sum, v->rs.gamma,
+                      v->image, &err);
   double ms = (cli_now() - t0) * 1e3;
   v->frame_ms = ms;
   v->rays = st.primary_rays + st.secondary_rays + st.shadow_rays;
@@ -169,12 +173,19 @@ static const char *const math_names[] = {"minimax", "fast", "taylor", "exact"};
 /* The rendered image scaled to the window, with the display on top. */
 static void present(viewer *v) {
   const uint8_t *src = glint_image_pixels_const(v->image);
-  for (int y = 0; y < v->win_h; y++) {
-    int sy = (int)((long)y * v->rh / v->win_h);
-    for (int x = 0; x < v->win_w; x++) {
-      int sx = (int)((long)x * v->rw / v->win_w);
-      memcpy(v->screen + ((size_t)y * v->win_w + x) * 3,
-             src + ((size_t)sy * v->rw + sx) * 3, 3);
+  if (v->rw == v->win_w && v->rh == v->win_h) {
+    memcpy(v->screen, src, (size_t)v->win_w * v->win_h * 3);
+  } else { /* nearest neighbour */
+    for (int y = 0; y < v->win_h; y++) {
+      const uint8_t *row =
+          src + (size_t)((long)y * v->rh / v->win_h) * v->rw * 3;
+      uint8_t *out = v->screen + (size_t)y * v->win_w * 3;
+      for (int x = 0; x < v->win_w; x++) {
+        const uint8_t *px = row + (size_t)((long)x * v->rw / v->win_w) * 3;
+        out[3 * x] = px[0];
+        out[3 * x + 1] = px[1];
+        out[3 * x + 2] = px[2];
+      }
     }
   }
   /* Twice the font's size where the help's widest line fits. */
@@ -561,8 +572,13 @@ static int run_interactive(viewer *v) {
     present(v);
     /* A frame that moved shows sample 0; refinement starts once a frame
      * passes with nothing moving. */
-    if (was_moving)
+    if (was_moving) {
       v->moving = 0;
+      v->stopped_at = cli_now();
+      v->refined_at = 0;
+    } else if (v->samples == v->rs.spp && !v->refined_at) {
+      v->refined_at = cli_now();
+    }
   }
 }
 
