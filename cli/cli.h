@@ -29,10 +29,12 @@ typedef struct view_options {
                                      resolution is lowered */
   const char *script_path;        /* --script: input from a file */
 } view_options;
-int cmd_view(int argc, char **argv);
 int view_parse(int argc, char **argv, view_options *options);
-/* The window (cli/view_window.c; without SDL2, cli/view_none.c says so). */
+/* The window (cli/view_window.c, in the program glint-view). */
 int view_run(const view_options *options);
+/* glint view: runs glint-view, from the folder of this program, with the
+ * same arguments; returns only when it cannot (saying why). */
+int cmd_view(int argc, char **argv);
 
 typedef struct compare_options {
   const char *files[2];

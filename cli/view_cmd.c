@@ -1,4 +1,9 @@
 /* glint view [SCENE] [options]: an interactive window onto a scene (SDL2).
+ * This file holds its help and its option parser; the window is the
+ * program glint-view (cli/view_main.c, cli/view_window.c), which `glint
+ * view` runs, so that the glint program itself does not load SDL2 and the
+ * dozens of libraries it brings (they cost every glint command about 7 ms
+ * to start).
  *
  * One committed world and one renderer serve every frame (include/glint.h,
  * "Worlds and renderers"). While the camera moves each frame is one sample
@@ -143,12 +148,4 @@ int view_parse(int argc, char **argv, view_options *o) {
   if (!o->scene)
     o->scene = "whitted";
   return -1;
-}
-
-int cmd_view(int argc, char **argv) {
-  view_options o;
-  int status = view_parse(argc, argv, &o);
-  if (status >= 0)
-    return status;
-  return view_run(&o);
 }

@@ -17,6 +17,14 @@ for f in libglint.so libglint.so.0 libglint.so.0.5.0 pkgconfig/glint.pc \
          cmake/glint/glintConfig.cmake cmake/glint/glintConfigVersion.cmake; do
   [ -e "$libdir/$f" ] || { echo "FAILED: $f was not installed"; exit 1; }
 done
+# glint view's window, beside glint, when the build has it (SDL2); the
+# installed glint finds it there.
+if [ -x "$build/glint-view" ]; then
+  [ -x "$prefix/bin/glint-view" ] ||
+    { echo "FAILED: glint-view was not installed"; exit 1; }
+  "$prefix/bin/glint" view --help | grep -q "Controls:" ||
+    { echo "FAILED: the installed glint view does not run"; exit 1; }
+fi
 [ "$(readlink "$libdir/libglint.so.0")" = libglint.so.0.5.0 ] ||
   { echo "FAILED: libglint.so.0 does not point at libglint.so.0.5.0"; exit 1; }
 echo "installed: $(cd "$prefix" && find . -type f -o -type l | sort | tr '\n' ' ')"
