@@ -15,11 +15,17 @@ typedef struct render_options {
   const char *scene; /* a built-in's name or a file */
   char *output;      /* NULL: SCENE.png; "-": standard output */
   int to_stdout, quiet, stats;
+  int frames, first_frame, last_frame; /* --frames A[-B] */
+  int resume;                          /* --resume */
   glint_png_compression png_compression;
   glint_image_format stream_format; /* with -o - */
   glint_render_settings settings;
 } render_options;
 int render_parse(int argc, char **argv, render_options *options);
+/* glint render --frames: the animation's frames, one file each
+ * (cli/render_frames.c). Takes the scene. */
+int render_frames(struct glint_scene *scene, const render_options *options,
+                  const char *stem);
 
 typedef struct view_options {
   const char *scene;
@@ -48,6 +54,11 @@ int compare_parse(int argc, char **argv, compare_options *options);
  * `stem` receives the name to derive an output file from. */
 struct glint_scene *cli_load_scene(const char *arg, char *stem,
                                    unsigned long stem_size);
+
+/* SIGINT, SIGTERM and SIGHUP only take note from then on; cli_stopped says
+ * whether one came (cancel, say so, exit 130). */
+void cli_catch_stop_signals(void);
+int cli_stopped(void);
 
 /* Seconds on a monotonic clock, for timing stages. */
 double cli_now(void);

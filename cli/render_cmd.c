@@ -54,6 +54,11 @@ static void render_usage(FILE *f) {
       "                       best, about 10x slower\n"
       "      --region X,Y,W,H render only this window of the W x H image;\n"
       "                       the output is the cropped window, W x H\n"
+      "      --frames A[-B]   the scene's animation, frames A to B (or A\n"
+      "                       alone), a file each: -o with a printf-style\n"
+      "                       number (frame%04d.png), or a number is put\n"
+      "                       before the extension (default: SCENE0001.png)\n"
+      "      --resume         with --frames: keep frames already written\n"
       "  -q, --quiet          no progress bar and no summary line\n"
       "      --stats          detailed statistics after rendering\n"
       "  -h, --help           this help\n"
@@ -72,7 +77,9 @@ static volatile sig_atomic_t stop_signal;
 
 static void on_stop_signal(int sig) { stop_signal = sig; }
 
-static void catch_stop_signals(void) {
+int cli_stopped(void) { return stop_signal != 0; }
+
+void cli_catch_stop_signals(void) {
   struct sigaction sa;
   memset(&sa, 0, sizeof sa);
   sa.sa_handler = on_stop_signal;
@@ -314,6 +321,7 @@ int render_parse(int argc, char **argv, render_options *o) {
         (r = arg_int(&c, "-t", "--threads", 0, GLINT_MAX_THREADS,
                      &rs->threads)) ||
         (r = arg_flag(&c, "-q", "--quiet", &o->quiet)) ||
+        (r = arg_flag(&c, NULL, "--resume", &o->resume)) ||
         (r = arg_flag(&c, NULL, "--stats", &o->stats))) {
       if (r == ARG_BAD)
         return EXIT_USAGE;
@@ -330,7 +338,21 @@ int render_parse(int argc, char **argv, render_options *o) {
       }
       continue;
     }
-    if (arg_is(&c, NULL, "--region")) {
+    if (arg_is(&c, NULL, "--frames")) {
+      if (!(v = arg_value(&c, "--frames")))
+        return EXIT_USAGE;
+      char dash, extra;
+      int n =
+          sscanf(v, "%d%c%d%c", &o->first_frame, &dash, &o->last_frame, &extra);
+      if (n == 1)
+        o->last_frame = o->first_frame;
+      if (!(n == 1 || (n == 3 && dash == '-')) || o->first_frame < 0 ||
+          o->last_frame < o->first_frame || strchr(v, ' ') || v[0] == '+') {
+        cli_error("--frames: '%s' is not a frame or a range FIRST-LAST", v);
+        return EXIT_USAGE;
+      }
+      o->frames = 1;
+    } else if (arg_is(&c, NULL, "--region")) {
       if (!(v = arg_value(&c, "--region")))
         return EXIT_USAGE;
       char extra;
@@ -389,6 +411,14 @@ int render_parse(int argc, char **argv, render_options *o) {
   }
   if (o->to_stdout && o->stream_format == GLINT_FORMAT_UNKNOWN)
     o->stream_format = GLINT_FORMAT_PNG;
+  if (o->frames && o->to_stdout) {
+    cli_error("--frames writes a file a frame; -o - is one stream");
+    return EXIT_USAGE;
+  }
+  if (o->resume && !o->frames) {
+    cli_error("--resume applies to --frames");
+    return EXIT_USAGE;
+  }
   return -1;
 }
 
@@ -423,6 +453,8 @@ int cmd_render(int argc, char **argv) {
   times.load = cli_now() - t0;
   if (!scene)
     return EXIT_USAGE;
+  if (o.frames)
+    return render_frames(scene, &o, stem);
   if (!output) {
     snprintf(default_output, sizeof default_output, "%s.png", stem);
     output = default_output;
@@ -450,7 +482,7 @@ int cmd_render(int argc, char **argv) {
     return EXIT_USAGE;
   }
 
-  catch_stop_signals(); /* from here on Ctrl-C cancels and says so */
+  cli_catch_stop_signals(); /* from here on Ctrl-C cancels and says so */
   progress_state ps = {-1, !quiet && isatty(STDERR_FILENO)};
   rs.progress = on_progress;
   rs.progress_user = &ps;

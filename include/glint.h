@@ -196,6 +196,56 @@ typedef struct glint_scene_info {
 } glint_scene_info;
 void glint_scene_get_info(const glint_scene *scene, glint_scene_info *info);
 
+/* ---- Animation (docs/scene-format.md, "animation") ---------------------- */
+
+/* Frames first_frame..last_frame at fps frames a second: frame f shows the
+ * scene at time (f - first_frame) / fps seconds. */
+typedef struct glint_animation {
+  double fps;
+  int first_frame, last_frame;
+} glint_animation;
+
+glint_status glint_scene_set_animation(glint_scene *scene,
+                                       const glint_animation *animation,
+                                       glint_error *error);
+/* 1 and *animation filled when the scene has an animation, else 0. */
+int glint_scene_get_animation(const glint_scene *scene,
+                              glint_animation *animation);
+
+typedef enum glint_interpolation {
+  GLINT_INTERPOLATE_LINEAR = 0,
+  /* A Catmull-Rom spline through the keys: tangents from the neighbouring
+   * keys (one-sided at the ends), scaled to the keys' times. */
+  GLINT_INTERPOLATE_CATMULL_ROM
+} glint_interpolation;
+
+typedef struct glint_camera_key {
+  double time; /* seconds */
+  glint_camera camera;
+} glint_camera_key;
+
+/* The camera through keyframes: at least one, times increasing; before the
+ * first key and after the last the camera stays there. from, at, up and
+ * fov are interpolated each (up need not stay unit length). */
+glint_status glint_scene_set_camera_keys(glint_scene *scene,
+                                         const glint_camera_key *keys,
+                                         size_t count,
+                                         glint_interpolation interpolation,
+                                         glint_error *error);
+/* The camera circling `center`, looking at it from `radius` away and
+ * `height` above, starting on the +z side and turning `degrees` (positive:
+ * counter-clockwise seen from above) over the animation's frames, evenly,
+ * so that a 360-degree orbit loops; up is +y and the fov the scene camera's.
+ * Needs the scene's animation (glint_scene_set_animation). */
+glint_status glint_scene_set_camera_orbit(glint_scene *scene, glint_vec3 center,
+                                          double radius, double height,
+                                          double degrees, glint_error *error);
+/* The camera at `time` seconds: from the keys or the orbit when the scene
+ * has them, else the scene's camera. Fails when the interpolated camera is
+ * degenerate (from at at, up along the view). */
+glint_status glint_scene_camera_at(const glint_scene *scene, double time,
+                                   glint_camera *camera, glint_error *error);
+
 /* ------------------------------------------------------------------------ */
 /* Images                                                                   */
 /* ------------------------------------------------------------------------ */
@@ -486,8 +536,8 @@ typedef struct glint_frame_settings {
   int width, height;          /* 0: the renderer's (or else the world's) */
   /* A window of the width x height frame; region_width = 0: all of it. */
   int region_x, region_y, region_width, region_height;
-  int max_depth;              /* 0: the renderer's */
-  int spp;                    /* 0: the renderer's */
+  int max_depth; /* 0: the renderer's */
+  int spp;       /* 0: the renderer's */
   /* Progressive rendering: only samples [sample_first, sample_first +
    * sample_count) of the spp-sample pattern (docs/specification.md §5),
    * averaged into the film; sample_count = 0: the rest (all from 0). The

@@ -526,6 +526,138 @@ static void default_threads_follow_the_affinity(void **state) {
   unlink(p);
 }
 
+/* Writes `text` to NAME in the test folder. */
+static void put_text(const char *name, const char *text) {
+  char p[256];
+  snprintf(p, sizeof p, "%s/%s", dir, name);
+  FILE *f = fopen(p, "wb");
+  fputs(text, f);
+  fclose(f);
+}
+
+/* The bytes of NAME in the test folder; *size its length. */
+static char *file_bytes(const char *name, long *size) {
+  char p[256];
+  snprintf(p, sizeof p, "%s/%s", dir, name);
+  FILE *f = fopen(p, "rb");
+  if (!f)
+    fail_msg("%s is missing", name);
+  fseek(f, 0, SEEK_END);
+  *size = ftell(f);
+  rewind(f);
+  char *data = malloc((size_t)*size + 1);
+  assert_int_equal(fread(data, 1, (size_t)*size, f), (size_t)*size);
+  fclose(f);
+  return data;
+}
+
+static const char orbit_scene[] =
+    "{\"camera\": {\"from\": [0, 2, 6], \"at\": [0, 1, 0]},\n"
+    " \"image\": {\"width\": 32, \"height\": 24},\n"
+    " \"lights\": [{\"position\": [-4, 8, 6], \"color\": [1, 1, 1]}],\n"
+    " \"materials\": {\"m\": {\"color\": [0.9, 0.2, 0.2], \"ks\": 0.3}},\n"
+    " \"objects\": [{\"type\": \"sphere\", \"center\": [0, 1, 0], "
+    "\"radius\": 1, \"material\": \"m\"},\n"
+    "  {\"type\": \"plane\", \"point\": [0, 0, 0], \"normal\": [0, 1, 0], "
+    "\"material\": \"m\"}],\n"
+    " \"animation\": {\"fps\": 24, \"frames\": [1, 48], \"camera\": "
+    "{\"orbit\": {\"center\": [0, 1, 0], \"radius\": 6, \"height\": 1}}}}\n";
+
+/* --frames: a file a frame, named by the pattern or numbered before the
+ * extension; each is what glint render writes for the camera of its time;
+ * --resume keeps what is there; mistakes are named. */
+static void frames_of_an_animation(void **state) {
+  (void)state;
+  put_text("anim.json", orbit_scene);
+  assert_int_equal(
+      run("render", "anim.json", "--frames", "1-3", "-o", "f%02d.png", NULL),
+      0);
+  assert_true(exists("f01.png") && exists("f02.png") && exists("f03.png"));
+  assert_false(exists("f04.png"));
+  assert_non_null(strstr(out, "frame 2 (t = 0.042 s): f02.png"));
+  assert_non_null(strstr(out, "3 frames written in "));
+
+  /* Frame 2 is glint render of the scene with that camera (7.5 degrees
+   * round: 360 over 48 frames), written exactly. */
+  glint_scene *scene;
+  ASSERT_OK(glint_scene_load_memory(orbit_scene, strlen(orbit_scene),
+                                    "anim.json", &scene, &e_));
+  glint_camera c;
+  ASSERT_OK(glint_scene_camera_at(scene, 1.0 / 24, &c, &e_));
+  glint_scene_destroy(scene);
+  char still[2048];
+  snprintf(still, sizeof still,
+           "%.*s\"camera\": {\"from\": [%.17g, %.17g, %.17g], \"at\": "
+           "[%.17g, %.17g, %.17g], \"fov\": %.17g},%s",
+           1, orbit_scene, c.from.x, c.from.y, c.from.z, c.at.x, c.at.y, c.at.z,
+           c.fov_x_degrees, strstr(orbit_scene, "\n \"image\""));
+  /* ... without its animation block */
+  *strstr(still, ",\n \"animation\"") = '\0';
+  strcat(still, "}\n");
+  put_text("still.json", still);
+  assert_int_equal(run("render", "still.json", "-o", "still.png", "-q", NULL),
+                   0);
+  long na, nb;
+  char *a = file_bytes("f02.png", &na), *b = file_bytes("still.png", &nb);
+  assert_int_equal(na, nb);
+  assert_memory_equal(a, b, (size_t)na);
+  free(a);
+  free(b);
+
+  /* A folder in -o that is missing is made. */
+  assert_int_equal(run("render", "anim.json", "--frames", "5", "-o",
+                       "sub/deeper/f%d.png", "-q", NULL),
+                   0);
+  assert_true(exists("sub/deeper/f5.png"));
+
+  /* Numbers before the extension; the default name is the scene's. */
+  assert_int_equal(
+      run("render", "anim.json", "--frames", "48", "-o", "out.png", "-q", NULL),
+      0);
+  assert_true(exists("out0048.png"));
+  assert_int_equal(run("render", "anim.json", "--frames", "7", "-q", NULL), 0);
+  assert_true(exists("anim0007.png"));
+
+  /* --resume keeps what is there (here a stand-in) and renders the rest. */
+  put_text("f02.png", "kept");
+  assert_int_equal(run("render", "anim.json", "--frames", "1-4", "-o",
+                       "f%02d.png", "--resume", NULL),
+                   0);
+  assert_non_null(strstr(out, "frame 2: f02.png is there, kept (--resume)"));
+  assert_non_null(strstr(out, "1 frame written, 3 kept (--resume)"));
+  char kept[16];
+  slurp(strcat(strcpy(still, dir), "/f02.png"), kept, sizeof kept);
+  assert_string_equal(kept, "kept");
+  assert_true(exists("f04.png"));
+
+  /* The mistakes, with the scene beside the (then empty) test folder: an
+   * error writes nothing. */
+  char cmd[768], scene_path[300];
+  snprintf(scene_path, sizeof scene_path, "%s-anim.json", dir);
+  snprintf(cmd, sizeof cmd,
+           "cd '%s' && mv anim.json '%s' && rm -rf f0*.png "
+           "out0048.png anim0007.png still.png still.json sub",
+           dir, scene_path);
+  assert_int_equal(system(cmd), 0);
+  EXPECT_USAGE_ERROR("-anim.json's animation has frames 1-48", "render",
+                     scene_path, "--frames", "40-60");
+  EXPECT_USAGE_ERROR("whitted has no animation", "render", "whitted",
+                     "--frames", "1");
+  EXPECT_USAGE_ERROR("a frame pattern takes one number, not 2", "render",
+                     scene_path, "--frames", "1", "-o", "x%d%d.png");
+  EXPECT_USAGE_ERROR("a frame pattern takes one %d", "render", scene_path,
+                     "--frames", "1", "-o", "x%s.png");
+  EXPECT_USAGE_ERROR("--frames writes .png, .bmp or .ppm", "render", scene_path,
+                     "--frames", "1", "-o", "x.exr");
+  EXPECT_USAGE_ERROR("--frames: '3-1' is not a frame", "render", scene_path,
+                     "--frames", "3-1");
+  EXPECT_USAGE_ERROR("--resume applies to --frames", "render", scene_path,
+                     "--resume");
+  EXPECT_USAGE_ERROR("-o - is one stream", "render", scene_path, "--frames",
+                     "1", "-o", "-");
+  unlink(scene_path);
+}
+
 /* Ctrl-C: a message, status 130, the existing file untouched. */
 static void interrupt_keeps_the_old_file(void **state) {
   (void)state;
@@ -610,6 +742,7 @@ int main(void) {
       cmocka_unit_test(missing_instruction_sets),
       cmocka_unit_test(options_as_people_write_them),
       cmocka_unit_test(default_threads_follow_the_affinity),
+      cmocka_unit_test(frames_of_an_animation),
       cmocka_unit_test(interrupt_keeps_the_old_file),
       cmocka_unit_test(compare_threshold_and_difference),
   };

@@ -508,7 +508,7 @@ static const bad_case structure_cases[] = {
             "element"},
     {"{'epsilon': 1e-4}",
      ": unknown field \"epsilon\" (known: camera, image, background, "
-     "ambient, lights, materials, objects)"},
+     "ambient, lights, materials, objects, animation)"},
     {"{'objects': [], 'objects': []}", ": field \"objects\" appears twice"},
     {"{'Camera': {}}", ": unknown field \"Camera\""},
     /* Camera and image. */

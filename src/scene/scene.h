@@ -55,8 +55,28 @@ typedef struct gli_light {
   glint_vec3 position, color;
 } gli_light;
 
+/* The scene's animation (scene/animation.c): its frames and how the camera
+ * moves; camera_mode NONE keeps the camera still. */
+typedef enum gli_camera_mode {
+  GLI_CAMERA_STILL = 0,
+  GLI_CAMERA_KEYS,
+  GLI_CAMERA_ORBIT
+} gli_camera_mode;
+
+typedef struct gli_animation {
+  int present;
+  glint_animation frames;
+  gli_camera_mode camera_mode;
+  glint_interpolation interpolation;
+  glint_camera_key *keys;
+  size_t key_count;
+  glint_vec3 orbit_center;
+  double orbit_radius, orbit_height, orbit_degrees;
+} gli_animation;
+
 struct glint_scene {
   glint_camera camera;
+  gli_animation animation;
   int width, height;
   glint_vec3 background, ambient;
 

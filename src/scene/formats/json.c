@@ -653,20 +653,160 @@ read_color(json_reader *r, const cJSON *root, const char *key,
   return GLINT_OK;
 }
 
+/* ---- animation ---------------------------------------------------------- */
+
+/* One camera key: {"time": t, "from", "at", "up", "fov"}, up and fov
+ * defaulting as in "camera". */
+static glint_status read_camera_key(json_reader *r, const cJSON *v,
+                                    glint_camera_key *key) {
+  static const char *const fields[] = {"time", "from", "at", "up", "fov", NULL};
+  glint_camera c = {{0, 0, 0}, {0, 0, 0}, {0, 1, 0}, 60};
+  glint_status st;
+  if ((st = expect_object(r, v)) || (st = check_fields(r, v, fields)) ||
+      (st = number_field(r, v, "time", 1, &key->time)) ||
+      (st = vec3_field(r, v, "from", 1, &c.from)) ||
+      (st = vec3_field(r, v, "at", 1, &c.at)) ||
+      (st = vec3_field(r, v, "up", 0, &c.up)) ||
+      (st = number_field(r, v, "fov", 0, &c.fov_x_degrees)) ||
+      (st = lib(r, gli_camera_check(&c, r->error))))
+    return st;
+  key->camera = c;
+  return GLINT_OK;
+}
+
+/* "camera": {"keys": [...], "interpolation": "linear"|"catmull-rom"} or
+ * {"orbit": {"center", "radius", "height", "degrees"}}. */
+static glint_status read_camera_motion(json_reader *r, const cJSON *v) {
+  static const char *const fields[] = {"keys", "interpolation", "orbit", NULL};
+  glint_status st;
+  if ((st = expect_object(r, v)) || (st = check_fields(r, v, fields)))
+    return st;
+  const cJSON *keys = cJSON_GetObjectItemCaseSensitive(v, "keys");
+  const cJSON *orbit = cJSON_GetObjectItemCaseSensitive(v, "orbit");
+  if (!keys == !orbit)
+    return fail(r, GLINT_E_PARSE, "give either \"keys\" or \"orbit\"");
+  if (orbit) {
+    static const char *const orbit_fields[] = {"center", "radius", "height",
+                                               "degrees", NULL};
+    glint_vec3 center = {0, 0, 0};
+    double radius = 0, height = 0, degrees = 360;
+    size_t mark = path_key(r, "orbit");
+    if ((st = expect_object(r, orbit)) ||
+        (st = check_fields(r, orbit, orbit_fields)) ||
+        (st = vec3_field(r, orbit, "center", 1, &center)) ||
+        (st = number_field(r, orbit, "radius", 1, &radius)) ||
+        (st = number_field(r, orbit, "height", 0, &height)) ||
+        (st = number_field(r, orbit, "degrees", 0, &degrees)) ||
+        (st = lib(r, glint_scene_set_camera_orbit(r->scene, center, radius,
+                                                  height, degrees, r->error))))
+      return st;
+    path_pop(r, mark);
+    if (cJSON_GetObjectItemCaseSensitive(v, "interpolation"))
+      return fail(r, GLINT_E_PARSE, "\"interpolation\" applies to keys");
+    return GLINT_OK;
+  }
+  glint_interpolation interpolation = GLINT_INTERPOLATE_LINEAR;
+  const cJSON *how = cJSON_GetObjectItemCaseSensitive(v, "interpolation");
+  if (how) {
+    size_t mark = path_key(r, "interpolation");
+    if (cJSON_IsString(how) && strcmp(how->valuestring, "catmull-rom") == 0)
+      interpolation = GLINT_INTERPOLATE_CATMULL_ROM;
+    else if (!cJSON_IsString(how) || strcmp(how->valuestring, "linear") != 0)
+      return fail(r, GLINT_E_PARSE,
+                  "expected \"linear\" or \"catmull-rom\", found %s",
+                  describe(how).s);
+    path_pop(r, mark);
+  }
+  size_t mark = path_key(r, "keys");
+  if ((st = expect_array(r, keys)))
+    return st;
+  size_t n = (size_t)cJSON_GetArraySize(keys);
+  if (n == 0)
+    return fail(r, GLINT_E_PARSE, "expected at least one key");
+  glint_camera_key *k = calloc(n, sizeof *k);
+  if (!k)
+    return fail(r, GLINT_E_MEMORY, "out of memory");
+  size_t i = 0;
+  for (const cJSON *c = keys->child; c; c = c->next, i++) {
+    size_t key_mark = path_index(r, i);
+    if ((st = read_camera_key(r, c, &k[i]))) {
+      free(k);
+      return st;
+    }
+    if (i > 0 && !(k[i].time > k[i - 1].time)) {
+      free(k);
+      return fail(r, GLINT_E_PARSE,
+                  "time %g does not come after the key before (%g)", k[i].time,
+                  k[i - 1].time);
+    }
+    path_pop(r, key_mark);
+  }
+  st = lib(
+      r, glint_scene_set_camera_keys(r->scene, k, n, interpolation, r->error));
+  free(k);
+  if (st == GLINT_OK)
+    path_pop(r, mark);
+  return st;
+}
+
+/* "animation": {"fps": 24, "frames": [first, last], "camera": {...}}. */
+static glint_status read_animation(json_reader *r, const cJSON *v) {
+  static const char *const fields[] = {"fps", "frames", "camera", NULL};
+  glint_animation a = {24, 0, 0};
+  glint_status st;
+  if ((st = expect_object(r, v)) || (st = check_fields(r, v, fields)) ||
+      (st = number_field(r, v, "fps", 0, &a.fps)))
+    return st;
+  if (!(a.fps > 0) || a.fps > 1e6) {
+    path_key(r, "fps");
+    return fail(r, GLINT_E_PARSE, "fps %g is not in (0, 1e6]", a.fps);
+  }
+  const cJSON *frames = cJSON_GetObjectItemCaseSensitive(v, "frames");
+  if (!frames)
+    return missing(r, "frames");
+  size_t mark = path_key(r, "frames");
+  if (!cJSON_IsArray(frames) || cJSON_GetArraySize(frames) != 2)
+    return fail(r, GLINT_E_PARSE,
+                "expected [first, last] frame numbers, found %s",
+                describe(frames).s);
+  int range[2];
+  for (int i = 0; i < 2; i++) {
+    size_t m = path_index(r, (size_t)i);
+    if ((st =
+             get_int(r, cJSON_GetArrayItem(frames, i), 0, 99999999, &range[i])))
+      return st;
+    path_pop(r, m);
+  }
+  if (range[1] < range[0])
+    return fail(r, GLINT_E_PARSE, "the last frame %d comes before the first %d",
+                range[1], range[0]);
+  path_pop(r, mark);
+  a.first_frame = range[0];
+  a.last_frame = range[1];
+  if ((st = lib(r, glint_scene_set_animation(r->scene, &a, r->error))))
+    return st;
+  const cJSON *camera = cJSON_GetObjectItemCaseSensitive(v, "camera");
+  if (camera) {
+    mark = path_key(r, "camera");
+    if ((st = read_camera_motion(r, camera)))
+      return st;
+    path_pop(r, mark);
+  }
+  return GLINT_OK;
+}
+
 /* The sections in a fixed order, whatever the file's: materials before the
  * objects that name them. */
 static glint_status read_scene(json_reader *r, const cJSON *root) {
-  static const char *const fields[] = {"camera",  "image",  "background",
-                                       "ambient", "lights", "materials",
-                                       "objects", NULL};
+  static const char *const fields[] = {"camera",  "image",     "background",
+                                       "ambient", "lights",    "materials",
+                                       "objects", "animation", NULL};
   static const struct {
     const char *key;
     glint_status (*read)(json_reader *, const cJSON *);
-  } sections[] = {{"camera", read_camera},
-                  {"image", read_image},
-                  {"lights", read_lights},
-                  {"materials", read_materials},
-                  {"objects", read_objects}};
+  } sections[] = {{"camera", read_camera},   {"image", read_image},
+                  {"lights", read_lights},   {"materials", read_materials},
+                  {"objects", read_objects}, {"animation", read_animation}};
   if (!cJSON_IsObject(root))
     return fail(r, GLINT_E_PARSE,
                 "expected an object at the top level, found %s",
