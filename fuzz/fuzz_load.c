@@ -5,7 +5,8 @@
  *   mesh.obj, mesh.ply           the mesh readers, from memory
  *   mesh.ply.gz                  a temporary file: zlib and its size caps
  * A scene that loads is rendered 8x8 by the scalar reference and by the
- * widest SIMD backend: whatever a reader accepts, the renderer must take.
+ * widest SIMD backend: whatever a reader accepts, the renderer must take;
+ * an animated one also with its camera at a few frames' times.
  * Build and run with scripts/fuzz.sh. */
 /* mkstemps is a BSD/GNU extension */
 #define _DEFAULT_SOURCE
@@ -108,6 +109,23 @@ int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size) {
     rs.backend = backends[i];
     if (glint_render(scene, &rs, &image, NULL, &e) == GLINT_OK)
       glint_image_destroy(image);
+  }
+  /* An animated scene: its camera at the frames' times and between them,
+   * and one frame rendered with it. */
+  glint_animation anim;
+  if (glint_scene_get_animation(scene, &anim)) {
+    glint_camera camera;
+    for (int f = anim.first_frame;
+         f <= anim.last_frame && f < anim.first_frame + 4; f++)
+      glint_scene_camera_at(scene, (f - anim.first_frame + 0.5) / anim.fps,
+                            &camera, &e);
+    if (glint_scene_camera_at(scene, 1 / anim.fps, &camera, &e) == GLINT_OK &&
+        glint_scene_set_camera(scene, &camera, &e) == GLINT_OK) {
+      glint_image *image = NULL;
+      rs.backend = GLINT_BACKEND_AUTO;
+      if (glint_render(scene, &rs, &image, NULL, &e) == GLINT_OK)
+        glint_image_destroy(image);
+    }
   }
   glint_scene_destroy(scene);
   return 0;
