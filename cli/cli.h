@@ -51,9 +51,13 @@ int compare_parse(int argc, char **argv, compare_options *options);
 
 /* Loads a built-in scene by name, or a scene file when the argument names
  * one (it has a '.' or a '/'); prints one message and returns NULL on error.
- * `stem` receives the name to derive an output file from. */
+ * `stem` receives the name to derive an output file from. An animated scene
+ * comes still, as its first frame (glint_scene_at_time at 0) ... */
 struct glint_scene *cli_load_scene(const char *arg, char *stem,
                                    unsigned long stem_size);
+/* ... or, from this one, with its animation. */
+struct glint_scene *cli_load_animation(const char *arg, char *stem,
+                                       unsigned long stem_size);
 
 /* SIGINT, SIGTERM and SIGHUP only take note from then on; cli_stopped says
  * whether one came (cancel, say so, exit 130). */

@@ -125,6 +125,24 @@ double cli_peak_rss_mib(void) {
 
 glint_scene *cli_load_scene(const char *arg, char *stem,
                             unsigned long stem_size) {
+  glint_scene *scene = cli_load_animation(arg, stem, stem_size);
+  glint_animation animation;
+  if (!scene || !glint_scene_get_animation(scene, &animation))
+    return scene;
+  /* An animated scene, still: its first frame. */
+  glint_scene *still;
+  glint_error err;
+  glint_status st = glint_scene_at_time(scene, 0, &still, &err);
+  glint_scene_destroy(scene);
+  if (st) {
+    cli_error("%s: %s", arg, err.message);
+    return NULL;
+  }
+  return still;
+}
+
+glint_scene *cli_load_animation(const char *arg, char *stem,
+                                unsigned long stem_size) {
   glint_error err;
   glint_scene *scene = NULL;
   int is_file = strchr(arg, '.') != NULL || strchr(arg, '/') != NULL;
@@ -415,6 +433,11 @@ int render_parse(int argc, char **argv, render_options *o) {
     cli_error("--frames writes a file a frame; -o - is one stream");
     return EXIT_USAGE;
   }
+  if (o->frames && o->stats) {
+    cli_error("--stats applies to one image; --frames prints a line a frame "
+              "and a summary");
+    return EXIT_USAGE;
+  }
   if (o->resume && !o->frames) {
     cli_error("--resume applies to --frames");
     return EXIT_USAGE;
@@ -449,7 +472,9 @@ int cmd_render(int argc, char **argv) {
   char stem[256], default_output[300];
   command_times times;
   double t0 = cli_now();
-  glint_scene *scene = cli_load_scene(scene_arg, stem, sizeof stem);
+  glint_scene *scene =
+      o.frames ? cli_load_animation(scene_arg, stem, sizeof stem)
+               : cli_load_scene(scene_arg, stem, sizeof stem);
   times.load = cli_now() - t0;
   if (!scene)
     return EXIT_USAGE;

@@ -2,7 +2,9 @@
  *
  * The scene is committed once and every frame rendered by one renderer
  * with the camera of its time (t = (frame - first) / fps, from the whole
- * animation whatever part is rendered); each file is written atomically
+ * animation whatever part is rendered); when objects move, each frame
+ * commits the scene at its time (a new BVH) and hands that world to the
+ * same renderer (threads and memory kept); each file is written atomically
  * while its frame renders (glint_image_writer), so an interrupted run
  * leaves whole frames only, and --resume keeps those and renders the rest. */
 #include "args.h"
@@ -123,6 +125,23 @@ static int make_folders(const char *path) {
   }
 }
 
+/* The world of the scene at `time`, committed (its BVH built anew) and
+ * given to the renderer. 0 on success. */
+static int next_world(const glint_scene *scene, double time,
+                      glint_renderer *renderer, glint_error *err) {
+  glint_scene *still;
+  glint_world *world;
+  if (glint_scene_at_time(scene, time, &still, err))
+    return -1;
+  glint_status st = glint_world_commit(still, &world, NULL, err);
+  glint_scene_destroy(still);
+  if (st)
+    return -1;
+  st = glint_renderer_set_world(renderer, world, err);
+  glint_world_destroy(world);
+  return st ? -1 : 0;
+}
+
 static int already_written(const char *path) {
   struct stat sb;
   return stat(path, &sb) == 0 && S_ISREG(sb.st_mode) && sb.st_size > 0;
@@ -194,6 +213,8 @@ int render_frames(glint_scene *scene, const render_options *o,
   if (rs->region_width)
     w = rs->region_width, h = rs->region_height;
 
+  /* Objects that move need a world a frame; a camera alone does not. */
+  int moving = glint_scene_has_motion(scene);
   cli_catch_stop_signals();
   int status = 0, rendered = 0, kept = 0;
   double render_seconds = 0, frame_seconds = 0;
@@ -221,6 +242,7 @@ int render_frames(glint_scene *scene, const render_options *o,
     frame.tile_user = &sink;
     frame.progress = on_progress;
     if (glint_scene_camera_at(scene, time, &camera, &err) ||
+        (moving && next_world(scene, time, renderer, &err)) ||
         glint_image_writer_open(path, w, h, rs->gamma, o->png_compression,
                                 &sink.writer, &err)) {
       cli_error("frame %d: %s", f, err.message);

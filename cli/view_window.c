@@ -255,9 +255,17 @@ static void reload_if_changed(viewer *v) {
       (now.tv_sec == v->mtime.tv_sec && now.tv_nsec == v->mtime.tv_nsec))
     return;
   v->mtime = now;
-  glint_scene *scene;
+  glint_scene *scene, *still;
   glint_error err;
-  if (glint_scene_load(v->opt->scene, &scene, &err)) {
+  if (glint_scene_load(v->opt->scene, &scene, &err) == GLINT_OK) {
+    /* An animated scene shows its first frame, as on loading. */
+    glint_status st = glint_scene_at_time(scene, 0, &still, &err);
+    glint_scene_destroy(scene);
+    scene = st ? NULL : still;
+  } else {
+    scene = NULL;
+  }
+  if (!scene) {
     snprintf(v->error, sizeof v->error, "%s", err.message);
     fprintf(stderr, "glint: %s (still showing the last good scene)\n",
             err.message);

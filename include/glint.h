@@ -240,6 +240,39 @@ glint_status glint_scene_set_camera_keys(glint_scene *scene,
 glint_status glint_scene_set_camera_orbit(glint_scene *scene, glint_vec3 center,
                                           double radius, double height,
                                           double degrees, glint_error *error);
+/* A rigid motion with a uniform scale: p -> translate + pivot +
+ * scale * R (p - pivot), R turning by rotate.x degrees about x, then
+ * rotate.y about y, then rotate.z about z (right-handed). Spheres and
+ * cones keep their shape (their radii scale); solid textures move with
+ * their object but do not turn with it. */
+typedef struct glint_transform {
+  glint_vec3 translate, rotate, pivot;
+  double scale;
+} glint_transform;
+/* No motion: everything 0, scale 1. */
+void glint_transform_identity(glint_transform *transform);
+
+typedef struct glint_transform_key {
+  double time; /* seconds */
+  glint_transform transform;
+} glint_transform_key;
+
+/* Moves object `object` (0 for the first added; glint_scene_info.objects
+ * counts them) through keyed transforms, interpolated component by
+ * component (translate, rotate, scale, pivot) as camera keys are; one key
+ * is a still transform. glint_scene_at_time applies them. */
+glint_status glint_scene_set_object_motion(glint_scene *scene, uint32_t object,
+                                           const glint_transform_key *keys,
+                                           size_t count,
+                                           glint_interpolation interpolation,
+                                           glint_error *error);
+/* Whether any object has a motion (a frame then needs its own world). */
+int glint_scene_has_motion(const glint_scene *scene);
+/* A new, still scene: `scene` at `time` seconds, each moving object where
+ * its transform puts it and the camera that of glint_scene_camera_at. */
+glint_status glint_scene_at_time(const glint_scene *scene, double time,
+                                 glint_scene **still, glint_error *error);
+
 /* The camera at `time` seconds: from the keys or the orbit when the scene
  * has them, else the scene's camera. Fails when the interpolated camera is
  * degenerate (from at at, up along the view). */
@@ -513,6 +546,11 @@ glint_status glint_renderer_create(glint_world *world,
                                    glint_renderer **renderer,
                                    glint_error *error);
 void glint_renderer_destroy(glint_renderer *renderer);
+/* Renders `world` from now on, keeping the threads and their memory (an
+ * animation whose objects move commits a world a frame). The renderer
+ * drops its reference to the previous world. */
+glint_status glint_renderer_set_world(glint_renderer *renderer,
+                                      glint_world *world, glint_error *error);
 
 /* One finished tile, handed over while the frame renders: pixels
  * [x, x + width) x [y, y + height) of the frame (region coordinates are

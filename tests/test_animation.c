@@ -6,8 +6,13 @@
  *  - before the first key and after the last the camera holds still;
  *  - an orbit turns its degrees over the frames, from the +z side;
  *  - the JSON "animation" block sets all of it, and each mistake is named
- *    at its JSON path; a committed world keeps the animation of its copy. */
+ *    at its JSON path; a committed world keeps the animation of its copy;
+ *  - transforms move spheres, planes, triangles and cones as
+ *    translate + pivot + scale R (p - pivot), R = Rz Ry Rx, still or keyed,
+ *    and glint_scene_at_time gives the still scene of a time. */
 #include "test_util.h"
+
+#include "scene/scene.h" /* to read the moved primitives back */
 
 #include <math.h>
 #include <string.h>
@@ -135,6 +140,86 @@ static void world_keeps_the_animation(void **state) {
   glint_scene_destroy(s);
 }
 
+static void near_vec(glint_vec3 got, glint_vec3 want, const char *what) {
+  if (fabs(got.x - want.x) > 1e-12 || fabs(got.y - want.y) > 1e-12 ||
+      fabs(got.z - want.z) > 1e-12)
+    fail_msg("%s: (%.17g, %.17g, %.17g), not (%g, %g, %g)", what, got.x, got.y,
+             got.z, want.x, want.y, want.z);
+}
+
+static void still_transforms(void **state) {
+  (void)state;
+  glint_scene *s =
+      load("{\"materials\": {\"m\": {}}, \"objects\": ["
+           /* a quarter turn about z round the origin: x goes to y; scale 2 */
+           "{\"type\": \"sphere\", \"center\": [1, 0, 0], \"radius\": 0.5, "
+           "\"material\": \"m\", \"transform\": {\"rotate\": [0, 0, 90], "
+           "\"scale\": 2}},"
+           /* a quarter turn about x round (0, 1, 0): +y normal to +z */
+           "{\"type\": \"plane\", \"normal\": [0, 1, 0], \"point\": [0, 1, 0], "
+           "\"material\": \"m\", \"transform\": {\"rotate\": [90, 0, 0], "
+           "\"pivot\": [0, 1, 0], \"translate\": [0, 0, 3]}},"
+           /* about y: z goes to x */
+           "{\"type\": \"triangle\", \"vertices\": [[0, 0, 1], [0, 1, 1], "
+           "[0, 0, 2]], \"material\": \"m\", \"transform\": {\"rotate\": "
+           "[0, 90, 0]}},"
+           "{\"type\": \"cone\", \"base\": [0, 0, 0], \"base_radius\": 1, "
+           "\"apex\": [0, 2, 0], \"apex_radius\": 0.5, \"material\": \"m\", "
+           "\"transform\": {\"translate\": [5, 0, 0], \"scale\": 3}}]}");
+  near_vec(s->spheres[0].center, (glint_vec3){0, 2, 0}, "sphere center");
+  near(s->spheres[0].radius, 1, "sphere radius");
+  near_vec(s->planes[0].normal, (glint_vec3){0, 0, 1}, "plane normal");
+  /* The point (0, 1, 0) stays at the pivot, then moves 3 along z. */
+  near(s->planes[0].d, -3, "plane d");
+  near_vec(s->triangles[0].v[0], (glint_vec3){1, 0, 0}, "vertex 0");
+  near_vec(s->triangles[0].v[1], (glint_vec3){1, 1, 0}, "vertex 1");
+  near_vec(s->triangles[0].v[2], (glint_vec3){2, 0, 0}, "vertex 2");
+  near_vec(s->cones[0].base, (glint_vec3){5, 0, 0}, "cone base");
+  near_vec(s->cones[0].apex, (glint_vec3){5, 6, 0}, "cone apex");
+  near(s->cones[0].base_radius, 3, "cone base radius");
+  assert_int_equal(glint_scene_has_motion(s), 0);
+  glint_scene_destroy(s);
+}
+
+static void keyed_transforms(void **state) {
+  (void)state;
+  glint_scene *s =
+      load("{\"materials\": {\"m\": {}}, \"objects\": ["
+           "{\"type\": \"sphere\", \"center\": [0, 1, 0], \"radius\": 1, "
+           "\"material\": \"m\", \"transform\": {\"keys\": [{\"time\": 0}, "
+           "{\"time\": 2, \"translate\": [4, 0, 0], \"scale\": 0.5}]}}],"
+           "\"animation\": {\"frames\": [0, 48], \"camera\": {\"keys\": ["
+           "{\"time\": 0, \"from\": [0, 0, 10], \"at\": [0, 0, 0]},"
+           "{\"time\": 2, \"from\": [0, 0, 20], \"at\": [0, 0, 0]}]}}}");
+  assert_int_equal(glint_scene_has_motion(s), 1);
+  /* As written until a time is asked for. */
+  near_vec(s->spheres[0].center, (glint_vec3){0, 1, 0}, "written center");
+  glint_scene *still;
+  ASSERT_OK(glint_scene_at_time(s, 0.5, &still, &e_));
+  /* A quarter of the way: translate (1, 0, 0), scale 0.875 about the
+   * origin. */
+  near_vec(still->spheres[0].center, (glint_vec3){1, 0.875, 0}, "center");
+  near(still->spheres[0].radius, 0.875, "radius");
+  near(still->camera.from.z, 12.5, "the camera of that time");
+  assert_int_equal(glint_scene_has_motion(still), 0);
+  glint_scene_destroy(still);
+  ASSERT_OK(glint_scene_at_time(s, 9, &still, &e_)); /* after the last key */
+  near_vec(still->spheres[0].center, (glint_vec3){4, 0.5, 0}, "held center");
+  glint_scene_destroy(still);
+  /* Through the API: a motion for a missing object, a scale not positive. */
+  glint_transform_key k = {0, {{0, 0, 0}, {0, 0, 0}, {0, 0, 0}, 1}};
+  glint_error e;
+  assert_int_equal(
+      glint_scene_set_object_motion(s, 7, &k, 1, GLINT_INTERPOLATE_LINEAR, &e),
+      GLINT_E_ARGUMENT);
+  assert_non_null(strstr(e.message, "there is no object 7"));
+  k.transform.scale = 0;
+  assert_int_equal(
+      glint_scene_set_object_motion(s, 0, &k, 1, GLINT_INTERPOLATE_LINEAR, &e),
+      GLINT_E_ARGUMENT);
+  glint_scene_destroy(s);
+}
+
 typedef struct bad_case {
   const char *json, *words;
 } bad_case;
@@ -179,6 +264,27 @@ static void json_mistakes_are_named(void **state) {
        "{\"center\": [0, 0, 0], \"radius\": 2}, \"interpolation\": "
        "\"linear\"}}}",
        "\"interpolation\" applies to keys"},
+      {"{\"materials\": {\"m\": {}}, \"objects\": [{\"type\": \"sphere\", "
+       "\"center\": [0, 0, 0], \"radius\": 1, \"material\": \"m\", "
+       "\"transform\": {\"scale\": 0}}]}",
+       "objects[0].transform.scale: the scale 0 is not positive"},
+      {"{\"materials\": {\"m\": {}}, \"objects\": [{\"type\": \"sphere\", "
+       "\"center\": [0, 0, 0], \"radius\": 1, \"material\": \"m\", "
+       "\"transform\": {\"spin\": 1}}]}",
+       "objects[0].transform: unknown field \"spin\""},
+      {"{\"materials\": {\"m\": {}}, \"objects\": [{\"type\": \"sphere\", "
+       "\"center\": [0, 0, 0], \"radius\": 1, \"material\": \"m\", "
+       "\"transform\": {\"keys\": [{\"time\": 1}, {\"time\": 0}]}}]}",
+       "objects[0].transform.keys[1]: time 0 does not come after"},
+      {"{\"materials\": {\"m\": {}}, \"objects\": [{\"type\": \"sphere\", "
+       "\"center\": [0, 0, 0], \"radius\": 1, \"material\": \"m\", "
+       "\"transform\": {\"keys\": [{\"translate\": [1, 0, 0]}]}}]}",
+       "objects[0].transform.keys[0]: missing \"time\""},
+      {"{\"materials\": {\"m\": {}}, \"objects\": [{\"type\": \"sphere\", "
+       "\"center\": [0, 0, 0], \"radius\": 1, \"material\": \"m\", "
+       "\"transform\": {\"keys\": [{\"time\": 0}], \"rotate\": [1, 0, 0]}}]}",
+       "objects[0].transform: unknown field \"rotate\" (known: keys, "
+       "interpolation)"},
   };
   for (size_t i = 0; i < sizeof cases / sizeof cases[0]; i++) {
     glint_scene *s = NULL;
@@ -199,6 +305,8 @@ int main(void) {
       cmocka_unit_test(catmull_rom_keys),
       cmocka_unit_test(orbit),
       cmocka_unit_test(world_keeps_the_animation),
+      cmocka_unit_test(still_transforms),
+      cmocka_unit_test(keyed_transforms),
       cmocka_unit_test(json_mistakes_are_named),
   };
   return cmocka_run_group_tests(tests, NULL, NULL);

@@ -653,9 +653,60 @@ static void frames_of_an_animation(void **state) {
                      "--frames", "3-1");
   EXPECT_USAGE_ERROR("--resume applies to --frames", "render", scene_path,
                      "--resume");
+  EXPECT_USAGE_ERROR("--stats applies to one image", "render", scene_path,
+                     "--frames", "1", "--stats");
   EXPECT_USAGE_ERROR("-o - is one stream", "render", scene_path, "--frames",
                      "1", "-o", "-");
   unlink(scene_path);
+}
+
+/* Objects that move: frame 1 (t = 1 s) of a sphere sliding 2 units in 2 s
+ * is the still scene with the sphere 1 unit along, byte for byte; the
+ * still render of the animated scene is its first frame. */
+static void frames_with_moving_objects(void **state) {
+  (void)state;
+  static const char head[] =
+      "{\"camera\": {\"from\": [0, 2, 6], \"at\": [0, 1, 0]},"
+      " \"image\": {\"width\": 40, \"height\": 30},"
+      " \"lights\": [{\"position\": [-4, 8, 6], \"color\": [1, 1, 1]}],"
+      " \"materials\": {\"m\": {\"color\": [0.9, 0.2, 0.2], \"ks\": 0.3}},"
+      " \"objects\": [{\"type\": \"plane\", \"point\": [0, 0, 0], "
+      "\"normal\": [0, 1, 0], \"material\": \"m\"},";
+  char text[2048];
+  snprintf(text, sizeof text,
+           "%s {\"type\": \"sphere\", \"center\": [0, 1, 0], \"radius\": 1, "
+           "\"material\": \"m\", \"transform\": {\"keys\": [{\"time\": 0}, "
+           "{\"time\": 2, \"translate\": [2, 0, 0]}]}}],"
+           " \"animation\": {\"fps\": 1, \"frames\": [0, 2]}}",
+           head);
+  put_text("move.json", text);
+  snprintf(text, sizeof text,
+           "%s {\"type\": \"sphere\", \"center\": [1, 1, 0], \"radius\": 1, "
+           "\"material\": \"m\"}]}",
+           head);
+  put_text("moved.json", text);
+  assert_int_equal(run("render", "move.json", "--frames", "0-2", "-o",
+                       "m%d.png", "-q", NULL),
+                   0);
+  assert_int_equal(run("render", "moved.json", "-o", "moved.png", "-q", NULL),
+                   0);
+  assert_int_equal(run("render", "move.json", "-o", "still.png", "-q", NULL),
+                   0);
+  const char *same[][2] = {{"m1.png", "moved.png"}, {"m0.png", "still.png"}};
+  for (int i = 0; i < 2; i++) {
+    long na, nb;
+    char *a = file_bytes(same[i][0], &na), *b = file_bytes(same[i][1], &nb);
+    if (na != nb || memcmp(a, b, (size_t)na) != 0)
+      fail_msg("%s differs from %s", same[i][0], same[i][1]);
+    free(a);
+    free(b);
+  }
+  char cmd[512];
+  snprintf(cmd, sizeof cmd,
+           "cd '%s' && rm -f m0.png m1.png m2.png moved.png "
+           "still.png move.json moved.json",
+           dir);
+  assert_int_equal(system(cmd), 0);
 }
 
 /* Ctrl-C: a message, status 130, the existing file untouched. */
@@ -743,6 +794,7 @@ int main(void) {
       cmocka_unit_test(options_as_people_write_them),
       cmocka_unit_test(default_threads_follow_the_affinity),
       cmocka_unit_test(frames_of_an_animation),
+      cmocka_unit_test(frames_with_moving_objects),
       cmocka_unit_test(interrupt_keeps_the_old_file),
       cmocka_unit_test(compare_threshold_and_difference),
   };

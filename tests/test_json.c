@@ -615,7 +615,7 @@ static const bad_case structure_cases[] = {
     {"{" M "'objects': [" SPHERE "'radius': 1}, " SPHERE "'radius': 1}, " SPHERE
      "'r': 1}]}",
      ": objects[2]: unknown field \"r\" (known: type, material, center, "
-     "radius)"},
+     "radius, transform)"},
     {"{" M "'objects': [" SPHERE "'radius': 1}, " SPHERE "'radius': 1}, " SPHERE
      "'size': 1}]}",
      ": objects[2]: unknown field \"size\""},
@@ -682,7 +682,7 @@ static const bad_case structure_cases[] = {
     {"{" M "'objects': [{'type': 'triangle', 'material': 'm', 'vertices': "
      "[[0, 0, 0], [1, 0, 0], [0, 1, 0]], 'normal': [0, 0, 1]}]}",
      ": objects[0]: unknown field \"normal\" (known: type, material, "
-     "vertices)"},
+     "vertices, transform)"},
     {"{" M "'objects': [{'type': 'cone', 'material': 'm', 'base': [0, 0, 0], "
      "'base_radius': 0, 'apex': [0, 1, 0], 'apex_radius': 0}]}",
      ": objects[0]: cone: radii 0 and 0 must be >= 0 and not both 0"},
@@ -703,7 +703,7 @@ static const bad_case structure_cases[] = {
     {"{" M "'objects': [{'type': 'mesh', 'material': 'm', 'file': 'a.obj', "
      "'radius': 1}]}",
      ": objects[0]: unknown field \"radius\" (known: type, material, file, "
-     "scale, translate)"},
+     "scale, translate, transform)"},
 };
 
 #undef M

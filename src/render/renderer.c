@@ -211,6 +211,28 @@ glint_status glint_renderer_create(glint_world *world,
   return GLINT_OK;
 }
 
+glint_status glint_renderer_set_world(glint_renderer *r, glint_world *world,
+                                      glint_error *error) {
+  if (!r || !world)
+    return gli_fail(error, GLINT_E_ARGUMENT, "no renderer or no world");
+  const void *data = NULL;
+  const gli_bvh *bvh = &r->no_bvh;
+  void *view = NULL;
+  glint_status st;
+  if ((st = gli_world_data(world, r->ops->data, &data, error)) ||
+      (r->settings.accel == GLINT_ACCEL_BVH &&
+       (st = gli_world_bvh(world, &bvh, error))) ||
+      (st = r->layout->bind(data, bvh, &view, error)))
+    return st;
+  if (r->view)
+    r->layout->unbind(r->view);
+  r->view = view;
+  gli_world_retain(world);
+  gli_world_release(r->world);
+  r->world = world;
+  return GLINT_OK;
+}
+
 void glint_renderer_destroy(glint_renderer *r) {
   if (!r)
     return;
@@ -388,8 +410,8 @@ glint_status gli_renderer_render(glint_renderer *r,
   int first = frame->sample_first, count = frame->sample_count;
   if (first < 0 || count < 0 || first >= spp || count > spp - first)
     return gli_fail(error, GLINT_E_ARGUMENT,
-                    "samples %d..%d are not among the %d of the pattern",
-                    first, first + count - 1, spp);
+                    "samples %d..%d are not among the %d of the pattern", first,
+                    first + count - 1, spp);
   if (count == 0)
     count = spp - first;
   if (!rw)

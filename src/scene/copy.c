@@ -29,7 +29,6 @@ glint_status gli_scene_copy(const glint_scene *src, glint_scene **out,
   if (!s)
     return gli_fail(error, GLINT_E_MEMORY, "out of memory copying the scene");
   *s = *src;
-  size_t key_cap;
   /* Bitwise & so that every call runs and replaces its pointer (with a
    * copy or NULL): none of src's arrays may be left for destroy to free. */
   int ok =
@@ -50,9 +49,7 @@ glint_status gli_scene_copy(const glint_scene *src, glint_scene **out,
                  &s->tri_normal_cap) &
       copy_array((void **)&s->cones, src->cones, src->cone_count,
                  sizeof *s->cones, &s->cone_cap) &
-      copy_array((void **)&s->animation.keys, src->animation.keys,
-                 src->animation.key_count, sizeof *s->animation.keys,
-                 &key_cap);
+      gli_animation_copy(&s->animation, &src->animation);
   if (!ok) {
     glint_scene_destroy(s);
     return gli_fail(error, GLINT_E_MEMORY, "out of memory copying the scene");

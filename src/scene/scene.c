@@ -61,7 +61,7 @@ void glint_scene_destroy(glint_scene *s) {
   free(s->triangles);
   free(s->tri_normals);
   free(s->cones);
-  free(s->animation.keys);
+  gli_animation_free(&s->animation);
   free(s);
 }
 

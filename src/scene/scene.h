@@ -55,8 +55,23 @@ typedef struct gli_light {
   glint_vec3 position, color;
 } gli_light;
 
-/* The scene's animation (scene/animation.c): its frames and how the camera
- * moves; camera_mode NONE keeps the camera still. */
+/* Keyframes of `width` numbers each (scene/animation.c): times[count] and
+ * values[count * width], interpolated component by component. */
+typedef struct gli_track {
+  glint_interpolation interpolation;
+  size_t count, width;
+  double *times, *values;
+} gli_track;
+
+/* An object moved by keyed transforms (10 numbers a key: translate,
+ * rotate, pivot, scale). */
+typedef struct gli_motion {
+  uint32_t object;
+  gli_track track;
+} gli_motion;
+
+/* The scene's animation (scene/animation.c): its frames, how the camera
+ * moves (camera_mode STILL keeps it) and which objects move. */
 typedef enum gli_camera_mode {
   GLI_CAMERA_STILL = 0,
   GLI_CAMERA_KEYS,
@@ -67,12 +82,19 @@ typedef struct gli_animation {
   int present;
   glint_animation frames;
   gli_camera_mode camera_mode;
-  glint_interpolation interpolation;
-  glint_camera_key *keys;
-  size_t key_count;
+  gli_track camera_keys; /* 10 numbers a key: from, at, up, fov */
   glint_vec3 orbit_center;
   double orbit_radius, orbit_height, orbit_degrees;
+  gli_motion *motions;
+  size_t motion_count;
 } gli_animation;
+
+/* Deep copy and release of the animation's arrays (scene/animation.c). */
+int gli_animation_copy(gli_animation *dst, const gli_animation *src);
+void gli_animation_free(gli_animation *animation);
+/* Applies `t` to object `object`'s primitives (scene/transform.c). */
+void gli_object_transform(glint_scene *scene, uint32_t object,
+                          const glint_transform *t);
 
 struct glint_scene {
   glint_camera camera;

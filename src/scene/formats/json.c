@@ -572,15 +572,129 @@ static glint_status read_mesh(json_reader *r, const cJSON *obj,
 
 typedef enum object_kind { SPHERE, PLANE, TRIANGLE, CONE, MESH } object_kind;
 
+/* "interpolation": "linear" (the default) or "catmull-rom". */
+static glint_status read_interpolation(json_reader *r, const cJSON *v,
+                                       glint_interpolation *out) {
+  const cJSON *how = cJSON_GetObjectItemCaseSensitive(v, "interpolation");
+  if (!how)
+    return GLINT_OK;
+  size_t mark = path_key(r, "interpolation");
+  if (cJSON_IsString(how) && strcmp(how->valuestring, "catmull-rom") == 0)
+    *out = GLINT_INTERPOLATE_CATMULL_ROM;
+  else if (cJSON_IsString(how) && strcmp(how->valuestring, "linear") == 0)
+    *out = GLINT_INTERPOLATE_LINEAR;
+  else
+    return fail(r, GLINT_E_PARSE,
+                "expected \"linear\" or \"catmull-rom\", found %s",
+                describe(how).s);
+  path_pop(r, mark);
+  return GLINT_OK;
+}
+
+/* A transform's members (all optional) into *t, which holds the defaults;
+ * `time` as well when it is a key. */
+static glint_status read_transform_fields(json_reader *r, const cJSON *v,
+                                          int key, glint_transform_key *k) {
+  static const char *const still_fields[] = {"translate", "rotate", "scale",
+                                             "pivot", NULL};
+  static const char *const key_fields[] = {"time",  "translate", "rotate",
+                                           "scale", "pivot",     NULL};
+  glint_transform *t = &k->transform;
+  glint_status st;
+  if ((st = expect_object(r, v)) ||
+      (st = check_fields(r, v, key ? key_fields : still_fields)) ||
+      (key && (st = number_field(r, v, "time", 1, &k->time))) ||
+      (st = vec3_field(r, v, "translate", 0, &t->translate)) ||
+      (st = vec3_field(r, v, "rotate", 0, &t->rotate)) ||
+      (st = vec3_field(r, v, "pivot", 0, &t->pivot)) ||
+      (st = number_field(r, v, "scale", 0, &t->scale)))
+    return st;
+  if (!(t->scale > 0)) {
+    path_key(r, "scale");
+    return fail(r, GLINT_E_PARSE, "the scale %g is not positive", t->scale);
+  }
+  return GLINT_OK;
+}
+
+/* "transform": still ({"translate", "rotate", "scale", "pivot"}, applied
+ * now) or moving ({"keys": [{"time", ...}], "interpolation"}). */
+static glint_status read_transform(json_reader *r, const cJSON *v) {
+  uint32_t object = (uint32_t)(r->scene->object_count - 1);
+  glint_status st;
+  if ((st = expect_object(r, v)))
+    return st;
+  const cJSON *keys = cJSON_GetObjectItemCaseSensitive(v, "keys");
+  if (!keys) {
+    glint_transform_key k = {0, {{0, 0, 0}, {0, 0, 0}, {0, 0, 0}, 1}};
+    if ((st = read_transform_fields(r, v, 0, &k)))
+      return st;
+    gli_object_transform(r->scene, object, &k.transform);
+    return GLINT_OK;
+  }
+  static const char *const fields[] = {"keys", "interpolation", NULL};
+  glint_interpolation how = GLINT_INTERPOLATE_LINEAR;
+  if ((st = check_fields(r, v, fields)) ||
+      (st = read_interpolation(r, v, &how)))
+    return st;
+  size_t mark = path_key(r, "keys");
+  if ((st = expect_array(r, keys)))
+    return st;
+  size_t n = (size_t)cJSON_GetArraySize(keys);
+  if (n == 0)
+    return fail(r, GLINT_E_PARSE, "expected at least one key");
+  glint_transform_key *k = calloc(n, sizeof *k);
+  if (!k)
+    return fail(r, GLINT_E_MEMORY, "out of memory");
+  size_t i = 0;
+  for (const cJSON *c = keys->child; c; c = c->next, i++) {
+    size_t key_mark = path_index(r, i);
+    glint_transform_identity(&k[i].transform);
+    if ((st = read_transform_fields(r, c, 1, &k[i]))) {
+      free(k);
+      return st;
+    }
+    if (i > 0 && !(k[i].time > k[i - 1].time)) {
+      free(k);
+      return fail(r, GLINT_E_PARSE,
+                  "time %g does not come after the key before (%g)", k[i].time,
+                  k[i - 1].time);
+    }
+    path_pop(r, key_mark);
+  }
+  st = lib(
+      r, glint_scene_set_object_motion(r->scene, object, k, n, how, r->error));
+  free(k);
+  if (st == GLINT_OK)
+    path_pop(r, mark);
+  return st;
+}
+
+static glint_status read_object_shape(json_reader *r, const cJSON *obj);
+
+/* An object, then its transform (which applies to what it added). */
 static glint_status read_object(json_reader *r, const cJSON *obj) {
+  glint_status st = read_object_shape(r, obj);
+  const cJSON *t =
+      st ? NULL : cJSON_GetObjectItemCaseSensitive(obj, "transform");
+  if (!t)
+    return st;
+  size_t mark = path_key(r, "transform");
+  if ((st = read_transform(r, t)))
+    return st;
+  path_pop(r, mark);
+  return GLINT_OK;
+}
+
+static glint_status read_object_shape(json_reader *r, const cJSON *obj) {
   static const char *const types[] = {"sphere", "plane", "triangle", "cone",
                                       "mesh"};
-  static const char *const fields[][7] = {
-      {"type", "material", "center", "radius", NULL},
-      {"type", "material", "normal", "point", NULL},
-      {"type", "material", "vertices", NULL},
-      {"type", "material", "base", "base_radius", "apex", "apex_radius", NULL},
-      {"type", "material", "file", "scale", "translate", NULL}};
+  static const char *const fields[][8] = {
+      {"type", "material", "center", "radius", "transform", NULL},
+      {"type", "material", "normal", "point", "transform", NULL},
+      {"type", "material", "vertices", "transform", NULL},
+      {"type", "material", "base", "base_radius", "apex", "apex_radius",
+       "transform", NULL},
+      {"type", "material", "file", "scale", "translate", "transform", NULL}};
   const char *type = "";
   size_t mark;
   glint_status st;
@@ -706,17 +820,8 @@ static glint_status read_camera_motion(json_reader *r, const cJSON *v) {
     return GLINT_OK;
   }
   glint_interpolation interpolation = GLINT_INTERPOLATE_LINEAR;
-  const cJSON *how = cJSON_GetObjectItemCaseSensitive(v, "interpolation");
-  if (how) {
-    size_t mark = path_key(r, "interpolation");
-    if (cJSON_IsString(how) && strcmp(how->valuestring, "catmull-rom") == 0)
-      interpolation = GLINT_INTERPOLATE_CATMULL_ROM;
-    else if (!cJSON_IsString(how) || strcmp(how->valuestring, "linear") != 0)
-      return fail(r, GLINT_E_PARSE,
-                  "expected \"linear\" or \"catmull-rom\", found %s",
-                  describe(how).s);
-    path_pop(r, mark);
-  }
+  if ((st = read_interpolation(r, v, &interpolation)))
+    return st;
   size_t mark = path_key(r, "keys");
   if ((st = expect_array(r, keys)))
     return st;
