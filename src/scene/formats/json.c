@@ -654,10 +654,11 @@ static glint_status read_transform(json_reader *r, const cJSON *v) {
       return st;
     }
     if (i > 0 && !(k[i].time > k[i - 1].time)) {
+      st = fail(r, GLINT_E_PARSE,
+                "time %g does not come after the key before (%g)", k[i].time,
+                k[i - 1].time);
       free(k);
-      return fail(r, GLINT_E_PARSE,
-                  "time %g does not come after the key before (%g)", k[i].time,
-                  k[i - 1].time);
+      return st;
     }
     path_pop(r, key_mark);
   }
@@ -839,10 +840,11 @@ static glint_status read_camera_motion(json_reader *r, const cJSON *v) {
       return st;
     }
     if (i > 0 && !(k[i].time > k[i - 1].time)) {
+      st = fail(r, GLINT_E_PARSE,
+                "time %g does not come after the key before (%g)", k[i].time,
+                k[i - 1].time);
       free(k);
-      return fail(r, GLINT_E_PARSE,
-                  "time %g does not come after the key before (%g)", k[i].time,
-                  k[i - 1].time);
+      return st;
     }
     path_pop(r, key_mark);
   }
