@@ -403,10 +403,11 @@ static int run_benchmark(viewer *v) {
   double median = n % 2 ? frames[n / 2].ms
                         : 0.5 * (frames[n / 2 - 1].ms + frames[n / 2].ms);
   int i95 = (int)ceil(0.95 * n) - 1;
-  printf("%s: %d frames at %dx%d, 1 spp, depth %d, %s, %d threads\n", v->stem,
-         n, v->rw, v->rh, v->rs.max_depth,
-         glint_backend_name(glint_backend_resolve(v->rs.backend)),
-         v->rs.threads ? v->rs.threads : glint_cpu_count());
+  int threads = v->rs.threads ? v->rs.threads : glint_cpu_count();
+  printf("%s: %d frames at %dx%d, 1 spp, depth %d, %s, %d thread%s\n",
+         v->stem, n, v->rw, v->rh, v->rs.max_depth,
+         glint_backend_name(glint_backend_resolve(v->rs.backend)), threads,
+         threads == 1 ? "" : "s");
   printf("frame ms: median %.2f, 95th percentile %.2f; %.1f fps; %.1f "
          "Mrays/s\n",
          median, frames[i95 < 0 ? 0 : i95].ms, n / wall,
