@@ -359,16 +359,25 @@ int render_parse(int argc, char **argv, render_options *o) {
     if (arg_is(&c, NULL, "--frames")) {
       if (!(v = arg_value(&c, "--frames")))
         return EXIT_USAGE;
-      char dash, extra;
-      int n =
-          sscanf(v, "%d%c%d%c", &o->first_frame, &dash, &o->last_frame, &extra);
-      if (n == 1)
-        o->last_frame = o->first_frame;
-      if (!(n == 1 || (n == 3 && dash == '-')) || o->first_frame < 0 ||
-          o->last_frame < o->first_frame || strchr(v, ' ') || v[0] == '+') {
-        cli_error("--frames: '%s' is not a frame or a range FIRST-LAST", v);
+      /* FIRST or FIRST-LAST, whole numbers 0..99999999 (as in a scene's
+       * "frames"), nothing else. */
+      char *end;
+      long first = -1, last = -1;
+      if (v[0] >= '0' && v[0] <= '9') {
+        first = last = strtol(v, &end, 10);
+        if (*end == '-' && end[1] >= '0' && end[1] <= '9')
+          last = strtol(end + 1, &end, 10);
+        if (*end)
+          first = -1;
+      }
+      if (first < 0 || last < first || last > 99999999) {
+        cli_error("--frames: '%s' is not a frame or a range FIRST-LAST of "
+                  "frames 0..99999999",
+                  v);
         return EXIT_USAGE;
       }
+      o->first_frame = (int)first;
+      o->last_frame = (int)last;
       o->frames = 1;
     } else if (arg_is(&c, NULL, "--region")) {
       if (!(v = arg_value(&c, "--region")))
@@ -472,9 +481,9 @@ int cmd_render(int argc, char **argv) {
   char stem[256], default_output[300];
   command_times times;
   double t0 = cli_now();
-  glint_scene *scene =
-      o.frames ? cli_load_animation(scene_arg, stem, sizeof stem)
-               : cli_load_scene(scene_arg, stem, sizeof stem);
+  glint_scene *scene = o.frames
+                           ? cli_load_animation(scene_arg, stem, sizeof stem)
+                           : cli_load_scene(scene_arg, stem, sizeof stem);
   times.load = cli_now() - t0;
   if (!scene)
     return EXIT_USAGE;

@@ -53,25 +53,31 @@ static int check_pattern(const char *p) {
 
 /* The file of `frame`: the pattern's, else the number (at least `digits`
  * wide) before the name's extension. */
-static void frame_path(char *out, size_t size, const char *name, int pattern,
-                       int frame, int digits) {
+static int frame_path(char *out, size_t size, const char *name, int pattern,
+                      int frame, int digits) {
+  int n;
   if (pattern) {
 #if defined(__GNUC__)
 #pragma GCC diagnostic push
 #pragma GCC diagnostic ignored "-Wformat-nonliteral"
 #endif
-    snprintf(out, size, name, frame); /* checked by check_pattern */
+    n = snprintf(out, size, name, frame); /* checked by check_pattern */
 #if defined(__GNUC__)
 #pragma GCC diagnostic pop
 #endif
-    return;
+  } else {
+    const char *slash = strrchr(name, '/');
+    const char *dot = strrchr(slash ? slash : name, '.');
+    if (!dot)
+      dot = name + strlen(name);
+    n = snprintf(out, size, "%.*s%0*d%s", (int)(dot - name), name, digits,
+                 frame, dot);
   }
-  const char *slash = strrchr(name, '/');
-  const char *dot = strrchr(slash ? slash : name, '.');
-  if (!dot)
-    dot = name + strlen(name);
-  snprintf(out, size, "%.*s%0*d%s", (int)(dot - name), name, digits, frame,
-           dot);
+  if (n < 0 || (size_t)n >= size) {
+    cli_error("-o %s: the file name of frame %d is too long", name, frame);
+    return -1;
+  }
+  return 0;
 }
 
 static int on_progress(void *user, double fraction) {
@@ -179,8 +185,11 @@ int render_frames(glint_scene *scene, const render_options *o,
   int digits = snprintf(NULL, 0, "%d", anim.last_frame);
   digits = digits < 4 ? 4 : digits;
   char first_path[4096];
-  frame_path(first_path, sizeof first_path, name, pattern, o->first_frame,
-             digits);
+  if (frame_path(first_path, sizeof first_path, name, pattern, o->first_frame,
+                 digits)) {
+    glint_scene_destroy(scene);
+    return EXIT_USAGE;
+  }
   if (glint_image_format_from_path(first_path) == GLINT_FORMAT_UNKNOWN) {
     cli_error("%s: --frames writes .png, .bmp or .ppm images", first_path);
     glint_scene_destroy(scene);
@@ -220,7 +229,10 @@ int render_frames(glint_scene *scene, const render_options *o,
   double render_seconds = 0, frame_seconds = 0;
   for (int f = o->first_frame; f <= o->last_frame && !status; f++) {
     char path[4096];
-    frame_path(path, sizeof path, name, pattern, f, digits);
+    if (frame_path(path, sizeof path, name, pattern, f, digits)) {
+      status = EXIT_USAGE;
+      break;
+    }
     if (pattern && make_folders(path)) { /* a number in a folder's name */
       status = EXIT_USAGE;
       break;
