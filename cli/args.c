@@ -185,3 +185,18 @@ int arg_backend(arg_cursor *c, glint_render_settings *rs) {
   }
   return ARG_TAKEN;
 }
+
+int arg_scene_operand(arg_cursor *c, const char *command, const char **scene) {
+  const char *a = c->argv[c->i];
+  if (a[0] == '-' && a[1] != '\0') {
+    cli_error("unknown option '%s' (see glint %s --help)", a, command);
+    return ARG_BAD;
+  }
+  if (*scene) {
+    cli_error("more than one scene given ('%s' and '%s')", *scene, a);
+    return ARG_BAD;
+  }
+  *scene = a;
+  c->i++;
+  return ARG_TAKEN;
+}

@@ -52,6 +52,11 @@ int arg_int(arg_cursor *c, const char *short_name, const char *long_name,
 int arg_flag(arg_cursor *c, const char *short_name, const char *long_name,
              int *out);
 
+/* What is left when no option took argv[i]: an unknown option (an error
+ * naming `command`'s --help), else the scene operand, once (a second one
+ * is an error). Answers as arg_render_setting does. */
+int arg_scene_operand(arg_cursor *c, const char *command, const char **scene);
+
 /* -h or --help. */
 int arg_is_help(arg_cursor *c);
 

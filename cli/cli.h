@@ -59,6 +59,18 @@ struct glint_scene *cli_load_scene(const char *arg, char *stem,
 struct glint_scene *cli_load_animation(const char *arg, char *stem,
                                        unsigned long stem_size);
 
+/* Finished tiles into an image writer, which encodes while the rest of the
+ * frame renders (a glint_tile_fn; the origin is the region's, as tiles come
+ * in frame pixels). A failed put (a full disk) keeps its error here and
+ * cancels the frame. */
+typedef struct cli_tile_sink {
+  glint_image_writer *writer;
+  int origin_x, origin_y;
+  int failed;
+  glint_error error;
+} cli_tile_sink;
+int cli_tile_to_writer(void *user, const glint_tile *tile);
+
 /* SIGINT, SIGTERM and SIGHUP only take note from then on; cli_stopped says
  * whether one came (cancel, say so, exit 130). */
 void cli_catch_stop_signals(void);

@@ -255,17 +255,8 @@ static void output_size(const glint_scene *scene,
     *w = rs->region_width, *h = rs->region_height;
 }
 
-/* Finished tiles go to an image writer, which encodes while the rest of the
- * frame renders. A failed put (a full disk) cancels the frame. */
-typedef struct tile_sink {
-  glint_image_writer *writer;
-  int origin_x, origin_y; /* the region's: tiles come in frame pixels */
-  int failed;
-  glint_error error;
-} tile_sink;
-
-static int on_tile(void *user, const glint_tile *tile) {
-  tile_sink *sink = user;
+int cli_tile_to_writer(void *user, const glint_tile *tile) {
+  cli_tile_sink *sink = user;
   glint_tile t = *tile;
   t.x -= sink->origin_x;
   t.y -= sink->origin_y;
@@ -280,7 +271,7 @@ static int on_tile(void *user, const glint_tile *tile) {
  * with a `sink` tile by tile into its image writer (no film). */
 static glint_status render_film(const glint_scene *scene,
                                 const glint_render_settings *rs,
-                                tile_sink *sink, glint_film **out,
+                                cli_tile_sink *sink, glint_film **out,
                                 glint_stats *stats, glint_error *err) {
   glint_world *world;
   glint_renderer *renderer;
@@ -297,7 +288,7 @@ static glint_status render_film(const glint_scene *scene,
   glint_frame_settings frame;
   glint_frame_settings_default(&frame);
   if (sink) {
-    frame.tile = on_tile;
+    frame.tile = cli_tile_to_writer;
     frame.tile_user = sink;
   }
   glint_film *film = NULL;
@@ -415,14 +406,7 @@ int render_parse(int argc, char **argv, render_options *o) {
     } else if (arg_is(&c, NULL, "--gamma")) {
       if (parse_double("--gamma", arg_value(&c, "--gamma"), 0, &rs->gamma))
         return EXIT_USAGE;
-    } else if (a[0] == '-' && a[1] != '\0') {
-      cli_error("unknown option '%s' (see glint render --help)", a);
-      return EXIT_USAGE;
-    } else if (!o->scene) {
-      o->scene = a;
-      c.i++;
-    } else {
-      cli_error("more than one scene given ('%s' and '%s')", o->scene, a);
+    } else if (arg_scene_operand(&c, "render", &o->scene) == ARG_BAD) {
       return EXIT_USAGE;
     }
   }
@@ -504,7 +488,7 @@ int cmd_render(int argc, char **argv) {
   }
   /* An image file is encoded while the frame renders (glint_image_writer);
    * opening it checks the path. */
-  tile_sink sink = {NULL, rs.region_x, rs.region_y, 0, {0}};
+  cli_tile_sink sink = {NULL, rs.region_x, rs.region_y, 0, {0}};
   int out_w, out_h;
   output_size(scene, &rs, &out_w, &out_h);
   if (!to_stdout && (film_output ? glint_film_check_writable(output, &err)

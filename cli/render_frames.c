@@ -86,25 +86,6 @@ static int on_progress(void *user, double fraction) {
   return cli_stopped(); /* Ctrl-C cancels the frame */
 }
 
-typedef struct frame_sink {
-  glint_image_writer *writer;
-  int origin_x, origin_y;
-  int failed;
-  glint_error error;
-} frame_sink;
-
-static int on_tile(void *user, const glint_tile *tile) {
-  frame_sink *sink = user;
-  glint_tile t = *tile;
-  t.x -= sink->origin_x;
-  t.y -= sink->origin_y;
-  if (glint_image_writer_put(sink->writer, &t, &sink->error)) {
-    sink->failed = 1;
-    return 1;
-  }
-  return 0;
-}
-
 /* Makes the folders of `path` that are missing (mkdir -p of its dirname);
  * -1 with a message when one cannot be made. */
 static int make_folders(const char *path) {
@@ -245,12 +226,12 @@ int render_frames(glint_scene *scene, const render_options *o,
     }
     double t0 = cli_now(), time = (double)(f - anim.first_frame) / anim.fps;
     glint_camera camera;
-    frame_sink sink = {NULL, rs->region_x, rs->region_y, 0, {0}};
+    cli_tile_sink sink = {NULL, rs->region_x, rs->region_y, 0, {0}};
     glint_stats st;
     glint_frame_settings frame;
     glint_frame_settings_default(&frame);
     frame.camera = &camera;
-    frame.tile = on_tile;
+    frame.tile = cli_tile_to_writer;
     frame.tile_user = &sink;
     frame.progress = on_progress;
     if (glint_scene_camera_at(scene, time, &camera, &err) ||

@@ -108,7 +108,6 @@ int view_parse(int argc, char **argv, view_options *o) {
   glint_render_settings *rs = &o->settings;
   arg_cursor c = {argc, argv, 0, NULL};
   while (c.i < argc) {
-    const char *a = argv[c.i];
     if (arg_is_help(&c)) {
       view_usage(stdout);
       return 0;
@@ -134,14 +133,7 @@ int view_parse(int argc, char **argv, view_options *o) {
     } else if (arg_is(&c, NULL, "--budget")) {
       if (parse_double("--budget", arg_value(&c, "--budget"), 1, &o->budget_ms))
         return EXIT_USAGE;
-    } else if (a[0] == '-' && a[1] != '\0') {
-      cli_error("unknown option '%s' (see glint view --help)", a);
-      return EXIT_USAGE;
-    } else if (!o->scene) {
-      o->scene = a;
-      c.i++;
-    } else {
-      cli_error("more than one scene given ('%s' and '%s')", o->scene, a);
+    } else if (arg_scene_operand(&c, "view", &o->scene) == ARG_BAD) {
       return EXIT_USAGE;
     }
   }

@@ -404,8 +404,8 @@ static int run_benchmark(viewer *v) {
                         : 0.5 * (frames[n / 2 - 1].ms + frames[n / 2].ms);
   int i95 = (int)ceil(0.95 * n) - 1;
   int threads = v->rs.threads ? v->rs.threads : glint_cpu_count();
-  printf("%s: %d frames at %dx%d, 1 spp, depth %d, %s, %d thread%s\n",
-         v->stem, n, v->rw, v->rh, v->rs.max_depth,
+  printf("%s: %d frames at %dx%d, 1 spp, depth %d, %s, %d thread%s\n", v->stem,
+         n, v->rw, v->rh, v->rs.max_depth,
          glint_backend_name(glint_backend_resolve(v->rs.backend)), threads,
          threads == 1 ? "" : "s");
   printf("frame ms: median %.2f, 95th percentile %.2f; %.1f fps; %.1f "

@@ -591,6 +591,47 @@ static glint_status read_interpolation(json_reader *r, const cJSON *v,
   return GLINT_OK;
 }
 
+/* The array `keys` (its path entered by the caller) read into a new array
+ * of `size`-byte keys, each starting with its time in seconds (as
+ * glint_camera_key and glint_transform_key do), by read_one; times must
+ * increase. The caller frees *out. */
+typedef glint_status (*key_reader)(json_reader *r, const cJSON *v, void *key);
+
+static glint_status read_keys(json_reader *r, const cJSON *keys, size_t size,
+                              key_reader read_one, void **out, size_t *count) {
+  glint_status st;
+  if ((st = expect_array(r, keys)))
+    return st;
+  size_t n = (size_t)cJSON_GetArraySize(keys);
+  if (n == 0)
+    return fail(r, GLINT_E_PARSE, "expected at least one key");
+  char *k = calloc(n, size);
+  if (!k)
+    return fail(r, GLINT_E_MEMORY, "out of memory");
+  size_t i = 0;
+  double before = 0;
+  for (const cJSON *c = keys->child; c; c = c->next, i++) {
+    size_t mark = path_index(r, i);
+    double time;
+    if ((st = read_one(r, c, k + i * size))) {
+      free(k);
+      return st;
+    }
+    memcpy(&time, k + i * size, sizeof time);
+    if (i > 0 && !(time > before)) {
+      free(k);
+      return fail(r, GLINT_E_PARSE,
+                  "time %g does not come after the key before (%g)", time,
+                  before);
+    }
+    before = time;
+    path_pop(r, mark);
+  }
+  *out = k;
+  *count = n;
+  return GLINT_OK;
+}
+
 /* A transform's members (all optional) into *t, which holds the defaults;
  * `time` as well when it is a key. */
 static glint_status read_transform_fields(json_reader *r, const cJSON *v,
@@ -616,6 +657,13 @@ static glint_status read_transform_fields(json_reader *r, const cJSON *v,
   return GLINT_OK;
 }
 
+static glint_status read_transform_key(json_reader *r, const cJSON *v,
+                                       void *key) {
+  glint_transform_key *k = key;
+  glint_transform_identity(&k->transform);
+  return read_transform_fields(r, v, 1, k);
+}
+
 /* "transform": still ({"translate", "rotate", "scale", "pivot"}, applied
  * now) or moving ({"keys": [{"time", ...}], "interpolation"}). */
 static glint_status read_transform(json_reader *r, const cJSON *v) {
@@ -636,32 +684,10 @@ static glint_status read_transform(json_reader *r, const cJSON *v) {
   if ((st = check_fields(r, v, fields)) ||
       (st = read_interpolation(r, v, &how)))
     return st;
-  size_t mark = path_key(r, "keys");
-  if ((st = expect_array(r, keys)))
+  size_t mark = path_key(r, "keys"), n = 0;
+  glint_transform_key *k = NULL;
+  if ((st = read_keys(r, keys, sizeof *k, read_transform_key, (void **)&k, &n)))
     return st;
-  size_t n = (size_t)cJSON_GetArraySize(keys);
-  if (n == 0)
-    return fail(r, GLINT_E_PARSE, "expected at least one key");
-  glint_transform_key *k = calloc(n, sizeof *k);
-  if (!k)
-    return fail(r, GLINT_E_MEMORY, "out of memory");
-  size_t i = 0;
-  for (const cJSON *c = keys->child; c; c = c->next, i++) {
-    size_t key_mark = path_index(r, i);
-    glint_transform_identity(&k[i].transform);
-    if ((st = read_transform_fields(r, c, 1, &k[i]))) {
-      free(k);
-      return st;
-    }
-    if (i > 0 && !(k[i].time > k[i - 1].time)) {
-      st = fail(r, GLINT_E_PARSE,
-                "time %g does not come after the key before (%g)", k[i].time,
-                k[i - 1].time);
-      free(k);
-      return st;
-    }
-    path_pop(r, key_mark);
-  }
   st = lib(
       r, glint_scene_set_object_motion(r->scene, object, k, n, how, r->error));
   free(k);
@@ -772,8 +798,8 @@ read_color(json_reader *r, const cJSON *root, const char *key,
 
 /* One camera key: {"time": t, "from", "at", "up", "fov"}, up and fov
  * defaulting as in "camera". */
-static glint_status read_camera_key(json_reader *r, const cJSON *v,
-                                    glint_camera_key *key) {
+static glint_status read_camera_key(json_reader *r, const cJSON *v, void *out) {
+  glint_camera_key *key = out;
   static const char *const fields[] = {"time", "from", "at", "up", "fov", NULL};
   glint_camera c = {{0, 0, 0}, {0, 0, 0}, {0, 1, 0}, 60};
   glint_status st;
@@ -823,31 +849,10 @@ static glint_status read_camera_motion(json_reader *r, const cJSON *v) {
   glint_interpolation interpolation = GLINT_INTERPOLATE_LINEAR;
   if ((st = read_interpolation(r, v, &interpolation)))
     return st;
-  size_t mark = path_key(r, "keys");
-  if ((st = expect_array(r, keys)))
+  size_t mark = path_key(r, "keys"), n = 0;
+  glint_camera_key *k = NULL;
+  if ((st = read_keys(r, keys, sizeof *k, read_camera_key, (void **)&k, &n)))
     return st;
-  size_t n = (size_t)cJSON_GetArraySize(keys);
-  if (n == 0)
-    return fail(r, GLINT_E_PARSE, "expected at least one key");
-  glint_camera_key *k = calloc(n, sizeof *k);
-  if (!k)
-    return fail(r, GLINT_E_MEMORY, "out of memory");
-  size_t i = 0;
-  for (const cJSON *c = keys->child; c; c = c->next, i++) {
-    size_t key_mark = path_index(r, i);
-    if ((st = read_camera_key(r, c, &k[i]))) {
-      free(k);
-      return st;
-    }
-    if (i > 0 && !(k[i].time > k[i - 1].time)) {
-      st = fail(r, GLINT_E_PARSE,
-                "time %g does not come after the key before (%g)", k[i].time,
-                k[i - 1].time);
-      free(k);
-      return st;
-    }
-    path_pop(r, key_mark);
-  }
   st = lib(
       r, glint_scene_set_camera_keys(r->scene, k, n, interpolation, r->error));
   free(k);
