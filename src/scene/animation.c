@@ -347,7 +347,13 @@ glint_status glint_scene_at_time(const glint_scene *s, double time,
                       "object %u's motion at %g s has a scale of %g",
                       s->animation.motions[i].object, time, t.scale);
     }
-    gli_object_transform(still, s->animation.motions[i].object, &t);
+    if (gli_object_transform(still, s->animation.motions[i].object, &t)) {
+      glint_scene_destroy(still);
+      return gli_fail(error, GLINT_E_ARGUMENT,
+                      "object %u's motion at %g s moves it beyond finite "
+                      "numbers",
+                      s->animation.motions[i].object, time);
+    }
   }
   /* Still: the camera of this time, and nothing left to move. */
   still->camera = camera;

@@ -92,9 +92,11 @@ typedef struct gli_animation {
 /* Deep copy and release of the animation's arrays (scene/animation.c). */
 int gli_animation_copy(gli_animation *dst, const gli_animation *src);
 void gli_animation_free(gli_animation *animation);
-/* Applies `t` to object `object`'s primitives (scene/transform.c). */
-void gli_object_transform(glint_scene *scene, uint32_t object,
-                          const glint_transform *t);
+/* Applies `t` to object `object`'s primitives (scene/transform.c); -1 when
+ * a moved coordinate or radius is no longer finite (the scene is then not
+ * to be used). */
+int gli_object_transform(glint_scene *scene, uint32_t object,
+                         const glint_transform *t);
 
 struct glint_scene {
   glint_camera camera;

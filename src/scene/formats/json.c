@@ -676,7 +676,9 @@ static glint_status read_transform(json_reader *r, const cJSON *v) {
     glint_transform_key k = {0, {{0, 0, 0}, {0, 0, 0}, {0, 0, 0}, 1}};
     if ((st = read_transform_fields(r, v, 0, &k)))
       return st;
-    gli_object_transform(r->scene, object, &k.transform);
+    if (gli_object_transform(r->scene, object, &k.transform))
+      return fail(r, GLINT_E_PARSE,
+                  "the transform moves the object beyond finite numbers");
     return GLINT_OK;
   }
   static const char *const fields[] = {"keys", "interpolation", NULL};
