@@ -12,6 +12,7 @@
 #include <SDL.h>
 #include <errno.h>
 #include <math.h>
+#include <stdbool.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
@@ -367,6 +368,25 @@ static int compare_ms(const void *a, const void *b) {
 }
 
 /* --benchmark N: the documented orbit, one sample per pixel a frame. */
+/* SDL falls back to its invisible "offscreen" driver when no display can be
+ * reached, which would leave the user a viewer with no window. So, unless the
+ * user names a driver in SDL_VIDEODRIVER, only the drivers that show a window
+ * are tried (Wayland only where a compositor can be found), and SDL_Init fails
+ * with the reason when none can. A benchmark needs no display: without one it
+ * runs on SDL's dummy driver. */
+static void choose_video_driver(bool benchmark) {
+  const char *named = getenv("SDL_VIDEODRIVER");
+  if (named && *named)
+    return;
+  bool x11 = getenv("DISPLAY") != NULL;
+  bool wayland = getenv("WAYLAND_DISPLAY") || getenv("XDG_RUNTIME_DIR");
+  if (benchmark && !x11 && !getenv("WAYLAND_DISPLAY"))
+    SDL_SetHint(SDL_HINT_VIDEODRIVER, "dummy");
+  else if (!benchmark)
+    SDL_SetHint(SDL_HINT_VIDEODRIVER,
+                wayland ? "x11,wayland,KMSDRM" : "x11,KMSDRM");
+}
+
 static int run_benchmark(viewer *v) {
   int n = v->opt->benchmark_frames;
   frame_record *frames = calloc((size_t)n, sizeof *frames);
@@ -620,12 +640,13 @@ int view_run(const view_options *o) {
     glint_scene_destroy(v.scene);
     return EXIT_USAGE;
   }
-  /* A benchmark needs no display: without one, SDL's dummy driver. */
-  if (o->benchmark_frames && !getenv("DISPLAY") && !getenv("WAYLAND_DISPLAY"))
-    SDL_SetHint(SDL_HINT_VIDEODRIVER, "dummy");
+  choose_video_driver(o->benchmark_frames > 0);
   int status = 0;
   if (SDL_Init(SDL_INIT_VIDEO) != 0 || open_window(&v, w, h) != 0) {
-    cli_error("view: cannot open a window: %s", SDL_GetError());
+    const char *display = getenv("DISPLAY");
+    cli_error("view: cannot open a window: %s (DISPLAY is %s%s%s)",
+              SDL_GetError(), display ? "'" : "not set", display ? display : "",
+              display ? "'" : "");
     status = EXIT_USAGE;
   } else {
     status = o->benchmark_frames ? run_benchmark(&v) : run_interactive(&v);

@@ -54,7 +54,10 @@ display=90
 while [ -e /tmp/.X$display-lock ] || [ -e /tmp/.X11-unix/X$display ]; do
   display=$((display + 1))
 done
-Xvfb :$display -screen 0 640x480x24 -nolisten tcp >/dev/null 2>&1 &
+# -noreset: an X server resets when its last client leaves, and refuses
+# connections while it does; xdotool's probe below is such a client, and the
+# viewer started just after it would find no display.
+Xvfb :$display -screen 0 640x480x24 -nolisten tcp -noreset >/dev/null 2>&1 &
 xvfb=$!
 export DISPLAY=:$display
 wait_for 10 xdotool getdisplaygeometry >/dev/null 2>&1 || fail "Xvfb did not start"
