@@ -3,6 +3,8 @@
 
 #include <glint.h>
 
+#include <stddef.h>
+
 /* Each command in two steps: parse its arguments (which reads no file and
  * starts nothing; fuzz/fuzz_cli.c runs them alone), then run. A parser
  * returns -1 to go on, or the exit status to end with (0 after --help; 2
@@ -26,6 +28,31 @@ int render_parse(int argc, char **argv, render_options *options);
  * (cli/render_frames.c). Takes the scene. */
 int render_frames(struct glint_scene *scene, const render_options *options,
                   const char *stem);
+
+/* The files of an animation's frames (cli/animation_frames.c), for
+ * glint render --frames and glint-mpi. */
+typedef struct frame_files {
+  const char *name; /* -o, or SCENE.png */
+  char default_name[300];
+  int pattern; /* name has a %d */
+  int digits;  /* without one: the number's width */
+} frame_files;
+/* Checks that `scene` has an animation holding o's --frames, and o's -o (a
+ * pattern with one %d, or an image name to put a number in), and makes the
+ * output's folder; -1 after a message when something is wrong. */
+int frame_files_init(frame_files *files, const struct glint_scene *scene,
+                     const render_options *o, const char *stem,
+                     glint_animation *animation);
+/* The file of `frame` (making its folder when the number names one); -1
+ * after a message when the name is too long or the folder cannot be made. */
+int frame_files_path(const frame_files *files, int frame, char *path,
+                     size_t size);
+/* Whether `path` is a complete frame already (--resume keeps it). */
+int frame_file_written(const char *path);
+/* Commits `scene` at `time` (a new BVH) and gives the renderer that world:
+ * for animations whose objects move. 0 on success. */
+int cli_world_at(const struct glint_scene *scene, double time,
+                 glint_renderer *renderer, glint_error *error);
 
 typedef struct view_options {
   const char *scene;
@@ -70,6 +97,10 @@ typedef struct cli_tile_sink {
   glint_error error;
 } cli_tile_sink;
 int cli_tile_to_writer(void *user, const glint_tile *tile);
+
+/* Whether `path` names a linear film (.pfm, .exr) rather than an 8-bit
+ * image. */
+int cli_is_film_path(const char *path);
 
 /* SIGINT, SIGTERM and SIGHUP only take note from then on; cli_stopped says
  * whether one came (cancel, say so, exit 130). */

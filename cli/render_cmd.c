@@ -236,8 +236,7 @@ static void print_stats(FILE *out, const glint_stats *s,
   fprintf(out, "  peak memory (RSS)  %.1f MiB\n", cli_peak_rss_mib());
 }
 
-/* .pfm and .exr hold the linear film itself. */
-static int is_film_path(const char *path) {
+int cli_is_film_path(const char *path) {
   const char *slash = strrchr(path, '/');
   const char *dot = strrchr(slash ? slash : path, '.');
   return dot && (strcasecmp(dot, ".pfm") == 0 || strcasecmp(dot, ".exr") == 0);
@@ -478,7 +477,7 @@ int cmd_render(int argc, char **argv) {
     output = default_output;
   }
   /* Refuse a bad output path before a long render, not after. */
-  int film_output = !to_stdout && is_film_path(output);
+  int film_output = !to_stdout && cli_is_film_path(output);
   if (film_output && rs.gamma != 1) {
     cli_error("%s: --gamma applies to 8-bit images; .pfm and .exr are "
               "linear",

@@ -126,6 +126,22 @@ glint_status glint_scene_load_memory(const void *data, size_t size,
                                      const char *name, glint_scene **scene,
                                      glint_error *error);
 
+/* A scene file and every file it refers to (a JSON scene's meshes), read
+ * once into one block of bytes: another process loads the very same scene
+ * from it without reading a file (glint-mpi's rank 0 packs, and broadcasts
+ * the block to the other ranks). The block holds each file's name and its
+ * bytes (gzip undone); it is for glint_scene_load_packed of the same glint
+ * version, not a file format. Free it with glint_free. Errors are those of
+ * glint_scene_load. */
+glint_status glint_scene_pack(const char *path, void **packed, size_t *size,
+                              glint_error *error);
+/* The scene of a glint_scene_pack block; errors name the packed files as
+ * glint_scene_load names the files, and a damaged block is GLINT_E_PARSE. */
+glint_status glint_scene_load_packed(const void *packed, size_t size,
+                                     glint_scene **scene, glint_error *error);
+/* Frees what glint allocated for the caller (a packed scene). */
+void glint_free(void *memory);
+
 glint_status glint_scene_set_camera(glint_scene *scene,
                                     const glint_camera *camera,
                                     glint_error *error);
@@ -642,6 +658,24 @@ glint_status glint_image_writer_finish(glint_image_writer *writer,
                                        glint_error *error);
 /* Abandons the file (an existing one stays untouched) and frees the writer. */
 void glint_image_writer_discard(glint_image_writer *writer);
+
+/* The same encoder into memory, for a file to be written elsewhere (by
+ * another process: glint-mpi's ranks encode their frames, rank 0 writes
+ * them): the bytes are those glint_image_writer_open's file would hold. A
+ * writer opened so ends with glint_image_writer_finish_memory (or discard),
+ * which hands over the encoded file; free it with glint_free. */
+glint_status glint_image_writer_open_memory(glint_image_format format,
+                                            int width, int height, double gamma,
+                                            glint_png_compression compression,
+                                            glint_image_writer **writer,
+                                            glint_error *error);
+glint_status glint_image_writer_finish_memory(glint_image_writer *writer,
+                                              void **bytes, size_t *size,
+                                              glint_error *error);
+/* Writes an encoded image file's `size` bytes to `path`, atomically as
+ * glint_image_write does (path's extension must be .png, .bmp or .ppm). */
+glint_status glint_image_write_encoded(const char *path, const void *bytes,
+                                       size_t size, glint_error *error);
 
 #if defined(__GNUC__)
 #pragma GCC visibility pop

@@ -21,6 +21,8 @@ packages=(
   libsdl2-dev       # glint view's window
   xvfb              # a display for the window test
   xdotool           # keys and mouse for the window test
+  libopenmpi-dev    # glint-mpi (Open MPI)
+  openmpi-bin       # mpirun, for glint-mpi and its test
 )
 if [ "${1:-}" = "--peers" ]; then
   packages+=(

@@ -25,6 +25,13 @@ if [ -x "$build/glint-view" ]; then
   "$prefix/bin/glint" view --help | grep -q "Controls:" ||
     { echo "FAILED: the installed glint view does not run"; exit 1; }
 fi
+# glint-mpi and its manual page, when the build has MPI.
+if [ -x "$build/glint-mpi" ]; then
+  [ -x "$prefix/bin/glint-mpi" ] ||
+    { echo "FAILED: glint-mpi was not installed"; exit 1; }
+  [ -e "$prefix/share/man/man1/glint-mpi.1" ] ||
+    { echo "FAILED: glint-mpi.1 was not installed"; exit 1; }
+fi
 [ "$(readlink "$libdir/libglint.so.0")" = libglint.so.0.5.0 ] ||
   { echo "FAILED: libglint.so.0 does not point at libglint.so.0.5.0"; exit 1; }
 echo "installed: $(cd "$prefix" && find . -type f -o -type l | sort | tr '\n' ' ')"

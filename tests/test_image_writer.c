@@ -9,6 +9,8 @@
  *    existing file as it was and no temporary file beside it;
  *  - writing that fails part-way (a full disk) is reported and keeps the
  *    existing file;
+ *  - a writer into memory encodes the same bytes, which
+ *    glint_image_write_encoded writes whole;
  *  - tiles outside the image or repeated, and bad paths, sizes and gammas,
  *    are refused with a message. */
 #include "test_util.h"
@@ -199,6 +201,65 @@ static void tiles_in_any_order(void **state) {
   glint_film_destroy(film);
 }
 
+/* A writer into memory encodes the bytes a writer of a file writes, and
+ * glint_image_write_encoded puts them in a file whole; each writer ends
+ * only its own way, and one missing pixels hands over nothing. */
+static void memory_holds_the_file(void **state) {
+  (void)state;
+  glint_film *film = pattern();
+  const char *names[] = {"mem.png", "mem.bmp", "mem.ppm"};
+  const glint_image_format formats[] = {GLINT_FORMAT_PNG, GLINT_FORMAT_BMP,
+                                        GLINT_FORMAT_PPM};
+  for (int i = 0; i < 3; i++) {
+    char file[512], copy[600];
+    snprintf(file, sizeof file, "%s", in_folder(names[i]));
+    snprintf(copy, sizeof copy, "%s.copy.%s", file, names[i] + 4);
+    glint_image_writer *writer;
+    ASSERT_OK(
+        glint_image_writer_open(file, W, H, 2.2, GLINT_PNG_FAST, &writer, &e_));
+    ASSERT_OK(put_rect(writer, film, 0, 0, W, H, &e_));
+    ASSERT_OK(glint_image_writer_finish(writer, &e_));
+    ASSERT_OK(glint_image_writer_open_memory(formats[i], W, H, 2.2,
+                                             GLINT_PNG_FAST, &writer, &e_));
+    ASSERT_OK(put_rect(writer, film, 0, 30, W, H - 30, &e_));
+    ASSERT_OK(put_rect(writer, film, 0, 0, W, 30, &e_));
+    void *bytes = NULL;
+    size_t size = 0;
+    ASSERT_OK(glint_image_writer_finish_memory(writer, &bytes, &size, &e_));
+    ASSERT_OK(glint_image_write_encoded(copy, bytes, size, &e_));
+    glint_free(bytes);
+    assert_same_file(file, copy);
+    unlink(file);
+    unlink(copy);
+  }
+  glint_error e;
+  glint_image_writer *writer;
+  ASSERT_OK(glint_image_writer_open_memory(GLINT_FORMAT_PNG, W, H, 1,
+                                           GLINT_PNG_FAST, &writer, &e_));
+  ASSERT_OK(put_rect(writer, film, 0, 0, W, H - 1, &e_));
+  void *bytes = NULL;
+  size_t size = 0;
+  assert_int_equal(glint_image_writer_finish_memory(writer, &bytes, &size, &e),
+                   GLINT_E_ARGUMENT);
+  assert_non_null(strstr(e.message, "only 60 of the image's 61 rows"));
+  assert_null(bytes);
+  ASSERT_OK(glint_image_writer_open_memory(GLINT_FORMAT_PPM, W, H, 1,
+                                           GLINT_PNG_FAST, &writer, &e_));
+  assert_int_equal(glint_image_writer_finish(writer, &e), GLINT_E_ARGUMENT);
+  assert_non_null(strstr(e.message, "glint_image_writer_finish_memory"));
+  ASSERT_OK(glint_image_writer_open(in_folder("mem.bmp"), W, H, 1,
+                                    GLINT_PNG_FAST, &writer, &e_));
+  assert_int_equal(glint_image_writer_finish_memory(writer, &bytes, &size, &e),
+                   GLINT_E_ARGUMENT);
+  assert_int_equal(glint_image_writer_open_memory(GLINT_FORMAT_UNKNOWN, W, H, 1,
+                                                  GLINT_PNG_FAST, &writer, &e),
+                   GLINT_E_ARGUMENT);
+  assert_int_equal(glint_image_write_encoded(in_folder("x.txt"), "a", 1, &e),
+                   GLINT_E_ARGUMENT);
+  assert_int_equal(leftovers(), 0);
+  glint_film_destroy(film);
+}
+
 static void incomplete_writes_nothing(void **state) {
   (void)state;
   glint_film *film = pattern();
@@ -373,6 +434,7 @@ int main(void) {
   const struct CMUnitTest tests[] = {
       cmocka_unit_test(same_file_as_glint_render),
       cmocka_unit_test(tiles_in_any_order),
+      cmocka_unit_test(memory_holds_the_file),
       cmocka_unit_test(incomplete_writes_nothing),
       cmocka_unit_test(failed_writing_keeps_existing_file),
       cmocka_unit_test(refuses_bad_tiles),

@@ -965,6 +965,82 @@ static void gzip_damage_is_an_error(void **state) {
   free(gz);
 }
 
+/* ------------------------------------------------------------------------ */
+/* Packed scenes (src/scene/pack.c)                                         */
+/* ------------------------------------------------------------------------ */
+
+/* A JSON scene with a gzip mesh used twice and a PLY, packed: the block
+ * loads the same scene with the files gone, and every damaged block is an
+ * error (never a read outside it). */
+static void packed_scene_needs_no_files(void **state) {
+  fixture *f = *state;
+  const char *quad = "v 0 0 0\nv 1 0 0\nv 0 1 0\nv 1 1 0\nf 1 2 3\nf 2 4 3\n";
+  const char *obj = write_gz(f, "packed_quad.obj.gz", quad);
+  const char *ply = write_text(f, "packed_tri.ply", ply_ascii_text);
+  const char *json = write_text(
+      f, "packed.json",
+      "{\"materials\": {\"m\": {}}, \"objects\": ["
+      "{\"type\": \"mesh\", \"file\": \"packed_quad.obj.gz\", "
+      "\"material\": \"m\"},"
+      "{\"type\": \"mesh\", \"file\": \"packed_quad.obj.gz\", \"translate\": "
+      "[0, 0, 3], \"material\": \"m\"},"
+      "{\"type\": \"mesh\", \"file\": \"packed_tri.ply\", \"scale\": 2, "
+      "\"material\": \"m\"}]}");
+  glint_scene *direct;
+  ASSERT_OK(glint_scene_load(json, &direct, &e_));
+  void *block;
+  size_t size;
+  ASSERT_OK(glint_scene_pack(json, &block, &size, &e_));
+  /* The files, each once: the scene, the OBJ decompressed, the PLY. */
+  assert_true(size < 200 + strlen(quad) + sizeof ply_ascii_text +
+                         strlen(json) * 3 + 400);
+  char moved[3][400];
+  const char *paths[3] = {json, obj, ply};
+  for (int i = 0; i < 3; i++) {
+    snprintf(moved[i], sizeof moved[i], "%s.away", paths[i]);
+    assert_int_equal(rename(paths[i], moved[i]), 0);
+  }
+  glint_scene *packed;
+  ASSERT_OK(glint_scene_load_packed(block, size, &packed, &e_));
+  assert_int_equal(packed->triangle_count, direct->triangle_count);
+  assert_int_equal(packed->object_count, direct->object_count);
+  assert_int_equal(packed->triangle_count, 2 + 2 + 3);
+  for (size_t i = 0; i < direct->triangle_count; i++)
+    assert_memory_equal(&packed->triangles[i], &direct->triangles[i],
+                        sizeof direct->triangles[i]);
+  glint_scene_destroy(packed);
+  /* Every truncation, and a changed byte in each header field. */
+  for (size_t n = 0; n < size; n++) {
+    glint_error e;
+    glint_scene *s = NULL;
+    assert_int_not_equal(glint_scene_load_packed(block, n, &s, &e), GLINT_OK);
+    assert_null(s);
+  }
+  unsigned char *bytes = block;
+  const size_t fields[] = {0, 8, 12, 16};
+  for (size_t i = 0; i < sizeof fields / sizeof *fields; i++) {
+    unsigned char saved = bytes[fields[i]];
+    bytes[fields[i]] ^= 0x40;
+    glint_error e;
+    glint_scene *s = NULL;
+    glint_status st = glint_scene_load_packed(block, size, &s, &e);
+    assert_int_not_equal(st, GLINT_OK);
+    bytes[fields[i]] = saved;
+  }
+  glint_free(block);
+  for (int i = 0; i < 3; i++)
+    assert_int_equal(rename(moved[i], paths[i]), 0);
+  glint_scene_destroy(direct);
+  /* A file that cannot be read is the error glint_scene_load gives. */
+  const char *missing = write_text(
+      f, "packed_missing.json",
+      "{\"materials\": {\"m\": {}}, \"objects\": [{\"type\": \"mesh\", "
+      "\"file\": \"nowhere.obj\", \"material\": \"m\"}]}");
+  glint_error e;
+  assert_int_equal(glint_scene_pack(missing, &block, &size, &e), GLINT_E_IO);
+  assert_non_null(strstr(e.message, "nowhere.obj"));
+}
+
 static void bad_arguments(void **state) {
   fixture *f = *state;
   const char *p = write_text(f, "arg.obj",
@@ -1053,6 +1129,7 @@ int main(int argc, char **argv) {
       cmocka_unit_test(obj_errors),
       cmocka_unit_test(files_of_every_kind_of_wrong),
       cmocka_unit_test(gzip_damage_is_an_error),
+      cmocka_unit_test(packed_scene_needs_no_files),
       cmocka_unit_test(bad_arguments),
       cmocka_unit_test(real_meshes_shared),
   };

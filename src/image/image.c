@@ -185,6 +185,26 @@ glint_status gli_write_atomically(const char *path, write_fn write,
   return gli_atomic_commit(&file, bad, errno, error);
 }
 
+typedef struct byte_span {
+  const void *bytes;
+  size_t size;
+} byte_span;
+
+static int write_span(const void *data, FILE *f) {
+  const byte_span *s = data;
+  return s->size && fwrite(s->bytes, 1, s->size, f) != s->size ? -1 : 0;
+}
+
+glint_status glint_image_write_encoded(const char *path, const void *bytes,
+                                       size_t size, glint_error *error) {
+  if (!path || (!bytes && size))
+    return gli_fail(error, GLINT_E_ARGUMENT, "no path or no bytes");
+  if (glint_image_format_from_path(path) == GLINT_FORMAT_UNKNOWN)
+    return unknown_format(path, error);
+  byte_span span = {bytes, size};
+  return gli_write_atomically(path, write_span, &span, error);
+}
+
 static int encode_image(const void *data, FILE *f) {
   const encode_job *job = data;
   return job->format == GLINT_FORMAT_PNG

@@ -18,7 +18,10 @@ struct glint_image_writer {
   double gamma;
   glint_image_format format;
   glint_png_compression compression;
-  gli_atomic_file file;
+  gli_atomic_file file; /* the file, or (memory) a stream into `memory` */
+  int in_memory;
+  char *memory;
+  size_t memory_size;
   glint_image image;   /* the 8-bit pixels, filled by put */
   int *row_pixels;     /* pixels put in each row so far */
   gli_png_writer *png; /* PNG only, owned by the encoder thread */
@@ -94,17 +97,17 @@ static void writer_free(glint_image_writer *w) {
   free(w);
 }
 
-glint_status glint_image_writer_open(const char *path, int width, int height,
-                                     double gamma,
-                                     glint_png_compression compression,
-                                     glint_image_writer **out,
-                                     glint_error *error) {
-  glint_image_format format =
-      path ? glint_image_format_from_path(path) : GLINT_FORMAT_UNKNOWN;
+/* A writer of `format` (named `label` in messages) with its encoder not
+ * yet started: open_target gives it the stream. */
+static glint_status writer_create(const char *label, glint_image_format format,
+                                  int width, int height, double gamma,
+                                  glint_png_compression compression,
+                                  glint_image_writer **out,
+                                  glint_error *error) {
   if (format == GLINT_FORMAT_UNKNOWN)
     return gli_fail(error, GLINT_E_ARGUMENT,
                     "%s: unknown image format (use .png, .bmp or .ppm)",
-                    path ? path : "(no path)");
+                    label ? label : "(no path)");
   if (width < 1 || height < 1 || width > GLINT_MAX_DIMENSION ||
       height > GLINT_MAX_DIMENSION)
     return gli_fail(error, GLINT_E_ARGUMENT,
@@ -134,27 +137,78 @@ glint_status glint_image_writer_open(const char *path, int width, int height,
     return gli_fail(error, GLINT_E_MEMORY, "out of memory for a %dx%d image",
                     width, height);
   }
-  glint_status st = gli_atomic_open(path, &w->file, error);
-  if (st) {
+  *out = w;
+  return GLINT_OK;
+}
+
+/* Writes the header into w->file.f and starts the encoder; on failure
+ * frees the writer (the caller has closed nothing yet). */
+static glint_status start_encoder(glint_image_writer *w, const char *label,
+                                  glint_error *error) {
+  /* The path is the caller's; keep our own for the rename and messages. */
+  char *own_label = strdup(label);
+  int header_bad = 0;
+  if (w->format == GLINT_FORMAT_PNG)
+    header_bad = !(w->png = gli_png_begin(w->file.f, w->width, w->height,
+                                          w->gamma, w->compression));
+  else if (w->format == GLINT_FORMAT_PPM)
+    header_bad = gli_ppm_header(w->file.f, w->width, w->height);
+  if (!own_label || header_bad ||
+      pthread_create(&w->encoder, NULL, encode_loop, w) != 0) {
+    if (w->in_memory) {
+      fclose(w->file.f);
+      free(w->memory);
+    } else {
+      gli_atomic_discard(&w->file);
+    }
+    free(own_label);
+    writer_free(w);
+    return gli_fail(error, GLINT_E_MEMORY, "%s: cannot start writing", label);
+  }
+  w->file.path = own_label;
+  return GLINT_OK;
+}
+
+glint_status glint_image_writer_open(const char *path, int width, int height,
+                                     double gamma,
+                                     glint_png_compression compression,
+                                     glint_image_writer **out,
+                                     glint_error *error) {
+  glint_image_format format =
+      path ? glint_image_format_from_path(path) : GLINT_FORMAT_UNKNOWN;
+  glint_image_writer *w = NULL;
+  glint_status st =
+      writer_create(path, format, width, height, gamma, compression, &w, error);
+  if (st)
+    return st;
+  if ((st = gli_atomic_open(path, &w->file, error))) {
     writer_free(w);
     return st;
   }
-  /* The path is the caller's; keep our own for the rename at finish. */
-  char *own_path = strdup(path);
-  int header_bad = 0;
-  if (format == GLINT_FORMAT_PNG)
-    header_bad =
-        !(w->png = gli_png_begin(w->file.f, width, height, gamma, compression));
-  else if (format == GLINT_FORMAT_PPM)
-    header_bad = gli_ppm_header(w->file.f, width, height);
-  if (!own_path || header_bad ||
-      pthread_create(&w->encoder, NULL, encode_loop, w) != 0) {
-    gli_atomic_discard(&w->file);
-    free(own_path);
+  if ((st = start_encoder(w, path, error)))
+    return st;
+  *out = w;
+  return GLINT_OK;
+}
+
+glint_status glint_image_writer_open_memory(glint_image_format format,
+                                            int width, int height, double gamma,
+                                            glint_png_compression compression,
+                                            glint_image_writer **out,
+                                            glint_error *error) {
+  static const char label[] = "image in memory";
+  glint_image_writer *w = NULL;
+  glint_status st = writer_create(label, format, width, height, gamma,
+                                  compression, &w, error);
+  if (st)
+    return st;
+  w->in_memory = 1;
+  if (!(w->file.f = open_memstream(&w->memory, &w->memory_size))) {
     writer_free(w);
-    return gli_fail(error, GLINT_E_MEMORY, "%s: cannot start writing", path);
+    return gli_fail(error, GLINT_E_MEMORY, "%s: out of memory", label);
   }
-  w->file.path = own_path;
+  if ((st = start_encoder(w, label, error)))
+    return st;
   *out = w;
   return GLINT_OK;
 }
@@ -220,29 +274,72 @@ static void stop_encoder(glint_image_writer *w, int discard) {
   pthread_join(w->encoder, NULL);
 }
 
+/* Why a finished writer has no whole image, or GLINT_OK. */
+static glint_status incomplete(const glint_image_writer *w,
+                               glint_error *error) {
+  const char *path = w->file.path;
+  if (w->failed)
+    return gli_fail(error, GLINT_E_IO, "%s: writing failed: %s", path,
+                    w->failed_errno ? strerror(w->failed_errno)
+                                    : "encoder error");
+  if (w->bad_put)
+    return gli_fail(error, GLINT_E_ARGUMENT,
+                    "%s: tiles outside the image or repeated", path);
+  if (w->encoded < w->height)
+    return gli_fail(error, GLINT_E_ARGUMENT,
+                    "%s: only %d of the image's %d rows were complete; "
+                    "nothing was written",
+                    path, w->ready, w->height);
+  return GLINT_OK;
+}
+
 glint_status glint_image_writer_finish(glint_image_writer *w,
                                        glint_error *error) {
   if (!w)
     return gli_fail(error, GLINT_E_ARGUMENT, "no writer");
+  if (w->in_memory) {
+    glint_image_writer_discard(w);
+    return gli_fail(error, GLINT_E_ARGUMENT,
+                    "an image writer in memory ends with "
+                    "glint_image_writer_finish_memory");
+  }
   stop_encoder(w, 0);
   char *path = (char *)w->file.path;
-  glint_status st;
-  if (w->bad_put || w->encoded < w->height) {
+  glint_status st = incomplete(w, error);
+  if (st)
     gli_atomic_discard(&w->file);
-    st = w->failed ? gli_fail(error, GLINT_E_IO, "%s: writing failed: %s", path,
-                              w->failed_errno ? strerror(w->failed_errno)
-                                              : "encoder error")
-         : w->bad_put
-             ? gli_fail(error, GLINT_E_ARGUMENT,
-                        "%s: tiles outside the image or repeated", path)
-             : gli_fail(error, GLINT_E_ARGUMENT,
-                        "%s: only %d of the image's %d rows were complete; "
-                        "nothing was written",
-                        path, w->ready, w->height);
-  } else {
+  else
     st = gli_atomic_commit(&w->file, 0, 0, error);
-  }
   free(path);
+  writer_free(w);
+  return st;
+}
+
+glint_status glint_image_writer_finish_memory(glint_image_writer *w,
+                                              void **bytes, size_t *size,
+                                              glint_error *error) {
+  if (!w || !bytes || !size) {
+    glint_image_writer_discard(w);
+    return gli_fail(error, GLINT_E_ARGUMENT, "no writer or no place for it");
+  }
+  if (!w->in_memory) {
+    glint_image_writer_discard(w);
+    return gli_fail(error, GLINT_E_ARGUMENT,
+                    "an image writer of a file ends with "
+                    "glint_image_writer_finish");
+  }
+  stop_encoder(w, 0);
+  glint_status st = incomplete(w, error);
+  int closed = fclose(w->file.f); /* sets memory and memory_size */
+  if (!st && closed != 0)
+    st = gli_fail(error, GLINT_E_MEMORY, "%s: out of memory", w->file.path);
+  if (st) {
+    free(w->memory);
+  } else {
+    *bytes = w->memory;
+    *size = w->memory_size;
+  }
+  free((char *)w->file.path);
   writer_free(w);
   return st;
 }
@@ -251,7 +348,12 @@ void glint_image_writer_discard(glint_image_writer *w) {
   if (!w)
     return;
   stop_encoder(w, 1);
-  gli_atomic_discard(&w->file);
+  if (w->in_memory) {
+    fclose(w->file.f);
+    free(w->memory);
+  } else {
+    gli_atomic_discard(&w->file);
+  }
   free((char *)w->file.path);
   writer_free(w);
 }

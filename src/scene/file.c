@@ -106,6 +106,15 @@ glint_status gli_file_read_all(const char *path, size_t max_bytes, char **out,
   return GLINT_OK;
 }
 
+glint_status gli_file_source_read(const gli_file_source *source,
+                                  const char *path, size_t max_bytes,
+                                  char **data, size_t *size,
+                                  glint_error *error) {
+  if (!source)
+    return gli_file_read_all(path, max_bytes, data, size, error);
+  return source->read(source->context, path, max_bytes, data, size, error);
+}
+
 void gli_file_skip_bom(const char **data, size_t *size) {
   if (*size >= 3 && memcmp(*data, "\xEF\xBB\xBF", 3) == 0) {
     *data += 3;

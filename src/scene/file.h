@@ -18,6 +18,23 @@
 glint_status gli_file_read_all(const char *path, size_t max_bytes, char **data,
                                size_t *size, glint_error *error);
 
+/* Where a loader gets the files it reads: the scene file and the files it
+ * refers to (a JSON scene's meshes). NULL is the file system
+ * (gli_file_read_all); scene/pack.c records what a load reads
+ * (glint_scene_pack) and serves packed bytes instead of files
+ * (glint_scene_load_packed), so that ranks of an MPI job parse the very
+ * bytes rank 0 read. `read` keeps gli_file_read_all's contract. */
+typedef struct gli_file_source {
+  glint_status (*read)(void *context, const char *path, size_t max_bytes,
+                       char **data, size_t *size, glint_error *error);
+  void *context;
+} gli_file_source;
+
+glint_status gli_file_source_read(const gli_file_source *source,
+                                  const char *path, size_t max_bytes,
+                                  char **data, size_t *size,
+                                  glint_error *error);
+
 /* Steps over a UTF-8 byte-order mark at the start of a text file, if any. */
 void gli_file_skip_bom(const char **data, size_t *size);
 

@@ -226,6 +226,16 @@ glint_status glint_scene_add_mesh_file(glint_scene *scene, const char *path,
                                        double scale, glint_vec3 translate,
                                        uint32_t material_id,
                                        glint_error *error) {
+  return gli_scene_add_mesh_from(scene, NULL, path, scale, translate,
+                                 material_id, error);
+}
+
+glint_status gli_scene_add_mesh_from(glint_scene *scene,
+                                     const gli_file_source *files,
+                                     const char *path, double scale,
+                                     glint_vec3 translate,
+                                     uint32_t material_id,
+                                     glint_error *error) {
   gli_mesh_reader read;
   glint_status st =
       check_mesh_call(scene, path, scale, translate, material_id, &read, error);
@@ -233,7 +243,8 @@ glint_status glint_scene_add_mesh_file(glint_scene *scene, const char *path,
     return st;
   char *data = NULL;
   size_t size = 0;
-  if ((st = gli_file_read_all(path, MAX_FILE_BYTES, &data, &size, error)))
+  if ((st = gli_file_source_read(files, path, MAX_FILE_BYTES, &data, &size,
+                                 error)))
     return st;
   st = add_mesh_text(scene, path, read, data, size, scale, translate,
                      material_id, error);

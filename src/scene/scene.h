@@ -137,11 +137,20 @@ glint_status gli_scene_push_triangle(glint_scene *scene, glint_vec3 a,
 
 /* The scene file readers (scene/formats/nff.c, json.c): `data` is the
  * file's `size` bytes followed by a NUL; `path` names it in messages and
- * places the files it refers to (a JSON scene's meshes). */
-glint_status gli_nff_read(const char *path, const char *data, size_t size,
+ * places the files it refers to (a JSON scene's meshes), which come from
+ * `files` (NULL: the file system). */
+struct gli_file_source;
+glint_status gli_nff_read(const struct gli_file_source *files,
+                          const char *path, const char *data, size_t size,
                           glint_scene **out, glint_error *error);
-glint_status gli_json_read(const char *path, const char *data, size_t size,
+glint_status gli_json_read(const struct gli_file_source *files,
+                           const char *path, const char *data, size_t size,
                            glint_scene **out, glint_error *error);
+
+/* glint_scene_load with its files from `files` (scene/formats/registry.c). */
+glint_status gli_scene_load_from(const struct gli_file_source *files,
+                                 const char *path, glint_scene **out,
+                                 glint_error *error);
 
 /* Checks a camera as glint_scene_set_camera does (finite, 0 < fov < 180,
  * from != at, up not parallel to the view). */

@@ -10,6 +10,7 @@
  * JSON path of the offending value, as "objects[2].radius". */
 #include "core/error.h"
 #include "scene/file.h"
+#include "scene/mesh.h"
 #include "scene/scene.h"
 
 #include <cJSON.h>
@@ -40,6 +41,7 @@ typedef struct material_entry {
 
 typedef struct json_reader {
   const char *file; /* as the caller gave it: every message starts with it */
+  const gli_file_source *files; /* where mesh files come from */
   glint_scene *scene;
   glint_error *error;
   char path[512]; /* the JSON path of the value being read */
@@ -564,8 +566,8 @@ static glint_status read_mesh(json_reader *r, const cJSON *obj,
     return fail(r, GLINT_E_MEMORY, "out of memory");
   memcpy(resolved, r->file, dir);
   memcpy(resolved + dir, file, len + 1);
-  st = glint_scene_add_mesh_file(r->scene, resolved, scale, translate, material,
-                                 r->error);
+  st = gli_scene_add_mesh_from(r->scene, r->files, resolved, scale, translate,
+                               material, r->error);
   free(resolved);
   return lib(r, st);
 }
@@ -1152,8 +1154,9 @@ static glint_status parse_text(const char *path, const char *data, size_t size,
                   line, column, hint);
 }
 
-glint_status gli_json_read(const char *path, const char *data, size_t size,
-                           glint_scene **out, glint_error *error) {
+glint_status gli_json_read(const gli_file_source *files, const char *path,
+                           const char *data, size_t size, glint_scene **out,
+                           glint_error *error) {
   cJSON *root = NULL;
   glint_status st = parse_text(path, data, size, &root, error);
   if (st)
@@ -1161,6 +1164,7 @@ glint_status gli_json_read(const char *path, const char *data, size_t size,
   json_reader r;
   memset(&r, 0, sizeof r);
   r.file = path;
+  r.files = files;
   r.error = error;
   if ((st = glint_scene_create(&r.scene, error)) == GLINT_OK)
     st = read_scene(&r, root);

@@ -22,6 +22,7 @@
  * NFF's negative radii (only the inside visible) are read as their
  * magnitude: glint shows both sides of every surface. */
 #include "core/error.h"
+#include "scene/file.h"
 #include "scene/number.h"
 #include "scene/polygon.h"
 #include "scene/scene.h"
@@ -324,8 +325,10 @@ static glint_status read_nff(nff_reader *r, glint_error *e) {
   return GLINT_OK;
 }
 
-glint_status gli_nff_read(const char *path, const char *data, size_t size,
-                          glint_scene **out, glint_error *e) {
+glint_status gli_nff_read(const gli_file_source *files, const char *path,
+                          const char *data, size_t size, glint_scene **out,
+                          glint_error *e) {
+  (void)files; /* an NFF file refers to no other */
   nff_reader r;
   memset(&r, 0, sizeof r);
   glint_status st = gli_text_begin(&r.t, path, data, size, '#', e);

@@ -15,8 +15,9 @@ typedef struct scene_format {
    * and cJSON needs several times the text's size for its tree (large
    * geometry belongs in mesh files). */
   size_t max_bytes;
-  glint_status (*read)(const char *path, const char *data, size_t size,
-                       glint_scene **out, glint_error *error);
+  glint_status (*read)(const gli_file_source *files, const char *path,
+                       const char *data, size_t size, glint_scene **out,
+                       glint_error *error);
 } scene_format;
 
 static const scene_format scene_formats[] = {
@@ -67,6 +68,12 @@ static glint_status not_a_scene(const char *name, glint_error *error) {
 
 glint_status glint_scene_load(const char *path, glint_scene **out,
                               glint_error *error) {
+  return gli_scene_load_from(NULL, path, out, error);
+}
+
+glint_status gli_scene_load_from(const gli_file_source *files,
+                                 const char *path, glint_scene **out,
+                                 glint_error *error) {
   if (!path || !out)
     return gli_fail(error, GLINT_E_ARGUMENT, "scene file: missing argument");
   const scene_format *f = scene_format_of(path);
@@ -74,10 +81,11 @@ glint_status glint_scene_load(const char *path, glint_scene **out,
     return not_a_scene(path, error);
   char *data;
   size_t size;
-  glint_status st = gli_file_read_all(path, f->max_bytes, &data, &size, error);
+  glint_status st =
+      gli_file_source_read(files, path, f->max_bytes, &data, &size, error);
   if (st)
     return st;
-  st = f->read(path, data, size, out, error);
+  st = f->read(files, path, data, size, out, error);
   free(data);
   return st;
 }
@@ -100,7 +108,7 @@ glint_status glint_scene_load_memory(const void *data, size_t size,
   if (size)
     memcpy(copy, data, size);
   copy[size] = '\0';
-  glint_status st = f->read(name, copy, size, out, error);
+  glint_status st = f->read(NULL, name, copy, size, out, error);
   free(copy);
   return st;
 }

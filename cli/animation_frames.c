@@ -1,0 +1,165 @@
+/* The frames of an animation, as glint render --frames and glint-mpi write
+ * them: the -o pattern (or the number put before the extension), each
+ * frame's file and its folder, and the world at a frame's time. */
+#include "args.h"
+#include "cli.h"
+
+#include <glint.h>
+
+#include <errno.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+#include <sys/stat.h>
+
+/* Checks an -o pattern: exactly one %d conversion (flags 0 and a width
+ * allowed) and %% for a literal %. Returns 1 when it is one, 0 when the
+ * name has no % at all, -1 (after a message) when it is malformed. */
+static int check_pattern(const char *p) {
+  int conversions = 0;
+  for (const char *c = strchr(p, '%'); c; c = strchr(c + 1, '%')) {
+    if (c[1] == '%') {
+      c++;
+      continue;
+    }
+    const char *d = c + 1;
+    if (*d == '0')
+      d++;
+    int width = 0;
+    while (*d >= '0' && *d <= '9' && width < 100)
+      width = width * 10 + (*d++ - '0');
+    if (*d != 'd' || width > 9) {
+      cli_error("-o %s: a frame pattern takes one %%d, %%04d or the like "
+                "(and %%%% for a %%)",
+                p);
+      return -1;
+    }
+    conversions++;
+    c = d;
+  }
+  if (conversions > 1) {
+    cli_error("-o %s: a frame pattern takes one number, not %d", p,
+              conversions);
+    return -1;
+  }
+  return conversions;
+}
+
+static int frame_path(char *out, size_t size, const char *name, int pattern,
+                      int frame, int digits) {
+  int n;
+  if (pattern) {
+#if defined(__GNUC__)
+#pragma GCC diagnostic push
+#pragma GCC diagnostic ignored "-Wformat-nonliteral"
+#endif
+    n = snprintf(out, size, name, frame); /* checked by check_pattern */
+#if defined(__GNUC__)
+#pragma GCC diagnostic pop
+#endif
+  } else {
+    const char *slash = strrchr(name, '/');
+    const char *dot = strrchr(slash ? slash : name, '.');
+    if (!dot)
+      dot = name + strlen(name);
+    n = snprintf(out, size, "%.*s%0*d%s", (int)(dot - name), name, digits,
+                 frame, dot);
+  }
+  if (n < 0 || (size_t)n >= size) {
+    cli_error("-o %s: the file name of frame %d is too long", name, frame);
+    return -1;
+  }
+  return 0;
+}
+
+/* Makes the folders of `path` that are missing (mkdir -p of its dirname);
+ * -1 with a message when one cannot be made. */
+static int make_folders(const char *path) {
+  char folder[4096];
+  snprintf(folder, sizeof folder, "%s", path);
+  char *slash = strrchr(folder, '/');
+  if (!slash || slash == folder)
+    return 0;
+  *slash = '\0';
+  for (char *p = folder + 1;; p++) {
+    if (*p == '/' || *p == '\0') {
+      char saved = *p;
+      *p = '\0';
+      struct stat sb;
+      if (stat(folder, &sb) != 0 && mkdir(folder, 0777) != 0 &&
+          errno != EEXIST) {
+        cli_error("%s: cannot make the folder: %s", folder, strerror(errno));
+        return -1;
+      }
+      *p = saved;
+      if (!saved)
+        return 0;
+    }
+  }
+}
+
+int cli_world_at(const glint_scene *scene, double time,
+                 glint_renderer *renderer, glint_error *err) {
+  glint_scene *still;
+  glint_world *world;
+  if (glint_scene_at_time(scene, time, &still, err))
+    return -1;
+  glint_status st = glint_world_commit(still, &world, NULL, err);
+  glint_scene_destroy(still);
+  if (st)
+    return -1;
+  st = glint_renderer_set_world(renderer, world, err);
+  glint_world_destroy(world);
+  return st ? -1 : 0;
+}
+
+int frame_file_written(const char *path) {
+  struct stat sb;
+  return stat(path, &sb) == 0 && S_ISREG(sb.st_mode) && sb.st_size > 0;
+}
+
+int frame_files_init(frame_files *files, const glint_scene *scene,
+                     const render_options *o, const char *stem,
+                     glint_animation *anim) {
+  const char *scene_name = o->scene;
+  if (!glint_scene_get_animation(scene, anim)) {
+    cli_error("%s has no animation: --frames needs an \"animation\" block "
+              "(docs/scene-format.md)",
+              scene_name);
+    return -1;
+  }
+  if (o->first_frame < anim->first_frame || o->last_frame > anim->last_frame) {
+    cli_error("--frames %d-%d: %s's animation has frames %d-%d", o->first_frame,
+              o->last_frame, scene_name, anim->first_frame, anim->last_frame);
+    return -1;
+  }
+  files->name = o->output;
+  if (!files->name) {
+    snprintf(files->default_name, sizeof files->default_name, "%s.png", stem);
+    files->name = files->default_name;
+  }
+  files->pattern = check_pattern(files->name);
+  if (files->pattern < 0)
+    return -1;
+  int digits = snprintf(NULL, 0, "%d", anim->last_frame);
+  files->digits = digits < 4 ? 4 : digits;
+  char first_path[4096];
+  if (frame_path(first_path, sizeof first_path, files->name, files->pattern,
+                 o->first_frame, files->digits))
+    return -1;
+  if (glint_image_format_from_path(first_path) == GLINT_FORMAT_UNKNOWN) {
+    cli_error("%s: --frames writes .png, .bmp or .ppm images", first_path);
+    return -1;
+  }
+  /* -o out/frame%04d.png makes out/ when it is missing (and a pattern
+   * whose number is in a folder's name makes that folder for each frame,
+   * in frame_files_path). */
+  return make_folders(first_path);
+}
+
+int frame_files_path(const frame_files *files, int frame, char *path,
+                     size_t size) {
+  if (frame_path(path, size, files->name, files->pattern, frame, files->digits))
+    return -1;
+  return files->pattern ? make_folders(path) : 0;
+}

@@ -1,0 +1,416 @@
+/* glint-mpi: glint render on the ranks of an Open MPI job (docs/mpi.md).
+ *
+ *   mpirun -np N glint-mpi [SCENE] [glint render options]
+ *          [--schedule dynamic|static] [--tile N] [--timeout S]
+ *
+ * One image is cut into tiles, an animation (--frames) into frames; rank 0
+ * reads the scene and every file it refers to, once, and broadcasts the
+ * bytes (glint_scene_pack), and every rank checks that it renders as the
+ * others do (version, backend, maths) before any work starts. The image is
+ * bit-identical to glint render's, whatever the ranks, tiles or schedule. */
+#include "args.h"
+#include "mpi.h"
+
+#include <glint.h>
+
+#include <fcntl.h>
+#include <stdarg.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+#include <unistd.h>
+
+static void usage(FILE *f) {
+  fputs(
+      "Usage: mpirun -np N glint-mpi [SCENE] [options]\n"
+      "\n"
+      "Renders SCENE as glint render does, on the N ranks of an MPI job: one\n"
+      "image in tiles, or with --frames the frames of its animation. Rank 0\n"
+      "reads the scene and its meshes and writes every file; all ranks\n"
+      "render, rank 0 too. The output is bit-identical to glint render's.\n"
+      "\n"
+      "Options: those of glint render (glint render --help; -o - excepted),\n"
+      "and\n"
+      "      --schedule NAME  dynamic (default): units (tiles or frames)\n"
+      "                       handed out as ranks finish; static: unit i to\n"
+      "                       rank i mod N, the baseline\n"
+      "      --tile N         tile side in pixels, 8..4096 (default: 64)\n"
+      "      --timeout S      a rank that owes work and sends nothing for S\n"
+      "                       seconds ends the job (default: 120); more than\n"
+      "                       one tile or frame takes\n"
+      "  -t, --threads N      per rank; 0 (default) shares the CPUs this\n"
+      "                       rank may use among the ranks on its host\n"
+      "\n"
+      "Exit status: 0 on success, 2 on bad arguments or input, a failed or\n"
+      "silent rank, 130 when stopped. A failed job leaves no partial image;\n"
+      "frames already written stay, and --resume renders the rest.\n",
+      f);
+}
+
+void mpi_fail(const mpi_world *w, int status, const char *format, ...) {
+  if (w->rank == 0 && w->abandon)
+    w->abandon(w->abandon_context);
+  char message[1024];
+  va_list ap;
+  va_start(ap, format);
+  vsnprintf(message, sizeof message, format, ap);
+  va_end(ap);
+  fprintf(stderr, "glint-mpi: %s\n", message);
+  fflush(stderr);
+  MPI_Abort(w->comm, status);
+  exit(status); /* MPI_Abort does not return; this says so to the compiler */
+}
+
+void mpi_check(const mpi_world *w, int result, const char *what) {
+  if (result == MPI_SUCCESS)
+    return;
+  char text[MPI_MAX_ERROR_STRING];
+  int length = 0;
+  if (MPI_Error_string(result, text, &length) != MPI_SUCCESS)
+    snprintf(text, sizeof text, "MPI error %d", result);
+  mpi_fail(w, EXIT_USAGE, "rank %d (%s): %s: %s", w->rank,
+           w->hosts ? w->hosts[w->rank] : "?", what, text);
+}
+
+int mpi_all_ok(const mpi_world *w, int ok, const char *message) {
+  char mine[MPI_MESSAGE_CHARS] = {0};
+  if (!ok)
+    snprintf(mine, sizeof mine, "%s", message ? message : "failed");
+  char *all = NULL;
+  if (w->rank == 0 && !(all = calloc((size_t)w->size, sizeof mine)))
+    mpi_fail(w, 1, "out of memory");
+  mpi_check(w,
+            MPI_Gather(mine, (int)sizeof mine, MPI_CHAR, all, (int)sizeof mine,
+                       MPI_CHAR, 0, w->comm),
+            "gathering the ranks' state");
+  int first_failed = -1;
+  if (w->rank == 0)
+    for (int r = 0; r < w->size && first_failed < 0; r++)
+      if (all[(size_t)r * sizeof mine])
+        first_failed = r;
+  if (first_failed == 0)
+    fprintf(stderr, "glint: %s\n", all);
+  else if (first_failed > 0)
+    fprintf(stderr, "glint-mpi: rank %d (%s): %s\n", first_failed,
+            w->hosts[first_failed], all + (size_t)first_failed * sizeof mine);
+  free(all);
+  mpi_check(w, MPI_Bcast(&first_failed, 1, MPI_INT, 0, w->comm),
+            "sharing the ranks' state");
+  return first_failed < 0;
+}
+
+int mpi_copy_tile(void *user, const glint_tile *tile) {
+  const mpi_unit_buffer *b = user;
+  for (int row = 0; row < tile->height; row++)
+    memcpy(b->pixels + 3 * ((size_t)(tile->y - b->y + row) * (size_t)b->width +
+                            (size_t)(tile->x - b->x)),
+           tile->pixels + (size_t)row * tile->stride,
+           3 * sizeof(float) * (size_t)tile->width);
+  return 0;
+}
+
+int mpi_on_progress(void *user, double fraction) {
+  (void)user;
+  (void)fraction;
+  return cli_stopped();
+}
+
+double mpi_test_slowdown(int rank) {
+  const char *v = getenv("GLINT_MPI_TEST_SLOW");
+  while (v && *v) {
+    int r, used = 0;
+    double factor;
+    if (sscanf(v, "%d:%lf%n", &r, &factor, &used) != 2)
+      break;
+    if (r == rank && factor > 1)
+      return factor;
+    v += used;
+    v += *v == ',';
+  }
+  return 1;
+}
+
+/* Takes glint-mpi's own options out of argv, and leaves glint render's. */
+static int parse(int argc, char **argv, mpi_options *o) {
+  o->dynamic = 1;
+  o->tile_size = 64;
+  o->timeout = 120;
+  char **rest = malloc((size_t)(argc + 1) * sizeof *rest);
+  if (!rest) {
+    cli_error("out of memory");
+    return EXIT_USAGE;
+  }
+  int n = 0;
+  arg_cursor c = {argc, argv, 0, NULL};
+  while (c.i < argc) {
+    int r;
+    if (arg_is_help(&c)) {
+      usage(stdout);
+      free(rest);
+      return 0;
+    }
+    if (arg_is(&c, NULL, "--schedule")) {
+      const char *v = arg_value(&c, "--schedule");
+      if (!v || (strcmp(v, "dynamic") && strcmp(v, "static"))) {
+        if (v)
+          cli_error("--schedule: '%s' is not dynamic or static", v);
+        free(rest);
+        return EXIT_USAGE;
+      }
+      o->dynamic = strcmp(v, "dynamic") == 0;
+    } else if ((r = arg_int(&c, NULL, "--tile", 8, 4096, &o->tile_size))) {
+      if (r == ARG_BAD) {
+        free(rest);
+        return EXIT_USAGE;
+      }
+    } else if (arg_is(&c, NULL, "--timeout")) {
+      if (parse_double("--timeout", arg_value(&c, "--timeout"), 0.001,
+                       &o->timeout)) {
+        free(rest);
+        return EXIT_USAGE;
+      }
+    } else {
+      rest[n++] = argv[c.i++];
+    }
+  }
+  rest[n] = NULL;
+  int status = render_parse(n, rest, &o->render);
+  /* render_parse keeps pointers into argv, not into `rest`. */
+  free(rest);
+  if (status >= 0)
+    return status;
+  if (o->render.to_stdout) {
+    cli_error("-o -: glint-mpi writes files (rank 0 writes them)");
+    return EXIT_USAGE;
+  }
+  if (o->render.stats) {
+    cli_error("--stats: glint-mpi prints what each rank rendered instead");
+    return EXIT_USAGE;
+  }
+  o->in_flight = o->render.frames ? 2 : 4;
+  return -1;
+}
+
+/* Each rank's name for what it renders; ranks that differ would render
+ * different images. */
+static void fingerprint(const glint_render_settings *rs, char *out,
+                        size_t size) {
+  snprintf(out, size, "glint %s, backend %s, %s maths%s, accel %s",
+           glint_version(),
+           glint_backend_name(glint_backend_resolve(rs->backend)),
+           glint_math_name(rs->math), rs->rcp_newton ? "" : ", no Newton step",
+           glint_accel_name(rs->accel));
+}
+
+/* Refuses to start when a rank renders differently from rank 0. */
+static int same_renderers(const mpi_world *w, const glint_render_settings *rs) {
+  char mine[MPI_MESSAGE_CHARS];
+  fingerprint(rs, mine, sizeof mine);
+  char *all = NULL;
+  if (w->rank == 0 && !(all = calloc((size_t)w->size, sizeof mine)))
+    mpi_fail(w, 1, "out of memory");
+  mpi_check(w,
+            MPI_Gather(mine, (int)sizeof mine, MPI_CHAR, all, (int)sizeof mine,
+                       MPI_CHAR, 0, w->comm),
+            "gathering the ranks' renderers");
+  int same = 1;
+  if (w->rank == 0) {
+    for (int r = 1; r < w->size; r++)
+      same &= strcmp(all, all + (size_t)r * sizeof mine) == 0;
+    if (!same) {
+      fprintf(stderr,
+              "glint-mpi: the ranks would render different images, so none "
+              "starts (give every rank the same glint and --backend, "
+              "--math):\n");
+      for (int r = 0; r < w->size; r++)
+        fprintf(stderr, "  rank %d (%s): %s\n", r, w->hosts[r],
+                all + (size_t)r * sizeof mine);
+    }
+  }
+  free(all);
+  mpi_check(w, MPI_Bcast(&same, 1, MPI_INT, 0, w->comm),
+            "sharing the ranks' renderers");
+  return same;
+}
+
+/* The scene on every rank: rank 0 packs the file and what it refers to,
+ * and broadcasts the bytes; a built-in scene is made by name. */
+static glint_scene *share_scene(const mpi_world *w, const mpi_options *o,
+                                char *stem, size_t stem_size) {
+  const char *arg = o->render.scene;
+  int is_file = strchr(arg, '.') != NULL || strchr(arg, '/') != NULL;
+  glint_error err = {0};
+  glint_scene *scene = NULL;
+  glint_status st = GLINT_OK;
+  if (!is_file) {
+    st = glint_scene_builtin(arg, &scene, &err);
+  } else {
+    void *packed = NULL;
+    size_t size = 0;
+    if (w->rank == 0)
+      st = glint_scene_pack(arg, &packed, &size, &err);
+    uint64_t sent = st ? UINT64_MAX : size;
+    mpi_check(w, MPI_Bcast(&sent, 1, MPI_UINT64_T, 0, w->comm),
+              "broadcasting the scene");
+    if (sent == UINT64_MAX) { /* rank 0 could not read it: it says why */
+      mpi_all_ok(w, w->rank != 0, err.message);
+      return NULL;
+    }
+    size = (size_t)sent;
+    if (w->rank != 0 && !(packed = malloc(size ? size : 1)))
+      mpi_fail(w, 1, "out of memory for the scene (%zu bytes)", size);
+    /* In pieces: MPI counts in ints. */
+    for (size_t at = 0; at < size; at += (size_t)1 << 30) {
+      size_t piece =
+          size - at < ((size_t)1 << 30) ? size - at : (size_t)1 << 30;
+      mpi_check(
+          w, MPI_Bcast((char *)packed + at, (int)piece, MPI_BYTE, 0, w->comm),
+          "broadcasting the scene");
+    }
+    st = glint_scene_load_packed(packed, size, &scene, &err);
+    glint_free(packed);
+  }
+  if (!mpi_all_ok(w, st == GLINT_OK, err.message)) {
+    glint_scene_destroy(scene);
+    return NULL;
+  }
+  /* The stem: the file's base name without its extension. */
+  const char *base = strrchr(arg, '/');
+  snprintf(stem, stem_size, "%s", base ? base + 1 : arg);
+  char *dot = strrchr(stem, '.');
+  if (dot && dot != stem)
+    *dot = '\0';
+  return scene;
+}
+
+/* -t 0: the CPUs this rank may use, shared among the ranks on its host
+ * (mpirun binds each rank to a core when there are cores enough, and then
+ * a rank sees one). */
+static int threads_per_rank(const mpi_world *w) {
+  MPI_Comm host;
+  mpi_check(w,
+            MPI_Comm_split_type(w->comm, MPI_COMM_TYPE_SHARED, w->rank,
+                                MPI_INFO_NULL, &host),
+            "finding the ranks on this host");
+  int local = 1;
+  mpi_check(w, MPI_Comm_size(host, &local), "counting the ranks on this host");
+  MPI_Comm_free(&host);
+  int cpus = glint_cpu_count();
+  int threads = cpus / local;
+  return threads < 1 ? 1 : threads;
+}
+
+/* Parses with rank 0's voice only: every rank parses the same arguments,
+ * and one message is enough. */
+static int parse_quietly(const mpi_world *w, int argc, char **argv,
+                         mpi_options *o) {
+  if (w->rank == 0)
+    return parse(argc, argv, o);
+  fflush(stdout);
+  fflush(stderr);
+  int saved_out = dup(STDOUT_FILENO), saved_err = dup(STDERR_FILENO);
+  int null = open("/dev/null", O_WRONLY);
+  if (null >= 0) {
+    dup2(null, STDOUT_FILENO);
+    dup2(null, STDERR_FILENO);
+    close(null);
+  }
+  int status = parse(argc, argv, o);
+  fflush(stdout);
+  fflush(stderr);
+  if (saved_out >= 0) {
+    dup2(saved_out, STDOUT_FILENO);
+    close(saved_out);
+  }
+  if (saved_err >= 0) {
+    dup2(saved_err, STDERR_FILENO);
+    close(saved_err);
+  }
+  return status;
+}
+
+static int run(mpi_world *w, int argc, char **argv) {
+  mpi_options o;
+  memset(&o, 0, sizeof o);
+  int status = parse_quietly(w, argc, argv, &o);
+  if (status >= 0)
+    return status;
+  glint_render_settings *rs = &o.render.settings;
+  if (rs->threads == 0)
+    rs->threads = threads_per_rank(w);
+  if (!same_renderers(w, rs))
+    return EXIT_USAGE;
+  char stem[256];
+  glint_scene *scene = share_scene(w, &o, stem, sizeof stem);
+  if (!scene)
+    return EXIT_USAGE;
+  glint_animation animation;
+  glint_error err = {0};
+  if (!o.render.frames && glint_scene_get_animation(scene, &animation)) {
+    glint_scene *still = NULL; /* an animated scene, still: frame one */
+    glint_status st = glint_scene_at_time(scene, 0, &still, &err);
+    glint_scene_destroy(scene);
+    scene = still;
+    if (!mpi_all_ok(w, st == GLINT_OK, err.message))
+      return EXIT_USAGE;
+  }
+  glint_world *world = NULL;
+  glint_renderer *renderer = NULL;
+  glint_status st = glint_world_commit(scene, &world, NULL, &err);
+  if (!st)
+    st = glint_renderer_create(world, rs, &renderer, &err);
+  glint_world_destroy(world);
+  if (!mpi_all_ok(w, st == GLINT_OK, err.message)) {
+    glint_renderer_destroy(renderer);
+    glint_scene_destroy(scene);
+    return EXIT_USAGE;
+  }
+  if (w->rank == 0)
+    cli_catch_stop_signals();
+  status = o.render.frames ? mpi_render_frames(w, &o, scene, renderer, stem)
+                           : mpi_render_tiles(w, &o, scene, renderer, stem);
+  glint_renderer_destroy(renderer);
+  glint_scene_destroy(scene);
+  return status;
+}
+
+int main(int argc, char **argv) {
+  double start = cli_now();
+  /* --help needs no MPI job: it works outside mpirun, at once. */
+  for (int i = 1; i < argc && strcmp(argv[i], "--"); i++)
+    if (strcmp(argv[i], "-h") == 0 || strcmp(argv[i], "--help") == 0) {
+      usage(stdout);
+      return 0;
+    }
+  int provided;
+  /* Only the main thread calls MPI; the renderer's threads never do. */
+  if (MPI_Init_thread(&argc, &argv, MPI_THREAD_FUNNELED, &provided) !=
+      MPI_SUCCESS) {
+    fprintf(stderr, "glint-mpi: MPI_Init failed\n");
+    return EXIT_USAGE;
+  }
+  mpi_world w = {MPI_COMM_WORLD, 0, 1, NULL, NULL, NULL, start};
+  /* Errors come back as values, checked by mpi_check, instead of MPI's
+   * default of ending the job without a word from glint. */
+  MPI_Comm_set_errhandler(w.comm, MPI_ERRORS_RETURN);
+  mpi_check(&w, MPI_Comm_rank(w.comm, &w.rank), "MPI_Comm_rank");
+  mpi_check(&w, MPI_Comm_size(w.comm, &w.size), "MPI_Comm_size");
+  char host[MPI_HOST_CHARS] = {0};
+  int length = 0;
+  char name[MPI_MAX_PROCESSOR_NAME];
+  if (MPI_Get_processor_name(name, &length) == MPI_SUCCESS)
+    snprintf(host, sizeof host, "%.*s", length, name);
+  if (!(w.hosts = calloc((size_t)w.size, sizeof *w.hosts)))
+    mpi_fail(&w, 1, "out of memory");
+  mpi_check(&w,
+            MPI_Allgather(host, MPI_HOST_CHARS, MPI_CHAR, w.hosts,
+                          MPI_HOST_CHARS, MPI_CHAR, w.comm),
+            "gathering the host names");
+  if (provided < MPI_THREAD_FUNNELED)
+    mpi_fail(&w, EXIT_USAGE,
+             "this MPI cannot run threads beside MPI (MPI_THREAD_FUNNELED)");
+  int status = run(&w, argc - 1, argv + 1);
+  free(w.hosts);
+  MPI_Finalize();
+  return status;
+}

@@ -1,0 +1,362 @@
+/* The master/worker schedule of glint-mpi (cli/mpi.h).
+ *
+ * Dynamic (the default): rank 0 hands each worker `in_flight` units at the
+ * start and one more for each result it gets back, so a worker always has
+ * its next unit queued while it renders and sends the last; rank 0 renders
+ * units itself in between, and looks at its mail after each. Static (the
+ * baseline): unit u belongs to rank u % size from the start.
+ *
+ * Results travel as one message each, sent by the worker (MPI_Isend, from
+ * one of `in_flight` buffers, so it renders the next unit while rank 0
+ * collects) the moment a unit is done. Rank 0 only ever waits by polling
+ * (MPI_Testsome and a short sleep), so that it notices a stop signal and a
+ * worker that has gone silent: one that owes units and has sent nothing for
+ * `timeout` seconds ends the job with a message naming it. A worker whose
+ * unit fails sends its message to rank 0, which prints it and ends the job;
+ * a rank that dies is noticed by mpirun, which ends the job itself (and
+ * rank 0, stopped by its SIGTERM, leaves no partial file). */
+#include "mpi.h"
+
+#include <stdarg.h>
+#include <stdint.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+#include <time.h>
+
+enum { TAG_WORK = 1, TAG_RESULT, TAG_ERROR };
+enum { STOP = -1 };
+
+/* What precedes a result's pixels. */
+typedef struct result_header {
+  int32_t unit;
+  int32_t reserved;
+  uint64_t size; /* of the result after the header */
+  double seconds;
+} result_header;
+
+/* A result message at its largest: the header, then the result (which
+ * starts 8-byte aligned). */
+static size_t result_bytes(const mpi_job *job) {
+  return sizeof(result_header) + job->unit_bytes;
+}
+
+static void *result_of(unsigned char *buffer) {
+  return buffer + sizeof(result_header);
+}
+
+static void pause_briefly(void) {
+  struct timespec ts = {0, 100 * 1000}; /* 0.1 ms */
+  nanosleep(&ts, NULL);
+}
+
+static void sleep_seconds(double s) {
+  if (s <= 0)
+    return;
+  struct timespec ts = {(time_t)s, (long)((s - (double)(time_t)s) * 1e9)};
+  nanosleep(&ts, NULL);
+}
+
+/* A unit, timed, and slowed when a test asks for it. */
+static int render_unit(mpi_job *job, int unit, void *result, size_t *size,
+                       double *seconds, glint_error *error) {
+  double t0 = cli_now();
+  int r = job->render(job->context, unit, result, size, error);
+  double t = cli_now() - t0;
+  if (job->slow > 1)
+    sleep_seconds((job->slow - 1) * t);
+  *seconds = cli_now() - t0;
+  return r;
+}
+
+/* ---- rank 0 ------------------------------------------------------------- */
+
+typedef struct master {
+  mpi_job *job;
+  int workers; /* size - 1; worker w is rank w + 1 */
+  unsigned char **buffers;
+  MPI_Request *requests; /* a posted receive per worker */
+  int *indices;          /* MPI_Testsome's answer */
+  int *owed;             /* units handed to the worker, not yet back */
+  double *last_heard;
+  char error_text[MPI_MESSAGE_CHARS];
+  MPI_Request error_request;
+  int next; /* dynamic: the next unit to hand out */
+  int done;
+} master;
+
+static void post_receive(master *m, int w) {
+  const mpi_world *world = m->job->world;
+  mpi_check(world,
+            MPI_Irecv(m->buffers[w], (int)result_bytes(m->job), MPI_BYTE, w + 1,
+                      TAG_RESULT, world->comm, &m->requests[w]),
+            "posting a receive");
+}
+
+static void send_unit(master *m, int w, int unit) {
+  const mpi_world *world = m->job->world;
+  int32_t u = unit;
+  mpi_check(world, MPI_Send(&u, 1, MPI_INT32_T, w + 1, TAG_WORK, world->comm),
+            "handing out work");
+  if (unit != STOP)
+    m->owed[w]++;
+}
+
+/* Whether rank 0 keeps unit u for itself (static schedule). */
+static int is_mine(const mpi_job *job, int unit) {
+  return unit % job->world->size == 0;
+}
+
+/* Takes what has arrived, hands out more, and checks on the workers. */
+static void serve(master *m) {
+  mpi_job *job = m->job;
+  const mpi_world *world = job->world;
+  if (cli_stopped())
+    mpi_fail(world, EXIT_INTERRUPTED, "%s", job->stopped_message);
+  int flag = 0;
+  MPI_Status status;
+  if (m->workers) { /* a worker's unit failed: its message */
+    mpi_check(world, MPI_Test(&m->error_request, &flag, &status),
+              "checking for errors");
+    if (flag) {
+      m->error_text[sizeof m->error_text - 1] = '\0';
+      int r = status.MPI_SOURCE;
+      mpi_fail(world, EXIT_USAGE, "rank %d (%s): %s", r, world->hosts[r],
+               m->error_text);
+    }
+  }
+  for (int count = 1; m->workers && count > 0;) {
+    mpi_check(world,
+              MPI_Testsome(m->workers, m->requests, &count, m->indices,
+                           MPI_STATUSES_IGNORE),
+              "collecting results");
+    if (count == MPI_UNDEFINED)
+      break;
+    for (int i = 0; i < count; i++) {
+      int w = m->indices[i];
+      const result_header *h = (const result_header *)(void *)m->buffers[w];
+      glint_error error;
+      if (h->unit < 0 || h->unit >= job->units)
+        mpi_fail(world, EXIT_USAGE, "rank %d (%s) sent %s %d, which is none",
+                 w + 1, world->hosts[w + 1], job->noun, (int)h->unit);
+      if (h->size > job->unit_bytes ||
+          job->take(job->context, h->unit, w + 1, result_of(m->buffers[w]),
+                    (size_t)h->size, &error)) {
+        if (h->size > job->unit_bytes)
+          snprintf(error.message, sizeof error.message, "too large");
+        char name[64];
+        job->name_of(job->context, h->unit, name, sizeof name);
+        mpi_fail(world, EXIT_USAGE, "%s, from rank %d (%s): %s", name, w + 1,
+                 world->hosts[w + 1], error.message);
+      }
+      job->units_by_rank[w + 1]++;
+      job->seconds_by_rank[w + 1] += h->seconds;
+      m->owed[w]--;
+      m->done++;
+      m->last_heard[w] = cli_now();
+      if (job->dynamic && m->next < job->units)
+        send_unit(m, w, m->next++);
+      post_receive(m, w);
+    }
+  }
+  double now = cli_now();
+  for (int w = 0; w < m->workers; w++)
+    if (m->owed[w] && now - m->last_heard[w] > job->timeout)
+      mpi_fail(world, EXIT_USAGE,
+               "rank %d (%s) has sent nothing for %.0f s while it owes %d "
+               "%s%s (is it hung? --timeout sets the limit); ending the job",
+               w + 1, world->hosts[w + 1], job->timeout, m->owed[w], job->noun,
+               m->owed[w] == 1 ? "" : "s");
+}
+
+static void run_master(mpi_job *job) {
+  const mpi_world *world = job->world;
+  master m;
+  memset(&m, 0, sizeof m);
+  m.job = job;
+  m.workers = world->size - 1;
+  int n = m.workers ? m.workers : 1;
+  m.buffers = calloc((size_t)n, sizeof *m.buffers);
+  m.requests = calloc((size_t)n, sizeof *m.requests);
+  m.owed = calloc((size_t)n, sizeof *m.owed);
+  m.last_heard = calloc((size_t)n, sizeof *m.last_heard);
+  m.indices = calloc((size_t)n, sizeof *m.indices);
+  if (!m.buffers || !m.requests || !m.owed || !m.last_heard || !m.indices)
+    mpi_fail(world, 1, "out of memory");
+  double start = cli_now();
+  for (int w = 0; w < m.workers; w++) {
+    m.buffers[w] = malloc(result_bytes(job));
+    if (!m.buffers[w])
+      mpi_fail(world, 1, "out of memory for the results of rank %d", w + 1);
+    m.last_heard[w] = start;
+    post_receive(&m, w);
+  }
+  if (m.workers)
+    mpi_check(world,
+              MPI_Irecv(m.error_text, (int)sizeof m.error_text - 1, MPI_CHAR,
+                        MPI_ANY_SOURCE, TAG_ERROR, world->comm,
+                        &m.error_request),
+              "posting a receive");
+  if (job->dynamic) {
+    for (int k = 0; k < job->in_flight; k++)
+      for (int w = 0; w < m.workers && m.next < job->units; w++)
+        send_unit(&m, w, m.next++);
+  } else {
+    for (int u = 0; u < job->units; u++)
+      if (!is_mine(job, u))
+        m.owed[u % world->size - 1]++;
+  }
+  int mine = 0; /* static: rank 0's next unit */
+  while (m.done < job->units) {
+    int unit = -1;
+    if (job->dynamic && m.next < job->units)
+      unit = m.next++;
+    if (!job->dynamic) {
+      while (mine < job->units && !is_mine(job, mine))
+        mine++;
+      if (mine < job->units)
+        unit = mine++;
+    }
+    if (unit >= 0) {
+      glint_error error;
+      double seconds;
+      size_t size;
+      if (render_unit(job, unit, NULL, &size, &seconds, &error)) {
+        if (cli_stopped())
+          mpi_fail(world, EXIT_INTERRUPTED, "%s", job->stopped_message);
+        char name[64];
+        job->name_of(job->context, unit, name, sizeof name);
+        mpi_fail(world, EXIT_USAGE, "%s: %s", name, error.message);
+      }
+      job->units_by_rank[0]++;
+      job->seconds_by_rank[0] += seconds;
+      m.done++;
+    } else {
+      pause_briefly();
+    }
+    serve(&m);
+  }
+  for (int w = 0; w < m.workers; w++) {
+    if (job->dynamic)
+      send_unit(&m, w, STOP);
+    MPI_Cancel(&m.requests[w]);
+    MPI_Request_free(&m.requests[w]);
+    free(m.buffers[w]);
+  }
+  if (m.workers) {
+    MPI_Cancel(&m.error_request);
+    MPI_Request_free(&m.error_request);
+  }
+  free(m.buffers);
+  free(m.requests);
+  free(m.owed);
+  free(m.last_heard);
+  free(m.indices);
+}
+
+/* ---- the other ranks ---------------------------------------------------- */
+
+/* The next unit from rank 0, or STOP; waits at most `timeout` seconds. */
+static int next_unit(const mpi_job *job) {
+  const mpi_world *world = job->world;
+  int32_t unit;
+  MPI_Request request;
+  mpi_check(
+      world,
+      MPI_Irecv(&unit, 1, MPI_INT32_T, 0, TAG_WORK, world->comm, &request),
+      "asking for work");
+  double start = cli_now();
+  for (;;) {
+    int flag;
+    mpi_check(world, MPI_Test(&request, &flag, MPI_STATUS_IGNORE),
+              "waiting for work");
+    if (flag)
+      return unit;
+    if (cli_now() - start > job->timeout)
+      mpi_fail(world, EXIT_USAGE,
+               "rank 0 (%s) has sent nothing for %.0f s (is it hung? "
+               "--timeout sets the limit); ending the job",
+               world->hosts[0], job->timeout);
+    pause_briefly();
+  }
+}
+
+/* Tells rank 0 why this rank cannot go on, and waits for the end. */
+static void report_failure(const mpi_job *job, const char *message) {
+  const mpi_world *world = job->world;
+  char text[MPI_MESSAGE_CHARS];
+  snprintf(text, sizeof text, "%s", message);
+  mpi_check(world,
+            MPI_Send(text, (int)strlen(text) + 1, MPI_CHAR, 0, TAG_ERROR,
+                     world->comm),
+            "reporting an error");
+  sleep_seconds(job->timeout); /* rank 0 ends the job before */
+  mpi_fail(world, EXIT_USAGE, "%s", message);
+}
+
+static void run_worker(mpi_job *job) {
+  const mpi_world *world = job->world;
+  /* Dynamic: a worker holds at most in_flight units, so that many results
+   * can be on their way. Static: a worker renders on whatever rank 0 does,
+   * and cheap units (sky) come far faster than rank 0, busy with an
+   * expensive one, collects them: more results may wait to be collected
+   * before the worker has to. */
+  int buffers = job->in_flight * (job->dynamic ? 1 : 8);
+  buffers = buffers < 2 ? 2 : buffers;
+  unsigned char **buffer = calloc((size_t)buffers, sizeof *buffer);
+  MPI_Request *sending = malloc((size_t)buffers * sizeof *sending);
+  if (!buffer || !sending)
+    mpi_fail(world, 1, "out of memory");
+  for (int b = 0; b < buffers; b++) {
+    sending[b] = MPI_REQUEST_NULL;
+    if (!(buffer[b] = malloc(result_bytes(job))))
+      mpi_fail(world, 1, "out of memory for %d %ss", buffers, job->noun);
+  }
+  int b = 0, static_unit = world->rank;
+  for (;;) {
+    int unit;
+    if (job->dynamic) {
+      unit = next_unit(job);
+    } else {
+      unit = static_unit < job->units ? static_unit : STOP;
+      static_unit += world->size;
+    }
+    if (unit == STOP)
+      break;
+    /* This buffer's last result must be on its way before it is reused. */
+    mpi_check(world, MPI_Wait(&sending[b], MPI_STATUS_IGNORE),
+              "sending a result");
+    result_header *h = (result_header *)(void *)buffer[b];
+    glint_error error;
+    size_t size = 0;
+    if (render_unit(job, unit, result_of(buffer[b]), &size, &h->seconds,
+                    &error)) {
+      char text[MPI_MESSAGE_CHARS], name[64];
+      job->name_of(job->context, unit, name, sizeof name);
+      snprintf(text, sizeof text, "%s: %s", name, error.message);
+      report_failure(job, text);
+    }
+    h->unit = unit;
+    h->reserved = 0;
+    h->size = size;
+    size_t bytes = sizeof(result_header) + size;
+    mpi_check(world,
+              MPI_Isend(buffer[b], (int)bytes, MPI_BYTE, 0, TAG_RESULT,
+                        world->comm, &sending[b]),
+              "sending a result");
+    b = (b + 1) % buffers;
+  }
+  mpi_check(world, MPI_Waitall(buffers, sending, MPI_STATUSES_IGNORE),
+            "sending the last results");
+  for (int k = 0; k < buffers; k++)
+    free(buffer[k]);
+  free(buffer);
+  free(sending);
+}
+
+void mpi_run(mpi_job *job) {
+  if (job->world->rank == 0)
+    run_master(job);
+  else
+    run_worker(job);
+}

@@ -1,0 +1,219 @@
+/* glint-mpi without --frames: one image, in square tiles (the last row and
+ * column cut to the image), rank 0 writing each tile into the output as it
+ * arrives (glint_image_writer encodes while the rest renders; a .pfm or
+ * .exr film is filled and written at the end). */
+#include "mpi.h"
+
+#include <stdio.h>
+#include <string.h>
+
+typedef struct tile_job {
+  const mpi_world *world;
+  glint_renderer *renderer;
+  int frame_width, frame_height; /* the frame the tiles are windows of */
+  int origin_x, origin_y;        /* the output's corner in the frame */
+  int width, height;             /* the output's */
+  int side, columns;
+  /* rank 0's output: an 8-bit image, or a film */
+  cli_tile_sink sink;
+  glint_film *film;
+} tile_job;
+
+/* Unit u's window of the output. */
+static void tile_rect(const tile_job *t, int unit, int *x, int *y, int *w,
+                      int *h) {
+  *x = (unit % t->columns) * t->side;
+  *y = (unit / t->columns) * t->side;
+  *w = t->width - *x < t->side ? t->width - *x : t->side;
+  *h = t->height - *y < t->side ? t->height - *y : t->side;
+}
+
+static void tile_name(void *context, int unit, char *name, size_t size) {
+  int x, y, w, h;
+  tile_rect(context, unit, &x, &y, &w, &h);
+  snprintf(name, size, "tile %d at %d,%d", unit, x, y);
+}
+
+/* Into rank 0's output: a tile of frame pixels. */
+static int put_tile(void *user, const glint_tile *tile) {
+  tile_job *t = user;
+  if (t->sink.writer)
+    return cli_tile_to_writer(&t->sink, tile);
+  float *film = glint_film_pixels(t->film);
+  for (int row = 0; row < tile->height; row++)
+    memcpy(film +
+               3 * ((size_t)(tile->y - t->origin_y + row) * (size_t)t->width +
+                    (size_t)(tile->x - t->origin_x)),
+           tile->pixels + (size_t)row * tile->stride,
+           3 * sizeof(float) * (size_t)tile->width);
+  return 0;
+}
+
+static int render_tile(void *context, int unit, void *result, size_t *size,
+                       glint_error *error) {
+  tile_job *t = context;
+  int x, y, w, h;
+  tile_rect(t, unit, &x, &y, &w, &h);
+  float *pixels = result;
+  *size = 3 * sizeof(float) * (size_t)w * (size_t)h;
+  mpi_unit_buffer buffer = {pixels, t->origin_x + x, t->origin_y + y, w};
+  glint_frame_settings frame;
+  glint_frame_settings_default(&frame);
+  frame.width = t->frame_width;
+  frame.height = t->frame_height;
+  frame.region_x = t->origin_x + x;
+  frame.region_y = t->origin_y + y;
+  frame.region_width = w;
+  frame.region_height = h;
+  frame.progress = mpi_on_progress;
+  frame.tile = pixels ? mpi_copy_tile : put_tile;
+  frame.tile_user = pixels ? (void *)&buffer : (void *)t;
+  glint_status st =
+      glint_renderer_render(t->renderer, &frame, NULL, NULL, error);
+  if (st == GLINT_E_CANCELLED && t->sink.failed)
+    *error = t->sink.error;
+  return st ? -1 : 0;
+}
+
+static int take_tile(void *context, int unit, int rank, const void *result,
+                     size_t size, glint_error *error) {
+  (void)rank;
+  tile_job *t = context;
+  int x, y, w, h;
+  tile_rect(t, unit, &x, &y, &w, &h);
+  const float *pixels = result;
+  if (size != 3 * sizeof(float) * (size_t)w * (size_t)h) {
+    snprintf(error->message, sizeof error->message,
+             "%zu bytes, not the tile's %dx%d pixels", size, w, h);
+    return -1;
+  }
+  glint_tile tile = {t->origin_x + x, t->origin_y + y, w, h,
+                     pixels,          3 * (size_t)w};
+  if (put_tile(t, &tile)) {
+    *error = t->sink.error;
+    return -1;
+  }
+  return 0;
+}
+
+static void abandon(void *context) {
+  tile_job *t = context;
+  glint_image_writer_discard(t->sink.writer);
+  t->sink.writer = NULL;
+}
+
+int mpi_render_tiles(const mpi_world *w, const mpi_options *o,
+                     glint_scene *scene, glint_renderer *renderer,
+                     const char *stem) {
+  const glint_render_settings *rs = &o->render.settings;
+  glint_scene_info info;
+  glint_scene_get_info(scene, &info);
+  tile_job t;
+  memset(&t, 0, sizeof t);
+  t.world = w;
+  t.renderer = renderer;
+  t.frame_width = rs->width ? rs->width : info.width;
+  t.frame_height = rs->height ? rs->height : info.height;
+  t.width = t.frame_width;
+  t.height = t.frame_height;
+  if (rs->region_width) {
+    t.origin_x = rs->region_x, t.origin_y = rs->region_y;
+    t.width = rs->region_width, t.height = rs->region_height;
+  }
+  t.side = o->tile_size;
+  t.columns = (t.width + t.side - 1) / t.side;
+  int rows = (t.height + t.side - 1) / t.side;
+  t.sink.origin_x = t.origin_x;
+  t.sink.origin_y = t.origin_y;
+
+  /* Rank 0 opens the output before anyone renders: a path that takes no
+   * file fails now, not after the render. */
+  char default_output[300];
+  const char *output = o->render.output;
+  if (!output) {
+    snprintf(default_output, sizeof default_output, "%s.png", stem);
+    output = default_output;
+  }
+  int film_output = cli_is_film_path(output);
+  glint_error err = {0};
+  glint_status st = GLINT_OK;
+  if (w->rank == 0) {
+    if (film_output && rs->gamma != 1)
+      st = GLINT_E_ARGUMENT,
+      snprintf(err.message, sizeof err.message,
+               "%s: --gamma applies to 8-bit images; .pfm and .exr are "
+               "linear",
+               output);
+    else if (film_output)
+      st = glint_film_check_writable(output, &err);
+    else
+      st = glint_image_writer_open(output, t.width, t.height, rs->gamma,
+                                   o->render.png_compression, &t.sink.writer,
+                                   &err);
+    if (!st && film_output)
+      st = glint_film_create(t.width, t.height, &t.film, &err);
+  }
+  /* The tile's region must lie in the frame; the renderer says so once. */
+  if (!mpi_all_ok(w, st == GLINT_OK, err.message)) {
+    glint_image_writer_discard(t.sink.writer);
+    glint_film_destroy(t.film);
+    return EXIT_USAGE;
+  }
+  mpi_world *world = (mpi_world *)w;
+  world->abandon = abandon;
+  world->abandon_context = &t;
+
+  char stopped[400];
+  snprintf(stopped, sizeof stopped,
+           "stopped by a signal (mpirun sends one when a rank dies); %s was "
+           "not written",
+           output);
+  int by_rank[w->size > 0 ? w->size : 1];
+  double seconds_by_rank[w->size > 0 ? w->size : 1];
+  memset(by_rank, 0, sizeof by_rank);
+  memset(seconds_by_rank, 0, sizeof seconds_by_rank);
+  mpi_job job = {.world = w,
+                 .units = t.columns * rows,
+                 .unit_bytes =
+                     3 * sizeof(float) * (size_t)t.side * (size_t)t.side,
+                 .dynamic = o->dynamic,
+                 .in_flight = o->in_flight,
+                 .timeout = o->timeout,
+                 .noun = "tile",
+                 .stopped_message = stopped,
+                 .slow = mpi_test_slowdown(w->rank),
+                 .context = &t,
+                 .name_of = tile_name,
+                 .render = render_tile,
+                 .take = take_tile,
+                 .units_by_rank = by_rank,
+                 .seconds_by_rank = seconds_by_rank};
+  double render_start = cli_now();
+  mpi_run(&job);
+  double render_end = cli_now();
+  if (w->rank != 0)
+    return 0;
+  st = film_output ? glint_film_write(t.film, output, &err)
+                   : glint_image_writer_finish(t.sink.writer, &err);
+  t.sink.writer = NULL;
+  world->abandon = NULL;
+  glint_film_destroy(t.film);
+  if (st) {
+    cli_error("%s", err.message);
+    return EXIT_USAGE;
+  }
+  if (!o->render.quiet) {
+    printf("%s: %dx%d, %s, %d rank%s, %s schedule, %d tile%s of %d pixels: "
+           "startup %.3f s, rendering %.3f s, writing %.3f s\n",
+           output, t.width, t.height,
+           glint_backend_name(glint_backend_resolve(rs->backend)), w->size,
+           w->size == 1 ? "" : "s", o->dynamic ? "dynamic" : "static",
+           job.units, job.units == 1 ? "" : "s", t.side,
+           render_start - w->started, render_end - render_start,
+           cli_now() - render_end);
+    for (int r = 0; r < w->size; r++)
+      printf("  rank %d (%s): %d tile%s, %.3f s\n", r, w->hosts[r], by_rank[r],
+             by_rank[r] == 1 ? "" : "s", seconds_by_rank[r]);
+  }
+  return 0;
+}

@@ -1,0 +1,209 @@
+#!/usr/bin/env bash
+# glint-mpi under Open MPI's mpirun, ranks oversubscribed on this machine.
+# It checks that
+#  - the image is byte for byte glint render's for 1 to 4 ranks, tiles of
+#    several sizes, both schedules, a region and a .pfm film, and a JSON
+#    scene with a mesh (which rank 0 alone reads, and broadcasts);
+#  - --frames writes the frames glint render --frames writes, on both
+#    schedules;
+#  - a rank slowed 4x (GLINT_MPI_TEST_SLOW) changes nothing in the image
+#    and, scheduled dynamically, renders fewer tiles than rank 0;
+#  - ranks that would render differently refuse to start, naming them;
+#  - a bad argument or a missing scene is one message and exit status 2;
+#  - a worker killed mid-animation ends the job within 30 s, naming rank 1
+#    and its host, with no partial file; --resume then completes the
+#    animation, every frame as glint render writes it;
+#  - a worker that hangs (SIGSTOP) ends the job after --timeout, naming it.
+# SKIPPED (exit 77) without mpirun.
+#   tests/mpi.sh GLINT GLINT_MPI SCENES_DIR
+set -u
+glint=$1
+glint_mpi=$2
+scenes=$3
+if ! command -v mpirun >/dev/null 2>&1; then
+  echo "mpi: SKIPPED (mpirun is missing; scripts/install-deps.sh installs openmpi-bin)"
+  exit 77
+fi
+work=$(mktemp -d)
+job=
+cleanup() {
+  [ -n "$job" ] && kill -9 "$job" 2>/dev/null
+  pkill -9 -x glint-mpi 2>/dev/null
+  rm -rf "$work"
+}
+trap cleanup EXIT
+fail() {
+  echo "mpi: FAILED: $*"
+  for f in "$work"/*.out "$work"/*.err; do
+    [ -s "$f" ] && { echo "--- $f"; tail -20 "$f"; }
+  done
+  exit 1
+}
+cd "$work"
+# Open MPI refuses root without these; CI runs as root. LeakSanitizer (make
+# test-asan) reports what Open MPI's own libraries keep, so leaks are not
+# checked here; glint's code is checked for them by the other tests.
+mpi=(mpirun --oversubscribe)
+[ "$(id -u)" -eq 0 ] && mpi+=(--allow-run-as-root)
+export ASAN_OPTIONS="${ASAN_OPTIONS:+$ASAN_OPTIONS:}detect_leaks=0"
+export OMPI_MCA_btl_vader_single_copy_mechanism=none # no ptrace in containers
+run() { # $1: ranks; the rest: glint-mpi's arguments
+  local n=$1
+  shift
+  timeout 120 "${mpi[@]}" -np "$n" "$glint_mpi" "$@"
+}
+
+# The same image: ranks x tile sizes x schedules.
+"$glint" render whitted -W 161 -H 119 -s 2 -o ref.png -q || fail "glint render"
+for n in 1 2 3 4; do
+  for tile in 16 50; do
+    for schedule in dynamic static; do
+      run $n whitted -W 161 -H 119 -s 2 --tile $tile --schedule $schedule \
+        -o "t$n-$tile-$schedule.png" >run.out 2>run.err ||
+        fail "$n ranks, $tile-pixel tiles, $schedule: exit status $?"
+      cmp -s ref.png "t$n-$tile-$schedule.png" ||
+        fail "$n ranks, $tile-pixel tiles, $schedule: not glint render's image"
+    done
+  done
+done
+grep -q "^t4-50-static.png: 161x119, .*, 4 ranks, static schedule, 12 tiles of 50 pixels" run.out ||
+  fail "the summary: $(head -1 run.out)"
+
+# A region, into a linear film.
+"$glint" render billiard -W 200 -H 150 -s 1 --region 20,30,101,77 -o ref.pfm -q
+run 3 billiard -W 200 -H 150 -s 1 --region 20,30,101,77 --tile 24 -o r.pfm -q \
+  >run.out 2>run.err || fail "region: exit status $?"
+cmp -s ref.pfm r.pfm || fail "region: not glint render's film"
+
+# A scene with a mesh, packed by rank 0 and loaded by every rank.
+printf 'v -1 0 0\nv 1 0 0\nv 0 1.5 0\nv 0 0.5 1\nf 1 2 3\nf 1 2 4\nf 2 3 4\n' >tetra.obj
+cat >mesh.json <<'EOF'
+{
+  "camera": {"from": [0, 1, 4], "at": [0, 0.5, 0], "up": [0, 1, 0], "fov": 50},
+  "image": {"width": 96, "height": 72},
+  "lights": [{"position": [3, 5, 4], "color": [1, 1, 1]}],
+  "materials": {"m": {"color": [0.8, 0.6, 0.3], "kd": 0.7, "ks": 0.4, "h": 30}},
+  "objects": [{"type": "mesh", "file": "tetra.obj", "material": "m"}]
+}
+EOF
+"$glint" render mesh.json -o mesh-ref.png -q || fail "glint render mesh.json"
+run 2 mesh.json --tile 16 -o mesh.png -q >run.out 2>run.err || fail "mesh: exit status $?"
+cmp -s mesh-ref.png mesh.png || fail "mesh: not glint render's image"
+
+# Frames: both schedules, against glint render --frames.
+anim="$scenes/billiard-flight.json"
+"$glint" render "$anim" --frames 1-7 -W 96 -H 72 -s 1 -o ref/f%02d.png -q ||
+  fail "glint render --frames"
+for schedule in dynamic static; do
+  run 3 "$anim" --frames 1-7 -W 96 -H 72 -s 1 --schedule $schedule \
+    -o "$schedule/f%02d.png" >run.out 2>run.err || fail "frames, $schedule: exit status $?"
+  for f in 1 2 3 4 5 6 7; do
+    cmp -s "ref/f0$f.png" "$schedule/f0$f.png" ||
+      fail "frames, $schedule: frame $f is not glint render's"
+  done
+done
+grep -q "^7 frames written by 3 ranks, static schedule" run.out ||
+  fail "the frames' summary: $(grep written run.out)"
+
+# A slowed rank: the same image, and fewer tiles for it when dynamic.
+"$glint" render billiard -W 320 -H 240 -d 15 -o slow-ref.png -q
+GLINT_MPI_TEST_SLOW=1:4 run 2 billiard -W 320 -H 240 -d 15 --tile 32 \
+  -o slow.png >slow.out 2>run.err || fail "slowed: exit status $?"
+cmp -s slow-ref.png slow.png || fail "slowed: not glint render's image"
+tiles() { sed -n "s/^  rank $1 .*: \([0-9]*\) tiles, .*/\1/p" slow.out; }
+[ "$(tiles 1)" -lt "$(tiles 0)" ] ||
+  fail "the slowed rank 1 rendered $(tiles 1) tiles, rank 0 $(tiles 0)"
+
+# Ranks that would render differently: none starts.
+"${mpi[@]}" -np 1 "$glint_mpi" whitted -o x.png : -np 1 "$glint_mpi" whitted \
+  -o x.png -b scalar-double >run.out 2>run.err
+status=$?
+[ "$status" -ne 0 ] || fail "mismatched ranks: exit status 0"
+grep -q "the ranks would render different images" run.err ||
+  fail "mismatched ranks: no message"
+grep -q "rank 1 (.*): glint .*, backend scalar-double" run.err ||
+  fail "mismatched ranks: rank 1 not named"
+[ ! -e x.png ] || fail "mismatched ranks: an image was written"
+
+# Bad input: one message, status 2.
+run 3 nowhere.json -q >run.out 2>run.err
+[ $? -ne 0 ] || fail "a missing scene: exit status 0"
+[ "$(grep -c 'nowhere.json: No such file or directory' run.err)" -eq 1 ] ||
+  fail "a missing scene: not one message"
+run 2 whitted --schedule sometimes >run.out 2>run.err
+[ $? -ne 0 ] || fail "a bad --schedule: exit status 0"
+[ "$(grep -c "schedule: 'sometimes' is not dynamic or static" run.err)" -eq 1 ] ||
+  fail "a bad --schedule: not one message"
+
+# The pid of rank $1 of the running job.
+rank_pid() {
+  for p in $(pgrep -x glint-mpi); do
+    tr '\0' '\n' <"/proc/$p/environ" 2>/dev/null |
+      grep -qx "OMPI_COMM_WORLD_RANK=$1" && { echo "$p"; return 0; }
+  done
+  return 1
+}
+# Waits up to $1 seconds for the command after it to succeed.
+wait_for() {
+  local limit=$1
+  shift
+  for _ in $(seq $((limit * 20))); do
+    "$@" && return 0
+    sleep 0.05
+  done
+  return 1
+}
+written() { [ "$(grep -c '^frame .*, rank' "$1" 2>/dev/null)" -ge "$2" ]; }
+only_frames() { # no temporary or partial file beside the frames
+  for f in "$1"/* "$1"/.[!.]*; do
+    [ -e "$f" ] || continue
+    case "$(basename "$f")" in
+    f[0-9][0-9].png) ;;
+    *) fail "$2: $(basename "$f") was left behind" ;;
+    esac
+  done
+}
+
+# A worker killed mid-animation.
+"$glint" render "$anim" --frames 1-30 -W 96 -H 72 -s 1 -o kref/f%02d.png -q
+GLINT_MPI_TEST_SLOW=0:20,1:20 run 2 "$anim" --frames 1-30 -W 96 -H 72 -s 1 \
+  -o killed/f%02d.png >kill.out 2>kill.err &
+job=$!
+wait_for 60 written kill.out 1 || fail "killing: no frame was written"
+pid=$(rank_pid 1) || fail "killing: rank 1 not found"
+start=$(date +%s)
+kill -9 "$pid"
+wait "$job"
+status=$?
+job=
+[ "$status" -ne 0 ] || fail "killing: exit status 0"
+[ $(($(date +%s) - start)) -le 30 ] || fail "killing: the job took over 30 s to end"
+grep -q "rank 1 .* on node $(hostname)" kill.err || fail "killing: rank 1 and its host are not named"
+only_frames killed "killing"
+done_before=$(ls killed | wc -l)
+[ "$done_before" -lt 30 ] || fail "killing: every frame was written anyway"
+run 2 "$anim" --frames 1-30 -W 96 -H 72 -s 1 -o killed/f%02d.png --resume \
+  >resume.out 2>resume.err || fail "--resume: exit status $?"
+grep -q "30 frames written\|$((30 - done_before)) frames written, $done_before kept (--resume)" resume.out ||
+  fail "--resume: $(grep written resume.out)"
+for f in kref/*; do
+  cmp -s "$f" "killed/$(basename "$f")" || fail "--resume: $(basename "$f") is not glint render's"
+done
+
+# A worker that hangs: the job ends after --timeout.
+GLINT_MPI_TEST_SLOW=0:20,1:20 run 2 "$anim" --frames 1-30 -W 96 -H 72 -s 1 \
+  --timeout 2 -o hung/f%02d.png >hang.out 2>hang.err &
+job=$!
+wait_for 60 written hang.out 1 || fail "hanging: no frame was written"
+pid=$(rank_pid 1) || fail "hanging: rank 1 not found"
+start=$(date +%s)
+kill -STOP "$pid"
+wait "$job"
+status=$?
+job=
+[ "$status" -eq 2 ] || fail "hanging: exit status $status"
+[ $(($(date +%s) - start)) -le 30 ] || fail "hanging: the job took over 30 s to end"
+grep -q "rank 1 ($(hostname)) has sent nothing for 2 s" hang.err ||
+  fail "hanging: rank 1 is not named"
+only_frames hung "hanging"
+echo "mpi: PASSED"
