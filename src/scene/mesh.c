@@ -233,8 +233,7 @@ glint_status glint_scene_add_mesh_file(glint_scene *scene, const char *path,
 glint_status gli_scene_add_mesh_from(glint_scene *scene,
                                      const gli_file_source *files,
                                      const char *path, double scale,
-                                     glint_vec3 translate,
-                                     uint32_t material_id,
+                                     glint_vec3 translate, uint32_t material_id,
                                      glint_error *error) {
   gli_mesh_reader read;
   glint_status st =
