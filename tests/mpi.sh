@@ -26,9 +26,10 @@ if ! command -v mpirun >/dev/null 2>&1; then
 fi
 work=$(mktemp -d)
 job=
+stopped= # a rank this test stopped, should mpirun have left it
 cleanup() {
   [ -n "$job" ] && kill -9 "$job" 2>/dev/null
-  pkill -9 -x glint-mpi 2>/dev/null
+  [ -n "$stopped" ] && kill -9 "$stopped" 2>/dev/null
   rm -rf "$work"
 }
 trap cleanup EXIT
@@ -135,9 +136,10 @@ run 2 whitted --schedule sometimes >run.out 2>run.err
 [ "$(grep -c "schedule: 'sometimes' is not dynamic or static" run.err)" -eq 1 ] ||
   fail "a bad --schedule: not one message"
 
-# The pid of rank $1 of the running job.
+# The pid of rank $1 of the running job (ranks run in this test's folder).
 rank_pid() {
   for p in $(pgrep -x glint-mpi); do
+    [ "$(readlink "/proc/$p/cwd")" = "$work" ] || continue # another job's
     tr '\0' '\n' <"/proc/$p/environ" 2>/dev/null |
       grep -qx "OMPI_COMM_WORLD_RANK=$1" && { echo "$p"; return 0; }
   done
@@ -197,6 +199,7 @@ job=$!
 wait_for 60 written hang.out 1 || fail "hanging: no frame was written"
 pid=$(rank_pid 1) || fail "hanging: rank 1 not found"
 start=$(date +%s)
+stopped=$pid
 kill -STOP "$pid"
 wait "$job"
 status=$?

@@ -27,8 +27,10 @@ hub=${tag}hub
 hosts=("${tag}a" "${tag}b" "${tag}c")
 work=$(mktemp -d)
 cleanup() {
-  pkill -9 -x glint-mpi 2>/dev/null
-  for ns in "${hosts[@]}" "$hub"; do ip netns del "$ns" 2>/dev/null; done
+  for ns in "${hosts[@]}" "$hub"; do
+    ip netns pids "$ns" 2>/dev/null | xargs -r kill -9 2>/dev/null
+    ip netns del "$ns" 2>/dev/null
+  done
   rm -rf "$work"
 }
 trap cleanup EXIT
