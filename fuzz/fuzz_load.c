@@ -2,6 +2,8 @@
  * renderer on whatever it loads. FUZZ_FILE_NAME (set by CMakeLists.txt)
  * names the input like a file, and so chooses the reader:
  *   scene.nff, scene.json        glint_scene_load_memory
+ *   scene.pack                   glint_scene_load_packed (what glint-mpi's
+ *                                ranks receive)
  *   mesh.obj, mesh.ply           the mesh readers, from memory
  *   mesh.ply.gz                  a temporary file: zlib and its size caps
  * A scene that loads is rendered 8x8 by the scalar reference and by the
@@ -92,6 +94,9 @@ int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size) {
   glint_error e;
   if (ends_with(FUZZ_FILE_NAME, ".nff") || ends_with(FUZZ_FILE_NAME, ".json")) {
     if (glint_scene_load_memory(data, size, FUZZ_FILE_NAME, &scene, &e))
+      return 0;
+  } else if (ends_with(FUZZ_FILE_NAME, ".pack")) {
+    if (glint_scene_load_packed(data, size, &scene, &e))
       return 0;
   } else if (!(scene = mesh_scene(data, size))) {
     return 0;

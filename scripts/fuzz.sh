@@ -5,7 +5,7 @@
 #   scripts/fuzz.sh [SECONDS] [TARGET...]
 #
 # runs each TARGET for SECONDS (default 30) with FUZZ_JOBS parallel jobs
-# (default 1). Targets: nff json obj ply ply_gz png bmp ppm cli (default:
+# (default 1). Targets: nff json obj ply ply_gz pack png bmp ppm cli (default:
 # all); fuzz/fuzz_load.c, fuzz/fuzz_image.c and fuzz/fuzz_cli.c say what each
 # does. A crash, leak, sanitizer report or slow input (over 1 s) stops its
 # target, keeps the input in build-sanitize/findings/TARGET/ and fails the run; reproduce it with
@@ -16,7 +16,7 @@ cd "$(dirname "$0")/.."
 seconds=${1:-30}
 [ $# -gt 0 ] && shift
 targets=("$@")
-[ ${#targets[@]} -gt 0 ] || targets=(nff json obj ply ply_gz png bmp ppm cli)
+[ ${#targets[@]} -gt 0 ] || targets=(nff json obj ply ply_gz pack png bmp ppm cli)
 jobs=${FUZZ_JOBS:-1}
 build=${FUZZ_BUILD:-build-sanitize} # make test-asan's build, shared
 
