@@ -99,17 +99,14 @@ static int make_folders(const char *path) {
 }
 
 int cli_world_at(const glint_scene *scene, double time,
-                 glint_renderer *renderer, glint_error *err) {
-  glint_scene *still;
+                 glint_renderer *renderer, glint_world **last,
+                 glint_error *err) {
   glint_world *world;
-  if (glint_scene_at_time(scene, time, &still, err))
+  if (glint_world_commit_at(scene, time, *last, &world, NULL, err))
     return -1;
-  glint_status st = glint_world_commit(still, &world, NULL, err);
-  glint_scene_destroy(still);
-  if (st)
-    return -1;
-  st = glint_renderer_set_world(renderer, world, err);
-  glint_world_destroy(world);
+  glint_status st = glint_renderer_set_world(renderer, world, err);
+  glint_world_destroy(*last);
+  *last = world; /* the next frame refits its BVH */
   return st ? -1 : 0;
 }
 

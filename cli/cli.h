@@ -49,10 +49,13 @@ int frame_files_path(const frame_files *files, int frame, char *path,
                      size_t size);
 /* Whether `path` is a complete frame already (--resume keeps it). */
 int frame_file_written(const char *path);
-/* Commits `scene` at `time` (a new BVH) and gives the renderer that world:
- * for animations whose objects move. 0 on success. */
+/* Commits `scene` at `time` and gives the renderer that world: for
+ * animations whose objects move. `*last` is the last frame's world (NULL at
+ * first), whose BVH is refitted; it is replaced by this frame's, which the
+ * caller destroys after the last frame. 0 on success. */
 int cli_world_at(const struct glint_scene *scene, double time,
-                 glint_renderer *renderer, glint_error *error);
+                 glint_renderer *renderer, glint_world **last,
+                 glint_error *error);
 
 typedef struct view_options {
   const char *scene;

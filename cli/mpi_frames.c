@@ -18,6 +18,7 @@ typedef struct frame_job {
   glint_animation animation;
   frame_files files;
   int moving;
+  glint_world *last_world; /* the last frame's, whose BVH the next refits */
   int width, height, origin_x, origin_y; /* the output, in the frame */
   int *frames;                           /* unit u renders frames[u] */
   glint_image_format format;             /* of every frame's file */
@@ -76,7 +77,8 @@ static int render_frame(void *context, int unit, void *result, size_t *size,
   double time = time_of(j, frame);
   glint_camera camera;
   if (glint_scene_camera_at(j->scene, time, &camera, error) ||
-      (j->moving && cli_world_at(j->scene, time, j->renderer, error)))
+      (j->moving &&
+       cli_world_at(j->scene, time, j->renderer, &j->last_world, error)))
     return -1;
   const glint_render_settings *rs = &j->options->render.settings;
   char path[4096];
@@ -249,6 +251,7 @@ int mpi_render_frames(const mpi_world *w, const mpi_options *o,
   mpi_run(&job);
   world->abandon = NULL;
   free(j.frames);
+  glint_world_destroy(j.last_world);
   if (w->rank == 0 && !o->render.quiet) {
     printf("%d frame%s written", count, count == 1 ? "" : "s");
     if (kept)

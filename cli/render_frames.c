@@ -52,6 +52,7 @@ int render_frames(glint_scene *scene, const render_options *o,
 
   /* Objects that move need a world a frame; a camera alone does not. */
   int moving = glint_scene_has_motion(scene);
+  glint_world *last_world = NULL; /* the last frame's: its BVH is refitted */
   cli_catch_stop_signals();
   int status = 0, rendered = 0, kept = 0;
   double render_seconds = 0, frame_seconds = 0;
@@ -78,7 +79,7 @@ int render_frames(glint_scene *scene, const render_options *o,
     frame.tile_user = &sink;
     frame.progress = on_progress;
     if (glint_scene_camera_at(scene, time, &camera, &err) ||
-        (moving && cli_world_at(scene, time, renderer, &err)) ||
+        (moving && cli_world_at(scene, time, renderer, &last_world, &err)) ||
         glint_image_writer_open(path, w, h, rs->gamma, o->png_compression,
                                 &sink.writer, &err)) {
       cli_error("frame %d: %s", f, err.message);
@@ -115,6 +116,7 @@ int render_frames(glint_scene *scene, const render_options *o,
     fflush(stdout);
   }
   glint_renderer_destroy(renderer);
+  glint_world_destroy(last_world);
   glint_scene_destroy(scene);
   if (!status && !o->quiet) {
     double total = cli_now() - t_start;

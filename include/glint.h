@@ -547,6 +547,16 @@ typedef struct glint_world glint_world;
  * bvh_nodes, bvh_bytes, bvh_build_seconds and scene_bytes. */
 glint_status glint_world_commit(const glint_scene *scene, glint_world **world,
                                 glint_stats *stats, glint_error *error);
+/* The world of an animated scene at `time` (glint_scene_at_time, committed
+ * without a second copy). `previous`, when given, is a world of the same
+ * animation (the last frame's): its BVH's tree is kept and refitted to
+ * where the objects are now, instead of a new one built, when that costs
+ * rays no more (objects that moved without turning); objects that turned
+ * get a new tree. The image is the same either way. */
+glint_status glint_world_commit_at(const glint_scene *scene, double time,
+                                   const glint_world *previous,
+                                   glint_world **world, glint_stats *stats,
+                                   glint_error *error);
 void glint_world_destroy(glint_world *world);
 /* What the committed scene holds (its camera and resolution included). */
 void glint_world_get_info(const glint_world *world, glint_scene_info *info);

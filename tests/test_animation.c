@@ -237,6 +237,64 @@ static void keyed_transforms(void **state) {
   glint_scene_destroy(s);
 }
 
+/* The world of a frame committed after the last one's (its BVH refitted
+ * when objects only moved, built anew when they turned) renders the image
+ * a world committed alone renders: 24 spheres (a BVH), one of them moving,
+ * and then turning about a point off its centre. */
+static void worlds_after_the_last_frame(void **state) {
+  (void)state;
+  char json[8192];
+  int n =
+      snprintf(json, sizeof json,
+               "{\"image\": {\"width\": 64, \"height\": 48},"
+               "\"camera\": {\"from\": [0, 3, 14], \"at\": [0, 1, 0]},"
+               "\"lights\": [{\"position\": [5, 9, 9], \"color\": [1, 1, 1]}],"
+               "\"materials\": {\"m\": {\"kd\": 0.7, \"ks\": 0.4, \"h\": 20, "
+               "\"kr\": 0.3}}, \"objects\": [");
+  for (int i = 0; i < 24; i++)
+    n += snprintf(json + n, sizeof json - (size_t)n,
+                  "{\"type\": \"sphere\", \"center\": [%d, %d, %d], "
+                  "\"radius\": 0.45, \"material\": \"m\"%s},",
+                  i % 6 - 3, i / 6, -(i % 4),
+                  i ? ""
+                    : ", \"transform\": {\"keys\": [{\"time\": 0}, "
+                      "{\"time\": 1, \"translate\": [2, 1, 1]}, "
+                      "{\"time\": 2, \"translate\": [2, 1, 1], \"rotate\": "
+                      "[0, 90, 40], \"pivot\": [4, 0, 0]}]}");
+  snprintf(json + n - 1, sizeof json - (size_t)n + 1,
+           "], \"animation\": {\"fps\": 4, \"frames\": [0, 8]}}");
+  glint_scene *s = load(json);
+  glint_render_settings rs;
+  glint_render_settings_default(&rs);
+  rs.threads = 1;
+  glint_world *last = NULL;
+  for (int f = 0; f <= 8; f++) {
+    double t = f / 4.0;
+    glint_world *after, *alone;
+    ASSERT_OK(glint_world_commit_at(s, t, last, &after, NULL, &e_));
+    ASSERT_OK(glint_world_commit_at(s, t, NULL, &alone, NULL, &e_));
+    glint_film *films[2];
+    glint_world *worlds[2] = {after, alone};
+    for (int k = 0; k < 2; k++) {
+      glint_renderer *r;
+      ASSERT_OK(glint_renderer_create(worlds[k], &rs, &r, &e_));
+      ASSERT_OK(glint_film_create(64, 48, &films[k], &e_));
+      ASSERT_OK(glint_renderer_render(r, NULL, films[k], NULL, &e_));
+      glint_renderer_destroy(r);
+    }
+    assert_memory_equal(glint_film_pixels(films[0]),
+                        glint_film_pixels(films[1]),
+                        64 * 48 * 3 * sizeof(float));
+    glint_film_destroy(films[0]);
+    glint_film_destroy(films[1]);
+    glint_world_destroy(alone);
+    glint_world_destroy(last);
+    last = after;
+  }
+  glint_world_destroy(last);
+  glint_scene_destroy(s);
+}
+
 typedef struct bad_case {
   const char *json, *words;
 } bad_case;
@@ -328,6 +386,7 @@ int main(void) {
       cmocka_unit_test(world_keeps_the_animation),
       cmocka_unit_test(still_transforms),
       cmocka_unit_test(keyed_transforms),
+      cmocka_unit_test(worlds_after_the_last_frame),
       cmocka_unit_test(json_mistakes_are_named),
   };
   return cmocka_run_group_tests(tests, NULL, NULL);

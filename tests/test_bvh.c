@@ -8,6 +8,7 @@
 #include "test_util.h"
 
 #include "test_views.h"
+#include "accel/bvh.h"
 #include "render/scalar_scene.h"
 #include "scene/scene.h"
 #include "shared.h"
@@ -206,11 +207,121 @@ static void renders_equal(void **state) {
   }
 }
 
+/* Whether box a holds box b. */
+static int holds(const float alo[3], const float ahi[3], const float blo[3],
+                 const float bhi[3]) {
+  for (int k = 0; k < 3; k++)
+    if (blo[k] < alo[k] || bhi[k] > ahi[k])
+      return 0;
+  return 1;
+}
+
+/* Every inner node of `b` comes before its children and holds their boxes,
+ * and every primitive is referenced once. */
+static void assert_sound(const gli_bvh *b, size_t prims) {
+  assert_int_equal(b->ref_count, prims);
+  char *seen = calloc(prims, 1);
+  for (uint32_t i = 0; i < b->node_count; i++) {
+    const gli_bvh_node *n = &b->nodes[i];
+    if (n->count) {
+      for (uint32_t k = n->offset; k < n->offset + n->count; k++) {
+        uint32_t r = b->refs[k];
+        size_t flat = GLI_REF_INDEX(r);
+        if (GLI_REF_SHAPE(r) != GLI_SHAPE_SPHERE)
+          flat += b->spheres;
+        if (GLI_REF_SHAPE(r) == GLI_SHAPE_CONE)
+          flat += b->triangles;
+        assert_true(flat < prims);
+        assert_false(seen[flat]);
+        seen[flat] = 1;
+      }
+      continue;
+    }
+    assert_true(n->offset > i); /* children after their parent */
+    for (uint32_t c = n->offset; c < n->offset + 2; c++)
+      assert_true(holds(n->lo, n->hi, b->nodes[c].lo, b->nodes[c].hi));
+  }
+  free(seen);
+}
+
+/* Refitting (accel/bvh.c, used for an animation's next frame): over the
+ * scene it was built for, the same boxes; over the scene moved as one, the
+ * boxes moved and the surface area cost unchanged; over objects moved
+ * apart, sound boxes that hold them where they are now; and a scene with
+ * other primitives is refused. */
+static void refit_follows_moved_objects(void **state) {
+  (void)state;
+  glint_scene *g = load("giza");
+  gli_bvh built, refit;
+  ASSERT_OK(gli_bvh_build(g, &built, &e_));
+  assert_true(built.node_count > 1);
+  assert_true(built.cost > 1 && built.cost == built.built_cost);
+  ASSERT_OK(gli_bvh_refit(&built, g, &refit, &e_));
+  assert_sound(&refit, g->sphere_count + g->triangle_count + g->cone_count);
+  assert_true(fabs(refit.cost - built.cost) <= 1e-9 * built.cost);
+  assert_memory_equal(&refit.nodes[0].lo, &built.nodes[0].lo,
+                      sizeof built.nodes[0].lo);
+  assert_memory_equal(&refit.nodes[0].hi, &built.nodes[0].hi,
+                      sizeof built.nodes[0].hi);
+  gli_bvh_free(&refit);
+
+  /* Everything moved by (3, -2, 5): the root box moves, the cost stays. */
+  glint_transform shift = {{3, -2, 5}, {0, 0, 0}, {0, 0, 0}, 1};
+  glint_scene *moved;
+  ASSERT_OK(gli_scene_copy(g, &moved, &e_));
+  for (uint32_t o = 0; o < moved->object_count; o++)
+    assert_int_equal(gli_object_transform(moved, o, &shift), 0);
+  ASSERT_OK(gli_bvh_refit(&built, moved, &refit, &e_));
+  assert_sound(&refit, g->sphere_count + g->triangle_count + g->cone_count);
+  const double d[3] = {3, -2, 5};
+  for (int k = 0; k < 3; k++) {
+    assert_true(fabs(refit.nodes[0].lo[k] - (built.nodes[0].lo[k] + d[k])) <
+                1e-4);
+    assert_true(fabs(refit.nodes[0].hi[k] - (built.nodes[0].hi[k] + d[k])) <
+                1e-4);
+  }
+  assert_true(fabs(refit.cost - built.cost) <= 1e-3 * built.cost);
+  assert_true(refit.built_cost == built.built_cost);
+  gli_bvh_free(&refit);
+  glint_scene_destroy(moved);
+
+  /* One object turned and moved away: the boxes hold it where it is. */
+  ASSERT_OK(gli_scene_copy(g, &moved, &e_));
+  glint_transform turn = {{0, 40, 0}, {30, 60, 0}, {0, 0, 0}, 1.5};
+  uint32_t last = moved->object_count - 1;
+  assert_int_equal(gli_object_transform(moved, last, &turn), 0);
+  ASSERT_OK(gli_bvh_refit(&built, moved, &refit, &e_));
+  assert_sound(&refit, g->sphere_count + g->triangle_count + g->cone_count);
+  for (size_t i = 0; i < moved->triangle_count; i++)
+    for (int v = 0; v < 3; v++) {
+      float p[3] = {(float)moved->triangles[i].v[v].x,
+                    (float)moved->triangles[i].v[v].y,
+                    (float)moved->triangles[i].v[v].z};
+      assert_true(holds(refit.nodes[0].lo, refit.nodes[0].hi, p, p));
+    }
+  assert_true(refit.cost >= 1);
+  gli_bvh_free(&refit);
+
+  /* Other primitives: refused. */
+  uint32_t m;
+  glint_material mat;
+  glint_material_default(&mat);
+  ASSERT_OK(glint_scene_add_material(moved, &mat, &m, &e_));
+  ASSERT_OK(glint_scene_add_sphere(moved, (glint_vec3){0, 0, 0}, 1, m, &e_));
+  glint_error e;
+  assert_int_equal(gli_bvh_refit(&built, moved, &refit, &e), GLINT_E_ARGUMENT);
+  glint_scene_destroy(moved);
+  gli_bvh_free(&built);
+  glint_scene_destroy(g);
+}
+
 int main(int argc, char **argv) {
   const struct CMUnitTest tests[] = {
       {"nearest_hits_equal_brute_force", nearest_hits_equal_brute_force, NULL,
        NULL, (void *)&own},
       {"renders_equal", renders_equal, NULL, NULL, (void *)&own},
+      {"refit_follows_moved_objects", refit_follows_moved_objects, NULL, NULL,
+       NULL},
       {"nearest_hits_equal_brute_force_shared", nearest_hits_equal_brute_force,
        NULL, NULL, (void *)&spd},
       {"renders_equal_shared", renders_equal, NULL, NULL, (void *)&spd},

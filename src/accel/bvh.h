@@ -37,6 +37,13 @@ typedef struct gli_bvh {
   uint32_t ref_count;
   int depth;
   double build_seconds;
+  /* What it was built over: a refit needs the same primitives. */
+  size_t spheres, triangles, cones;
+  /* The surface area heuristic's cost of a ray (MacDonald and Booth 1990):
+   * the nodes' areas over the root's, leaves weighted by their primitives;
+   * `built_cost` is the cost when the topology was built, which refits
+   * keep, so that one can tell how far moving objects have worn it. */
+  double cost, built_cost;
 } gli_bvh;
 
 /* Builds over the scene's spheres, triangles and cones. A scene with at most
@@ -44,6 +51,14 @@ typedef struct gli_bvh {
 glint_status gli_bvh_build(const glint_scene *scene, gli_bvh *bvh,
                            glint_error *error);
 void gli_bvh_free(gli_bvh *bvh);
+
+/* The BVH of `scene` with `from`'s tree, every box recomputed bottom-up for
+ * the primitives where they are now: for an animation's next frame, whose
+ * objects moved but are the same (GLINT_E_ARGUMENT when the counts
+ * differ). Far cheaper than a build; the tree gets worse as the objects
+ * move away from where it was built (compare cost with built_cost). */
+glint_status gli_bvh_refit(const gli_bvh *from, const glint_scene *scene,
+                           gli_bvh *bvh, glint_error *error);
 
 /* Bytes the built hierarchy occupies (nodes and references). */
 uint64_t gli_bvh_bytes(const gli_bvh *bvh);
