@@ -85,12 +85,18 @@ typedef struct mpi_job {
    * and seconds spent rendering them. */
   int *units_by_rank;
   double *seconds_by_rank;
+  int silent_rank; /* rank 0: see mpi_run */
 } mpi_job;
 
 /* Runs the job on every rank; returns once every unit is taken. A failure
  * anywhere (a unit's error, a silent rank, a stop signal) does not return:
- * it prints why and ends the job. */
+ * it prints why and ends the job; but a rank silent only once every unit is
+ * in (its results were rendered by rank 0 meanwhile) is noted in
+ * silent_rank, so that the output is finished first ... */
 void mpi_run(mpi_job *job);
+/* ... and then the job ended with a message naming it (rank 0; `written`
+ * says what was written). Returns when no rank was silent. */
+void mpi_end_if_silent(const mpi_job *job, const char *written);
 
 /* The two kinds of jobs (cli/mpi_tiles.c, cli/mpi_frames.c): each sets up
  * its output on rank 0, runs the job, and finishes the output. They return

@@ -252,6 +252,7 @@ int mpi_render_frames(const mpi_world *w, const mpi_options *o,
   world->abandon = NULL;
   free(j.frames);
   glint_world_destroy(j.last_world);
+  mpi_end_if_silent(&job, "every frame's file");
   if (w->rank == 0 && !o->render.quiet) {
     printf("%d frame%s written", count, count == 1 ? "" : "s");
     if (kept)

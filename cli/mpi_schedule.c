@@ -24,7 +24,7 @@
 #include <string.h>
 #include <time.h>
 
-enum { TAG_WORK = 1, TAG_RESULT, TAG_ERROR };
+enum { TAG_WORK = 1, TAG_RESULT, TAG_ERROR, TAG_DONE, TAG_BYE };
 enum { STOP = -1 };
 
 /* What precedes a result's pixels. */
@@ -78,7 +78,12 @@ typedef struct master {
   MPI_Request *requests; /* a posted receive per worker */
   int *indices;          /* MPI_Testsome's answer */
   int *owed;             /* units handed to the worker, not yet back */
+  int *received;         /* results from the worker */
+  int32_t *sent;         /* dynamic, at the end: results it says it sent */
+  MPI_Request *byes;     /* ... received here */
   double *last_heard;
+  unsigned char *taken; /* per unit: its result is in the output */
+  int finishing;        /* dynamic: every unit is taken, workers told */
   char error_text[MPI_MESSAGE_CHARS];
   MPI_Request error_request;
   int next; /* dynamic: the next unit to hand out */
@@ -136,9 +141,18 @@ static void serve(master *m) {
       int w = m->indices[i];
       const result_header *h = (const result_header *)(void *)m->buffers[w];
       glint_error error;
+      m->received[w]++;
+      m->last_heard[w] = cli_now();
+      if (m->owed[w] > 0)
+        m->owed[w]--;
       if (h->unit < 0 || h->unit >= job->units)
         mpi_fail(world, EXIT_USAGE, "rank %d (%s) sent %s %d, which is none",
                  w + 1, world->hosts[w + 1], job->noun, (int)h->unit);
+      job->seconds_by_rank[w + 1] += h->seconds;
+      if (m->taken[h->unit]) { /* rank 0 rendered it meanwhile (the tail) */
+        post_receive(m, w);
+        continue;
+      }
       if (h->size > job->unit_bytes ||
           job->take(job->context, h->unit, w + 1, result_of(m->buffers[w]),
                     (size_t)h->size, &error)) {
@@ -150,23 +164,53 @@ static void serve(master *m) {
                  world->hosts[w + 1], error.message);
       }
       job->units_by_rank[w + 1]++;
-      job->seconds_by_rank[w + 1] += h->seconds;
-      m->owed[w]--;
+      m->taken[h->unit] = 1;
       m->done++;
-      m->last_heard[w] = cli_now();
       if (job->dynamic && m->next < job->units)
         send_unit(m, w, m->next++);
       post_receive(m, w);
     }
   }
+  for (int w = 0; m->finishing && w < m->workers; w++) {
+    if (m->byes[w] == MPI_REQUEST_NULL)
+      continue;
+    mpi_check(world, MPI_Test(&m->byes[w], &flag, MPI_STATUS_IGNORE),
+              "hearing from the workers");
+    if (flag) /* it owes the results it sent that are still on their way */
+      m->owed[w] = m->sent[w] - m->received[w];
+  }
   double now = cli_now();
-  for (int w = 0; w < m->workers; w++)
-    if (m->owed[w] && now - m->last_heard[w] > job->timeout)
-      mpi_fail(world, EXIT_USAGE,
-               "rank %d (%s) has sent nothing for %.0f s while it owes %d "
-               "%s%s (is it hung? --timeout sets the limit); ending the job",
-               w + 1, world->hosts[w + 1], job->timeout, m->owed[w], job->noun,
-               m->owed[w] == 1 ? "" : "s");
+  for (int w = 0; w < m->workers; w++) {
+    int awaited =
+        m->owed[w] || (m->finishing && m->byes[w] != MPI_REQUEST_NULL);
+    if (!awaited || now - m->last_heard[w] <= job->timeout)
+      continue;
+    if (m->finishing) { /* every unit is in: the output is whole */
+      if (!job->silent_rank)
+        job->silent_rank = w + 1;
+      m->owed[w] = 0;
+      MPI_Cancel(&m->byes[w]);
+      MPI_Request_free(&m->byes[w]);
+      continue;
+    }
+    mpi_fail(world, EXIT_USAGE,
+             "rank %d (%s) has sent nothing for %.0f s while it owes %d "
+             "%s%s (is it hung? --timeout sets the limit); ending the job",
+             w + 1, world->hosts[w + 1], job->timeout, m->owed[w], job->noun,
+             m->owed[w] == 1 ? "" : "s");
+  }
+}
+
+/* Dynamic, once every unit is handed out: rank 0, idle, renders a unit a
+ * worker holds but has not returned, the last handed out first (the one
+ * its worker will reach last), so that a slow worker's queue does not
+ * decide when the job ends; whichever result comes first is taken, and
+ * rendering being deterministic, both are the same. -1: none left. */
+static int tail_unit(master *m) {
+  for (int u = m->job->units; u-- > 0;)
+    if (!m->taken[u])
+      return u;
+  return -1;
 }
 
 static void run_master(mpi_job *job) {
@@ -181,7 +225,12 @@ static void run_master(mpi_job *job) {
   m.owed = calloc((size_t)n, sizeof *m.owed);
   m.last_heard = calloc((size_t)n, sizeof *m.last_heard);
   m.indices = calloc((size_t)n, sizeof *m.indices);
-  if (!m.buffers || !m.requests || !m.owed || !m.last_heard || !m.indices)
+  m.received = calloc((size_t)n, sizeof *m.received);
+  m.sent = calloc((size_t)n, sizeof *m.sent);
+  m.byes = calloc((size_t)n, sizeof *m.byes);
+  m.taken = calloc((size_t)job->units + 1, 1);
+  if (!m.buffers || !m.requests || !m.owed || !m.last_heard || !m.indices ||
+      !m.received || !m.sent || !m.byes || !m.taken)
     mpi_fail(world, 1, "out of memory");
   double start = cli_now();
   for (int w = 0; w < m.workers; w++) {
@@ -211,6 +260,8 @@ static void run_master(mpi_job *job) {
     int unit = -1;
     if (job->dynamic && m.next < job->units)
       unit = m.next++;
+    else if (job->dynamic)
+      unit = tail_unit(&m);
     if (!job->dynamic) {
       while (mine < job->units && !is_mine(job, mine))
         mine++;
@@ -230,15 +281,42 @@ static void run_master(mpi_job *job) {
       }
       job->units_by_rank[0]++;
       job->seconds_by_rank[0] += seconds;
+      m.taken[unit] = 1;
       m.done++;
     } else {
       pause_briefly();
     }
     serve(&m);
   }
-  for (int w = 0; w < m.workers; w++) {
-    if (job->dynamic)
+  if (job->dynamic && m.workers) {
+    /* Every unit is in: the workers skip what they still hold, say how
+     * many results they sent, and those still on their way are
+     * collected (and dropped). */
+    m.finishing = 1;
+    for (int w = 0; w < m.workers; w++) {
+      int32_t nothing = 0;
+      mpi_check(
+          world,
+          MPI_Send(&nothing, 1, MPI_INT32_T, w + 1, TAG_DONE, world->comm),
+          "ending the work");
       send_unit(&m, w, STOP);
+      mpi_check(world,
+                MPI_Irecv(&m.sent[w], 1, MPI_INT32_T, w + 1, TAG_BYE,
+                          world->comm, &m.byes[w]),
+                "posting a receive");
+    }
+    for (;;) {
+      int waiting = 0;
+      for (int w = 0; w < m.workers; w++)
+        waiting |= m.byes[w] != MPI_REQUEST_NULL ||
+                   (m.received[w] < m.sent[w] && m.owed[w]);
+      if (!waiting)
+        break;
+      pause_briefly();
+      serve(&m);
+    }
+  }
+  for (int w = 0; w < m.workers; w++) {
     MPI_Cancel(&m.requests[w]);
     MPI_Request_free(&m.requests[w]);
     free(m.buffers[w]);
@@ -252,6 +330,10 @@ static void run_master(mpi_job *job) {
   free(m.owed);
   free(m.last_heard);
   free(m.indices);
+  free(m.received);
+  free(m.sent);
+  free(m.byes);
+  free(m.taken);
 }
 
 /* ---- the other ranks ---------------------------------------------------- */
@@ -312,7 +394,8 @@ static void run_worker(mpi_job *job) {
     if (!(buffer[b] = malloc(result_bytes(job))))
       mpi_fail(world, 1, "out of memory for %d %ss", buffers, job->noun);
   }
-  int b = 0, static_unit = world->rank;
+  int b = 0, static_unit = world->rank, finishing = 0;
+  int32_t sent = 0;
   for (;;) {
     int unit;
     if (job->dynamic) {
@@ -323,6 +406,14 @@ static void run_worker(mpi_job *job) {
     }
     if (unit == STOP)
       break;
+    if (job->dynamic && !finishing) { /* every unit is in: skip the rest */
+      mpi_check(
+          world,
+          MPI_Iprobe(0, TAG_DONE, world->comm, &finishing, MPI_STATUS_IGNORE),
+          "checking for the end");
+    }
+    if (finishing)
+      continue;
     /* This buffer's last result must be on its way before it is reused. */
     mpi_check(world, MPI_Wait(&sending[b], MPI_STATUS_IGNORE),
               "sending a result");
@@ -344,7 +435,17 @@ static void run_worker(mpi_job *job) {
               MPI_Isend(buffer[b], (int)bytes, MPI_BYTE, 0, TAG_RESULT,
                         world->comm, &sending[b]),
               "sending a result");
+    sent++;
     b = (b + 1) % buffers;
+  }
+  if (job->dynamic) {
+    int32_t nothing;
+    mpi_check(world,
+              MPI_Recv(&nothing, 1, MPI_INT32_T, 0, TAG_DONE, world->comm,
+                       MPI_STATUS_IGNORE),
+              "hearing the end");
+    mpi_check(world, MPI_Send(&sent, 1, MPI_INT32_T, 0, TAG_BYE, world->comm),
+              "saying how many results were sent");
   }
   mpi_check(world, MPI_Waitall(buffers, sending, MPI_STATUSES_IGNORE),
             "sending the last results");
@@ -352,6 +453,21 @@ static void run_worker(mpi_job *job) {
     free(buffer[k]);
   free(buffer);
   free(sending);
+}
+
+void mpi_end_if_silent(const mpi_job *job, const char *written) {
+  const mpi_world *world = job->world;
+  if (world->rank != 0 || !job->silent_rank)
+    return;
+  int r = job->silent_rank;
+  fprintf(stderr,
+          "glint-mpi: rank %d (%s) has not answered for %.0f s at the end of "
+          "the job (is it hung? --timeout sets the limit); every %s was in "
+          "and %s was written whole; ending the job\n",
+          r, world->hosts[r], job->timeout, job->noun, written);
+  fflush(stderr);
+  MPI_Abort(world->comm, EXIT_USAGE);
+  exit(EXIT_USAGE);
 }
 
 void mpi_run(mpi_job *job) {

@@ -202,6 +202,7 @@ int mpi_render_tiles(const mpi_world *w, const mpi_options *o,
     cli_error("%s", err.message);
     return EXIT_USAGE;
   }
+  mpi_end_if_silent(&job, output);
   if (!o->render.quiet) {
     printf("%s: %dx%d, %s, %d rank%s, %s schedule, %d tile%s of %d pixels: "
            "startup %.3f s, rendering %.3f s, writing %.3f s\n",

@@ -13,7 +13,10 @@
 #  - a worker killed mid-animation ends the job within 30 s, naming rank 1
 #    and its host, with no partial file; --resume then completes the
 #    animation, every frame as glint render writes it;
-#  - a worker that hangs (SIGSTOP) ends the job after --timeout, naming it.
+#  - a worker that hangs (SIGSTOP) ends the job after --timeout, naming it:
+#    scheduled statically, with the frames it held missing (no partial
+#    file); dynamically, after rank 0 has rendered those too (every frame
+#    written).
 # SKIPPED (exit 77) without mpirun.
 #   tests/mpi.sh GLINT GLINT_MPI SCENES_DIR
 set -u
@@ -166,9 +169,10 @@ only_frames() { # no temporary or partial file beside the frames
   done
 }
 
-# A worker killed mid-animation.
-"$glint" render "$anim" --frames 1-30 -W 96 -H 72 -s 1 -o kref/f%02d.png -q
-GLINT_MPI_TEST_SLOW=0:20,1:20 run 2 "$anim" --frames 1-30 -W 96 -H 72 -s 1 \
+# A worker killed mid-animation (every rank slowed, so that rank 0 cannot
+# finish the frames alone before mpirun ends the job).
+"$glint" render "$anim" --frames 1-60 -W 96 -H 72 -s 1 -o kref/f%02d.png -q
+GLINT_MPI_TEST_SLOW=0:200,1:200 run 2 "$anim" --frames 1-60 -W 96 -H 72 -s 1 \
   -o killed/f%02d.png >kill.out 2>kill.err &
 job=$!
 wait_for 60 written kill.out 1 || fail "killing: no frame was written"
@@ -183,30 +187,43 @@ job=
 grep -q "rank 1 .* on node $(hostname)" kill.err || fail "killing: rank 1 and its host are not named"
 only_frames killed "killing"
 done_before=$(ls killed | wc -l)
-[ "$done_before" -lt 30 ] || fail "killing: every frame was written anyway"
-run 2 "$anim" --frames 1-30 -W 96 -H 72 -s 1 -o killed/f%02d.png --resume \
+[ "$done_before" -lt 60 ] || fail "killing: every frame was written anyway"
+run 2 "$anim" --frames 1-60 -W 96 -H 72 -s 1 -o killed/f%02d.png --resume \
   >resume.out 2>resume.err || fail "--resume: exit status $?"
-grep -q "30 frames written\|$((30 - done_before)) frames written, $done_before kept (--resume)" resume.out ||
+grep -q "^$((60 - done_before)) frames\? written, $done_before kept (--resume)" resume.out ||
   fail "--resume: $(grep written resume.out)"
 for f in kref/*; do
   cmp -s "$f" "killed/$(basename "$f")" || fail "--resume: $(basename "$f") is not glint render's"
 done
+echo "killed rank 1 after $done_before of 60 frames; --resume wrote the other $((60 - done_before))"
 
-# A worker that hangs: the job ends after --timeout.
-GLINT_MPI_TEST_SLOW=0:20,1:20 run 2 "$anim" --frames 1-30 -W 96 -H 72 -s 1 \
-  --timeout 2 -o hung/f%02d.png >hang.out 2>hang.err &
-job=$!
-wait_for 60 written hang.out 1 || fail "hanging: no frame was written"
-pid=$(rank_pid 1) || fail "hanging: rank 1 not found"
-start=$(date +%s)
-stopped=$pid
-kill -STOP "$pid"
-wait "$job"
-status=$?
-job=
-[ "$status" -eq 2 ] || fail "hanging: exit status $status"
-[ $(($(date +%s) - start)) -le 30 ] || fail "hanging: the job took over 30 s to end"
-grep -q "rank 1 ($(hostname)) has sent nothing for 2 s" hang.err ||
-  fail "hanging: rank 1 is not named"
-only_frames hung "hanging"
+# A worker that hangs (SIGSTOP) holding frames. Static: its frames never
+# come, and the job ends after --timeout naming it, with no partial file.
+hang() { # $1: schedule, $2: folder
+  GLINT_MPI_TEST_SLOW=0:20,1:20 run 2 "$anim" --frames 1-30 -W 96 -H 72 -s 1 \
+    --schedule "$1" --timeout 2 -o "$2/f%02d.png" >hang.out 2>hang.err &
+  job=$!
+  wait_for 60 written hang.out 1 || fail "hanging ($1): no frame was written"
+  pid=$(rank_pid 1) || fail "hanging ($1): rank 1 not found"
+  start=$(date +%s)
+  stopped=$pid
+  kill -STOP "$pid"
+  wait "$job"
+  status=$?
+  job=
+  [ "$status" -eq 2 ] || fail "hanging ($1): exit status $status"
+  [ $(($(date +%s) - start)) -le 30 ] || fail "hanging ($1): the job took over 30 s to end"
+  only_frames "$2" "hanging ($1)"
+}
+hang static hung
+grep -q "rank 1 ($(hostname)) has sent nothing for 2 s while it owes" hang.err ||
+  fail "hanging (static): rank 1 is not named"
+# Dynamic: rank 0 renders what the silent rank holds, writes every frame,
+# and then ends the job naming it.
+hang dynamic hung-dynamic
+grep -q "rank 1 ($(hostname)) has not answered for 2 s at the end of the job" hang.err ||
+  fail "hanging (dynamic): rank 1 is not named: $(cat hang.err)"
+for f in 01 02 03 04 05 06 07 08 09 10 11 12 13 14 15 16 17 18 19 20 21 22 23 24 25 26 27 28 29 30; do
+  cmp -s "kref/f$f.png" "hung-dynamic/f$f.png" || fail "hanging (dynamic): frame $f is not glint render's"
+done
 echo "mpi: PASSED"
