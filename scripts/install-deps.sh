@@ -23,6 +23,7 @@ packages=(
   xdotool           # keys and mouse for the window test
   libopenmpi-dev    # glint-mpi (Open MPI)
   openmpi-bin       # mpirun, for glint-mpi and its test
+  iproute2          # network namespaces: glint-mpi's test across hosts
 )
 if [ "${1:-}" = "--peers" ]; then
   packages+=(
