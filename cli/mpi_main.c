@@ -72,17 +72,25 @@ void mpi_check(const mpi_world *w, int result, const char *what) {
            w->hosts ? w->hosts[w->rank] : "?", what, text);
 }
 
+/* Every rank's MPI_MESSAGE_CHARS of text, in rank order, on rank 0 (to
+ * free); NULL elsewhere. */
+static char *gather_texts(const mpi_world *w, const char *mine,
+                          const char *what) {
+  char *all = NULL;
+  if (w->rank == 0 && !(all = calloc((size_t)w->size, MPI_MESSAGE_CHARS)))
+    mpi_fail(w, 1, "out of memory");
+  mpi_check(w,
+            MPI_Gather(mine, MPI_MESSAGE_CHARS, MPI_CHAR, all,
+                       MPI_MESSAGE_CHARS, MPI_CHAR, 0, w->comm),
+            what);
+  return all;
+}
+
 int mpi_all_ok(const mpi_world *w, int ok, const char *message) {
   char mine[MPI_MESSAGE_CHARS] = {0};
   if (!ok)
     snprintf(mine, sizeof mine, "%s", message ? message : "failed");
-  char *all = NULL;
-  if (w->rank == 0 && !(all = calloc((size_t)w->size, sizeof mine)))
-    mpi_fail(w, 1, "out of memory");
-  mpi_check(w,
-            MPI_Gather(mine, (int)sizeof mine, MPI_CHAR, all, (int)sizeof mine,
-                       MPI_CHAR, 0, w->comm),
-            "gathering the ranks' state");
+  char *all = gather_texts(w, mine, "gathering the ranks' state");
   int first_failed = -1;
   if (w->rank == 0)
     for (int r = 0; r < w->size && first_failed < 0; r++)
@@ -204,15 +212,9 @@ static void fingerprint(const glint_render_settings *rs, char *out,
 
 /* Refuses to start when a rank renders differently from rank 0. */
 static int same_renderers(const mpi_world *w, const glint_render_settings *rs) {
-  char mine[MPI_MESSAGE_CHARS];
+  char mine[MPI_MESSAGE_CHARS] = {0};
   fingerprint(rs, mine, sizeof mine);
-  char *all = NULL;
-  if (w->rank == 0 && !(all = calloc((size_t)w->size, sizeof mine)))
-    mpi_fail(w, 1, "out of memory");
-  mpi_check(w,
-            MPI_Gather(mine, (int)sizeof mine, MPI_CHAR, all, (int)sizeof mine,
-                       MPI_CHAR, 0, w->comm),
-            "gathering the ranks' renderers");
+  char *all = gather_texts(w, mine, "gathering the ranks' renderers");
   int same = 1;
   if (w->rank == 0) {
     for (int r = 1; r < w->size; r++)

@@ -93,23 +93,19 @@ void gli_world_stats(glint_world *w, glint_stats *stats) {
 
 /* ---- the public API ----------------------------------------------------- */
 
-glint_status glint_world_commit(const glint_scene *scene, glint_world **out,
-                                glint_stats *stats, glint_error *error) {
-  glint_world *w = NULL;
-  glint_status st = gli_world_create(scene, 0, &w, error);
-  if (st)
-    return st;
+/* The end of a commit: the BVH (unless already refitted) and the layout of
+ * the default backend now, the others on first use by a renderer that needs
+ * them; the world is released on failure. */
+static glint_status finish_commit(glint_world *w, glint_world **out,
+                                  glint_stats *stats, glint_error *error) {
   const gli_bvh *bvh;
-  if ((st = gli_world_bvh(w, &bvh, error))) {
-    gli_world_release(w);
-    return st;
-  }
-  /* The layout of the default backend now; the others on first use by a
-   * renderer that needs them. */
+  glint_status st = gli_world_bvh(w, &bvh, error);
   const gli_backend_ops *ops =
       gli_backend_ops_of(glint_backend_resolve(GLINT_BACKEND_AUTO));
   const void *data;
-  if ((st = gli_world_data(w, ops->data, &data, error))) {
+  if (!st)
+    st = gli_world_data(w, ops->data, &data, error);
+  if (st) {
     gli_world_release(w);
     return st;
   }
@@ -117,6 +113,15 @@ glint_status glint_world_commit(const glint_scene *scene, glint_world **out,
     gli_world_stats(w, stats);
   *out = w;
   return GLINT_OK;
+}
+
+glint_status glint_world_commit(const glint_scene *scene, glint_world **out,
+                                glint_stats *stats, glint_error *error) {
+  glint_world *w = NULL;
+  glint_status st = gli_world_create(scene, 0, &w, error);
+  if (st)
+    return st;
+  return finish_commit(w, out, stats, error);
 }
 
 /* A refitted tree is kept while its surface area cost is at most this many
@@ -154,22 +159,7 @@ glint_status glint_world_commit_at(const glint_scene *scene, double time,
       gli_bvh_free(&w->bvh); /* worn out: gli_world_bvh builds anew */
     }
   }
-  const gli_bvh *bvh;
-  if ((st = gli_world_bvh(w, &bvh, error))) {
-    gli_world_release(w);
-    return st;
-  }
-  const gli_backend_ops *ops =
-      gli_backend_ops_of(glint_backend_resolve(GLINT_BACKEND_AUTO));
-  const void *data;
-  if ((st = gli_world_data(w, ops->data, &data, error))) {
-    gli_world_release(w);
-    return st;
-  }
-  if (stats)
-    gli_world_stats(w, stats);
-  *out = w;
-  return GLINT_OK;
+  return finish_commit(w, out, stats, error);
 }
 
 void glint_world_destroy(glint_world *w) { gli_world_release(w); }
