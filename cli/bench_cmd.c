@@ -42,7 +42,7 @@ static void bench_usage(FILE *f) {
       "                     table; 0 = all cores (default: 1)\n"
       "      --math NAME    minimax, fast, taylor, exact (default: minimax)\n"
       "      --no-newton    skip the Newton step after rcp\n"
-      "      --accel NAME   bvh or none (default: bvh)\n"
+      "      --accel NAME   bvh, bvh2, bvh8, none (default: bvh)\n"
       "      --csv FILE     also write every measurement as CSV\n"
       "      --plot DIR     also plot seconds against depth per scene into\n"
       "                     DIR/SCENE.png (needs gnuplot)\n"

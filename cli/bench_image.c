@@ -52,7 +52,8 @@ int bench_time_to_image(char **scenes, int nscenes,
   snprintf(threads, sizeof threads, "%d", base->threads);
   snprintf(width, sizeof width, "%d", base->width);
   snprintf(height, sizeof height, "%d", base->height);
-  glint_backend backend = glint_backend_resolve(base->backend);
+  /* (auto stays auto: each scene's process chooses as glint_render does) */
+  glint_backend backend = base->backend;
 
   printf("Time to image: `glint render SCENE -o FILE` as a whole process "
          "against its render\n(%s, %d thread%s, depth %d, %d spp; medians of "

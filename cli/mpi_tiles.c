@@ -207,8 +207,8 @@ int mpi_render_tiles(const mpi_world *w, const mpi_options *o,
     printf("%s: %dx%d, %s, %d rank%s, %s schedule, %d tile%s of %d pixels: "
            "startup %.3f s, rendering %.3f s, writing %.3f s\n",
            output, t.width, t.height,
-           glint_backend_name(glint_backend_resolve(rs->backend)), w->size,
-           w->size == 1 ? "" : "s", o->dynamic ? "dynamic" : "static",
+           glint_backend_name(glint_backend_choose(rs->backend, scene, rs)),
+           w->size, w->size == 1 ? "" : "s", o->dynamic ? "dynamic" : "static",
            job.units, job.units == 1 ? "" : "s", t.side,
            render_start - w->started, render_end - render_start,
            cli_now() - render_end);

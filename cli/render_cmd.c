@@ -37,15 +37,20 @@ static void render_usage(FILE *f) {
       "  -s, --spp N          samples per pixel, 1..4096 (default: 5)\n"
       "  -b, --backend NAME   auto, scalar-float, scalar-double, sse, avx2,\n"
       "                       avx512, stream, stream-sse, stream-avx2,\n"
-      "                       stream-avx512 (default: auto, the widest the\n"
-      "                       CPU supports)\n"
+      "                       stream-avx512 (default: auto: the widest\n"
+      "                       beams or streams the CPU has, streams where\n"
+      "                       many mirrors or a deep recursion scatter\n"
+      "                       the rays)\n"
       "  -t, --threads N      worker threads; 0 = every CPU this process\n"
       "                       may use (default: 0)\n"
       "      --math NAME      pow/exp in SIMD backends: minimax, fast,\n"
       "                       taylor, exact (default: minimax)\n"
       "      --no-newton      skip the Newton step after rcp (thesis fig. "
       "5.7)\n"
-      "      --accel NAME     bvh or none (default: bvh)\n"
+      "      --accel NAME     bvh, bvh2, bvh8 or none (default: bvh: packets\n"
+      "                       hand their last few rays a subtree, which they\n"
+      "                       walk alone through the 8-wide BVH; bvh2:\n"
+      "                       never; bvh8: every ray alone; none: no BVH)\n"
       "      --gamma G        encode with gamma G (default: 1, linear);\n"
       "                       8-bit outputs only; PNGs record it (gAMA)\n"
       "      --png-compression fast|smallest\n"
@@ -185,6 +190,12 @@ static void print_stats(FILE *out, const glint_stats *s,
             "  bvh                %llu nodes, %.2f MiB, built in %.1f ms\n",
             (unsigned long long)s->bvh_nodes, (double)s->bvh_bytes / 1048576.0,
             s->bvh_build_seconds * 1e3);
+  if (s->wide_nodes)
+    fprintf(out,
+            "  wide bvh           %llu nodes of 8, %.2f MiB, collapsed in "
+            "%.1f ms\n",
+            (unsigned long long)s->wide_nodes,
+            (double)s->wide_bytes / 1048576.0, s->wide_build_seconds * 1e3);
   fprintf(out, "  render             %.4f s\n", s->render_seconds);
   fprintf(out, "  load scene         %.4f s\n", t->load);
   /* An 8-bit image file is encoded while the frame renders: this is what
@@ -216,6 +227,12 @@ static void print_stats(FILE *out, const glint_stats *s,
             "test)\n",
             100.0 * (double)s->active_lanes / ((double)s->packet_tests * width),
             width, (double)s->active_lanes / (double)s->packet_tests);
+  if (s->alone_walks)
+    fprintf(out,
+            "  rays alone         %llu subtrees walked by single rays, %.1f "
+            "tests each\n",
+            (unsigned long long)s->alone_walks,
+            (double)s->alone_tests / (double)s->alone_walks);
   if (s->generations) {
     fprintf(out, "  generations        rays        packets   lane use\n");
     for (int g = 0; g < s->generations && g < GLINT_STATS_MAX_GENERATIONS; g++)

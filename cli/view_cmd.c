@@ -43,7 +43,7 @@ static void view_usage(FILE *f) {
       "      --math NAME      minimax, fast, taylor, exact (default: "
       "minimax)\n"
       "      --no-newton      skip the Newton step after rcp\n"
-      "      --accel NAME     bvh or none (default: bvh)\n"
+      "      --accel NAME     bvh, bvh2, bvh8, none (default: bvh)\n"
       "      --gamma G        display and screenshot gamma (default: 1)\n"
       "      --budget MS      frame time while moving before the resolution\n"
       "                       is lowered (default: 40)\n"

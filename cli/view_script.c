@@ -250,7 +250,8 @@ static void print_state(const viewer *v) {
          "%s",
          v->frames, v->samples, v->rs.spp, v->rs.max_depth, v->rw, v->rh,
          (double)v->rw / v->win_w,
-         glint_backend_name(glint_backend_resolve(v->rs.backend)));
+         glint_backend_name(
+             glint_backend_choose(v->rs.backend, v->scene, &v->rs)));
   if (v->refined_at > v->stopped_at && v->stopped_at > 0)
     printf(", refined %.3f s after the camera stopped",
            v->refined_at - v->stopped_at);

@@ -209,7 +209,8 @@ static void present(viewer *v) {
              v->fps, v->frame_ms, v->mrays);
     snprintf(lines[nl++], sizeof lines[0], "SPP %d/%d  DEPTH %d  %s  %s",
              v->samples, v->rs.spp, v->rs.max_depth,
-             glint_backend_name(glint_backend_resolve(v->rs.backend)),
+             glint_backend_name(
+                 glint_backend_choose(v->rs.backend, v->scene, &v->rs)),
              math_names[v->rs.math]);
     if (v->error[0])
       snprintf(lines[nl++], sizeof lines[0], "%s", v->error);
@@ -319,7 +320,8 @@ static void screenshot(viewer *v) {
     view_camera_json(&v->camera, json, sizeof json);
     printf("wrote %s (%dx%d, %d spp, depth %d, %s), %s\n", path, rs.width,
            rs.height, rs.spp, rs.max_depth,
-           glint_backend_name(glint_backend_resolve(rs.backend)), json);
+           glint_backend_name(glint_backend_choose(rs.backend, v->scene, &rs)),
+           json);
     fflush(stdout);
   }
   glint_image_destroy(image);
@@ -424,10 +426,11 @@ static int run_benchmark(viewer *v) {
                         : 0.5 * (frames[n / 2 - 1].ms + frames[n / 2].ms);
   int i95 = (int)ceil(0.95 * n) - 1;
   int threads = v->rs.threads ? v->rs.threads : glint_cpu_count();
-  printf("%s: %d frames at %dx%d, 1 spp, depth %d, %s, %d thread%s\n", v->stem,
-         n, v->rw, v->rh, v->rs.max_depth,
-         glint_backend_name(glint_backend_resolve(v->rs.backend)), threads,
-         threads == 1 ? "" : "s");
+  printf(
+      "%s: %d frames at %dx%d, 1 spp, depth %d, %s, %d thread%s\n", v->stem, n,
+      v->rw, v->rh, v->rs.max_depth,
+      glint_backend_name(glint_backend_choose(v->rs.backend, v->scene, &v->rs)),
+      threads, threads == 1 ? "" : "s");
   printf("frame ms: median %.2f, 95th percentile %.2f; %.1f fps; %.1f "
          "Mrays/s\n",
          median, frames[i95 < 0 ? 0 : i95].ms, n / wall,
@@ -472,7 +475,8 @@ static int on_key(viewer *v, const SDL_KeyboardEvent *key) {
   } else if (k == SDLK_b || k == SDLK_m) {
     glint_render_settings before = v->rs;
     if (k == SDLK_b)
-      backend_cycle(glint_backend_resolve(v->rs.backend), &v->rs.backend);
+      backend_cycle(glint_backend_choose(v->rs.backend, v->scene, &v->rs),
+                    &v->rs.backend);
     else
       v->rs.math = (glint_math)((v->rs.math + 1) % 4);
     if (make_renderer(v, &err)) {

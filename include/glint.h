@@ -362,7 +362,7 @@ double glint_image_psnr(const glint_image *a, const glint_image *b);
 /* ------------------------------------------------------------------------ */
 
 typedef enum glint_backend {
-  GLINT_BACKEND_AUTO = 0,      /* the fastest this CPU supports */
+  GLINT_BACKEND_AUTO = 0,      /* the fastest for the scene: see _choose */
   GLINT_BACKEND_SCALAR_FLOAT,  /* one ray at a time, float: the reference */
   GLINT_BACKEND_SCALAR_DOUBLE, /* one ray at a time, double */
   GLINT_BACKEND_SSE,           /* 4-wide beams (docs/specification.md §6) */
@@ -380,7 +380,8 @@ glint_status glint_backend_parse(const char *name, glint_backend *backend,
                                  glint_error *error);
 /* Whether this CPU (and this build) can run it. */
 int glint_backend_supported(glint_backend backend);
-/* AUTO and STREAM to the concrete backend they stand for on this CPU. */
+/* AUTO and STREAM to the concrete backend they stand for on this CPU,
+ * without a scene: AUTO is the widest beams. */
 glint_backend glint_backend_resolve(glint_backend backend);
 /* Lanes per packet: 1 for scalar backends. */
 int glint_backend_width(glint_backend backend);
@@ -398,9 +399,19 @@ const char *glint_math_name(glint_math math);
 glint_status glint_math_parse(const char *name, glint_math *math,
                               glint_error *error);
 
+/* The acceleration structure and how rays walk it. The BVH is built by the
+ * binned surface area heuristic and kept twice: binary, for packets, and
+ * collapsed to eight children a node, for single rays. */
 typedef enum glint_accel {
-  GLINT_ACCEL_BVH = 0, /* binned-SAH bounding volume hierarchy */
-  GLINT_ACCEL_NONE     /* every ray against every object: the thesis */
+  /* Packets walk the binary tree together and, where few of their lanes
+   * remain in a subtree, hand it to those lanes one at a time through the
+   * wide tree (hybrid traversal); the scalar backends walk the binary
+   * tree. The default. */
+  GLINT_ACCEL_BVH = 0,
+  GLINT_ACCEL_NONE, /* every ray against every object: the thesis */
+  GLINT_ACCEL_BVH2, /* the binary tree only: packets never split */
+  GLINT_ACCEL_BVH8, /* every ray alone through the wide tree */
+  GLINT_ACCEL_COUNT
 } glint_accel;
 const char *glint_accel_name(glint_accel accel);
 glint_status glint_accel_parse(const char *name, glint_accel *accel,
@@ -437,6 +448,14 @@ typedef struct glint_render_settings {
 
 void glint_render_settings_default(glint_render_settings *settings);
 
+/* The concrete backend that renders `scene` with `settings` (a renderer, or
+ * glint_render) when asked for `backend`: AUTO picks the widest beams or the
+ * widest streams from the scene's specular surfaces and the depth
+ * (src/render/backend_choice.c); any other as glint_backend_resolve. */
+glint_backend glint_backend_choose(glint_backend backend,
+                                   const glint_scene *scene,
+                                   const glint_render_settings *settings);
+
 #define GLINT_STATS_MAX_GENERATIONS 16
 
 /* What one render did. Counts are exact; times are wall-clock seconds. */
@@ -447,14 +466,21 @@ typedef struct glint_stats {
   double render_seconds;  /* tracing and shading, all tiles */
   uint64_t primary_rays, secondary_rays, shadow_rays;
   uint64_t reflected_rays, refracted_rays, total_internal_reflections;
-  /* Acceleration structure. */
+  /* Acceleration structure: the binary BVH, and the 8-wide one collapsed
+   * from it for single rays (its nodes, bytes and collapse time). */
   uint64_t bvh_nodes, bvh_bytes;
   double bvh_build_seconds;
+  uint64_t wide_nodes, wide_bytes;
+  double wide_build_seconds;
   uint64_t scene_bytes; /* prepared geometry, materials and BVH */
   /* Packet backends: beams traced, sub-beams they split into, and the
    * active lanes over all packet intersection tests (divide by
    * packet_tests * width for the lane utilisation). */
   uint64_t beams, sub_beams, packet_tests, active_lanes;
+  /* Hybrid traversal (GLINT_ACCEL_BVH, BVH8): subtrees that lanes walked
+   * alone through the wide BVH, and the tests (wide nodes and primitives)
+   * they made. */
+  uint64_t alone_walks, alone_tests;
   /* Stream backends, per generation (0 = primary rays). */
   int generations;
   uint64_t gen_rays[GLINT_STATS_MAX_GENERATIONS];

@@ -61,13 +61,15 @@ static void nearest_hits_agree(void **state) {
                                (float)info.camera.at.z),
                             from));
     test_view ref_view;
-    const scene_r *ref = test_view_open(g, DATA_SCALAR_FLOAT, 0, &ref_view);
+    const scene_r *ref =
+        test_view_open(g, DATA_SCALAR_FLOAT, GLINT_ACCEL_NONE, &ref_view);
     for (size_t k = 0; k < sizeof packets / sizeof *packets; k++) {
       if (backend_missing(packets[k].backend))
         continue;
       test_view packet_view;
-      void *prep = test_view_open(
-          g, gli_backend_ops_of(packets[k].backend)->data, 0, &packet_view);
+      void *prep =
+          test_view_open(g, gli_backend_ops_of(packets[k].backend)->data,
+                         GLINT_ACCEL_NONE, &packet_view);
       int w = packets[k].width, ties = 0, hits = 0;
       unsigned long long seed = 1234 + si;
       for (int base = 0; base < RAYS; base += w) {

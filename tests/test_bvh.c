@@ -1,9 +1,12 @@
 /* The BVH against brute force (issue 4): on random rays, every backend's
  * nearest hit through the hierarchy is the one testing every primitive
- * finds (the same object; t equal to 1e-5, or a tie at the same t);
- * renders with and without it are the same image; and images are
+ * finds (the same object; t equal to 1e-5, or a tie at the same t), for
+ * every walk: packets alone in the binary tree (bvh2), the hybrid that
+ * hands subtrees to single rays in the wide tree (bvh), every ray alone
+ * (bvh8); renders with and without it are the same image; and images are
  * bit-identical for any number of threads. Scenes: Giza (the only thesis
- * scene above the BVH's size threshold) and the SPD scenes. */
+ * scene above the BVH's size threshold) and the SPD scenes. The wide tree
+ * itself and the scalar single rays: tests/test_wide_bvh.c. */
 #define GLINT_REAL_FLOAT
 #include "test_util.h"
 
@@ -110,8 +113,10 @@ static void nearest_hits_equal_brute_force(void **state) {
     int ties = 0;
     /* Scalar float and double. */
     test_view vb, vn;
-    const scene_r *fb = test_view_open(g, DATA_SCALAR_FLOAT, 1, &vb);
-    const scene_r *fn = test_view_open(g, DATA_SCALAR_FLOAT, 0, &vn);
+    const scene_r *fb =
+        test_view_open(g, DATA_SCALAR_FLOAT, GLINT_ACCEL_BVH, &vb);
+    const scene_r *fn =
+        test_view_open(g, DATA_SCALAR_FLOAT, GLINT_ACCEL_NONE, &vn);
     assert_true(fb->bvh->node_count > 0);
     assert_true(fn->bvh->node_count == 0);
     unsigned long long seed = 99 + si;
@@ -126,35 +131,41 @@ static void nearest_hits_equal_brute_force(void **state) {
       compare(scenes[si], "scalar-float", fa ? object_of(fb, &ha) : -1, ha.t,
               fbr ? object_of(fn, &hb) : -1, hb.t, &ties);
     }
-    /* Every packet width: the BVH packet traversal against the brute-force
-     * packet loop. */
+    /* Every packet width and walk against the brute-force packet loop. */
+    static const glint_accel walks[3] = {GLINT_ACCEL_BVH, GLINT_ACCEL_BVH2,
+                                         GLINT_ACCEL_BVH8};
     for (size_t k = 0; k < sizeof packets / sizeof *packets; k++) {
       if (backend_missing(packets[k].backend))
         continue;
       data_kind kind = gli_backend_ops_of(packets[k].backend)->data;
-      test_view pvb, pvn;
-      void *pb = test_view_open(g, kind, 1, &pvb);
-      void *pn = test_view_open(g, kind, 0, &pvn);
-      int w = packets[k].width;
-      for (int base = 0; base < RAYS; base += w) {
-        float o[3 * 16], d[3 * 16], ta[16], tb[16];
-        int oa[16], ob[16], bits = 0;
-        for (int i = 0; i < w; i++) {
-          float oo[3], dd[3];
-          make_ray(&info, &seed, oo, dd);
-          for (int c = 0; c < 3; c++)
-            o[c * w + i] = oo[c], d[c * w + i] = dd[c];
-          bits |= (uniform(&seed) < 0.9) << i;
+      for (int wi = 0; wi < 3; wi++) {
+        test_view pvb, pvn;
+        void *pb = test_view_open(g, kind, walks[wi], &pvb);
+        void *pn = test_view_open(g, kind, GLINT_ACCEL_NONE, &pvn);
+        int w = packets[k].width;
+        char what[64];
+        snprintf(what, sizeof what, "%s --accel %s",
+                 glint_backend_name(packets[k].backend),
+                 glint_accel_name(walks[wi]));
+        for (int base = 0; base < RAYS; base += w) {
+          float o[3 * 16], d[3 * 16], ta[16], tb[16];
+          int oa[16], ob[16], bits = 0;
+          for (int i = 0; i < w; i++) {
+            float oo[3], dd[3];
+            make_ray(&info, &seed, oo, dd);
+            for (int c = 0; c < 3; c++)
+              o[c * w + i] = oo[c], d[c * w + i] = dd[c];
+            bits |= (uniform(&seed) < 0.9) << i;
+          }
+          packets[k].nearest(pb, o, d, bits, ta, oa);
+          packets[k].nearest(pn, o, d, bits, tb, ob);
+          for (int i = 0; i < w; i++)
+            if (bits >> i & 1)
+              compare(scenes[si], what, oa[i], ta[i], ob[i], tb[i], &ties);
         }
-        packets[k].nearest(pb, o, d, bits, ta, oa);
-        packets[k].nearest(pn, o, d, bits, tb, ob);
-        for (int i = 0; i < w; i++)
-          if (bits >> i & 1)
-            compare(scenes[si], glint_backend_name(packets[k].backend), oa[i],
-                    ta[i], ob[i], tb[i], &ties);
+        test_view_close(&pvb);
+        test_view_close(&pvn);
       }
-      test_view_close(&pvb);
-      test_view_close(&pvn);
     }
     printf("%-26s %zu triangles, %zu spheres, %zu cones: agree (%d ties)\n",
            scenes[si], info.triangles, info.spheres, info.cones, ties);
@@ -190,6 +201,16 @@ static void renders_equal(void **state) {
         continue;
       glint_image *a = render(g, (glint_backend)b, GLINT_ACCEL_BVH, 1);
       glint_image *n = render(g, (glint_backend)b, GLINT_ACCEL_NONE, 1);
+      /* The other walks: the binary tree alone, every ray alone. */
+      for (int walk = GLINT_ACCEL_BVH2; walk <= GLINT_ACCEL_BVH8; walk++) {
+        glint_image *x = render(g, (glint_backend)b, (glint_accel)walk, 1);
+        double px = glint_image_psnr(x, n);
+        if (px < 60)
+          fail_msg("%s %s: --accel %s vs none PSNR %.2f dB", scenes[si],
+                   glint_backend_name((glint_backend)b),
+                   glint_accel_name((glint_accel)walk), px);
+        glint_image_destroy(x);
+      }
       glint_image *t2 = render(g, (glint_backend)b, GLINT_ACCEL_BVH, 2);
       glint_image *t3 = render(g, (glint_backend)b, GLINT_ACCEL_BVH, 3);
       double psnr = glint_image_psnr(a, n);

@@ -236,7 +236,12 @@ static void meshes_are_watertight(void **state) {
   } packets[] = {{GLINT_BACKEND_SSE, 4, gli_beam_nearest_hit_sse},
                  {GLINT_BACKEND_AVX2, 8, gli_beam_nearest_hit_avx2},
                  {GLINT_BACKEND_AVX512, 16, gli_beam_nearest_hit_avx512}};
-  for (int accel = 0; accel < 2; accel++) {
+  /* Every walk: brute force, the hybrid, the binary tree alone and every ray
+   * alone through the wide tree. */
+  static const glint_accel accels[4] = {GLINT_ACCEL_NONE, GLINT_ACCEL_BVH,
+                                        GLINT_ACCEL_BVH2, GLINT_ACCEL_BVH8};
+  for (int ai = 0; ai < 4; ai++) {
+    glint_accel accel = accels[ai];
     test_view pv[3];
     void *views[3] = {NULL, NULL, NULL};
     for (int p = 0; p < 3; p++)
@@ -245,7 +250,7 @@ static void meshes_are_watertight(void **state) {
             s, gli_backend_ops_of(packets[p].backend)->data, accel, &pv[p]);
     test_view scalar;
     const scene_r *ref = test_view_open(s, DATA_SCALAR_FLOAT, accel, &scalar);
-    unsigned long long seed = 7 + (unsigned long long)accel;
+    unsigned long long seed = 7 + (unsigned long long)ai;
     int misses[4] = {0}, lanes = 16;
     for (int r = 0; r < EDGE_RAYS; r += lanes) {
       float o[3 * 16], d[3 * 16];
@@ -315,7 +320,7 @@ static void meshes_are_watertight(void **state) {
         continue;
       }
       printf("%-12s %s: %d of %d edge and vertex rays missed\n", names[p],
-             accel ? "bvh " : "none", misses[p], EDGE_RAYS);
+             glint_accel_name(accel), misses[p], EDGE_RAYS);
     }
     for (int p = 0; p < 4; p++)
       assert_int_equal(misses[p], 0);

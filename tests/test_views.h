@@ -1,5 +1,6 @@
 /* Tests of internals read a committed world's converted layouts directly:
- * a view of one layout, with or without the world's BVH. */
+ * a view of one layout, walking the world's BVH as `accel` says
+ * (GLINT_ACCEL_NONE: without it). */
 #ifndef GLINT_TEST_VIEWS_H
 #define GLINT_TEST_VIEWS_H
 
@@ -17,15 +18,15 @@ typedef struct test_view {
 static const gli_bvh test_no_bvh;
 
 static void *test_view_open(const glint_scene *scene, data_kind kind,
-                            int with_bvh, test_view *tv) {
+                            glint_accel accel, test_view *tv) {
   ASSERT_OK(gli_world_create(scene, 0, &tv->world, &e_));
   const void *data;
   ASSERT_OK(gli_world_data(tv->world, kind, &data, &e_));
   const gli_bvh *bvh = &test_no_bvh;
-  if (with_bvh)
+  if (accel != GLINT_ACCEL_NONE)
     ASSERT_OK(gli_world_bvh(tv->world, &bvh, &e_));
   tv->layout = gli_data_ops_of(kind);
-  ASSERT_OK(tv->layout->bind(data, bvh, &tv->view, &e_));
+  ASSERT_OK(tv->layout->bind(data, bvh, accel, &tv->view, &e_));
   return tv->view;
 }
 

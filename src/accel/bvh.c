@@ -351,6 +351,15 @@ static double sah_cost(const gli_bvh *bvh) {
   return area > 0 ? total / area : 0;
 }
 
+/* The wide form of a finished binary BVH; on failure, neither. */
+static glint_status collapse_wide(gli_bvh *bvh, const glint_scene *scene,
+                                  glint_error *error) {
+  glint_status st = gli_wide_build(bvh, scene, &bvh->wide, error);
+  if (st)
+    gli_bvh_free(bvh);
+  return st;
+}
+
 glint_status gli_bvh_build(const glint_scene *scene, gli_bvh *bvh,
                            glint_error *error) {
   double t0 = gli_now();
@@ -439,7 +448,7 @@ glint_status gli_bvh_build(const glint_scene *scene, gli_bvh *bvh,
     b.node_count += 2;
     node->offset = left;
     node->count = 0;
-    node->axis = (uint16_t)axis;
+    node->axis = (uint8_t)axis;
     stack[sp++] = (task){left + 1, mid, t.end, t.depth + 1, rb, rc};
     stack[sp++] = (task){left, t.begin, mid, t.depth + 1, lb, lc};
   }
@@ -459,7 +468,7 @@ glint_status gli_bvh_build(const glint_scene *scene, gli_bvh *bvh,
   bvh->depth = b.depth;
   bvh->cost = bvh->built_cost = sah_cost(bvh);
   bvh->build_seconds = gli_now() - t0;
-  return GLINT_OK;
+  return collapse_wide(bvh, scene, error);
 }
 
 /* The box of reference r in the scene as it is now. */
@@ -470,6 +479,13 @@ static box ref_box(const glint_scene *scene, uint32_t r) {
   case GLI_SHAPE_TRIANGLE: return triangle_box(&scene->triangles[i]);
   default: return cone_box(&scene->cones[i]);
   }
+}
+
+void gli_bvh_ref_box(const glint_scene *scene, uint32_t ref, float lo[3],
+                     float hi[3]) {
+  box b = ref_box(scene, ref);
+  memcpy(lo, b.lo, sizeof b.lo);
+  memcpy(hi, b.hi, sizeof b.hi);
 }
 
 glint_status gli_bvh_refit(const gli_bvh *from, const glint_scene *scene,
@@ -519,7 +535,7 @@ glint_status gli_bvh_refit(const gli_bvh *from, const glint_scene *scene,
       for (int k = 0; k < 3; k++) {
         float d = (r->lo[k] + r->hi[k]) - (l->lo[k] + l->hi[k]);
         if (fabsf(d) > best)
-          best = fabsf(d), gap = d, n->axis = (uint16_t)k;
+          best = fabsf(d), gap = d, n->axis = (uint8_t)k;
       }
       if (gap < 0) {
         gli_bvh_node t = *l;
@@ -538,10 +554,11 @@ glint_status gli_bvh_refit(const gli_bvh *from, const glint_scene *scene,
   bvh->cost = sah_cost(bvh);
   bvh->built_cost = from->built_cost;
   bvh->build_seconds = gli_now() - t0;
-  return GLINT_OK;
+  return collapse_wide(bvh, scene, error);
 }
 
 void gli_bvh_free(gli_bvh *bvh) {
+  gli_wide_free(&bvh->wide);
   gli_aligned_free(bvh->nodes);
   free(bvh->refs);
   memset(bvh, 0, sizeof *bvh);

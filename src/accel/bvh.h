@@ -7,6 +7,7 @@
 #ifndef GLINT_ACCEL_BVH_H
 #define GLINT_ACCEL_BVH_H
 
+#include "accel/wide_bvh.h"
 #include "glint.h"
 
 #include <stdint.h>
@@ -24,13 +25,21 @@ typedef struct gli_bvh_node {
   float lo[3], hi[3];
   uint32_t offset; /* inner: first child; leaf: first reference */
   uint16_t count;  /* references in a leaf; 0 for an inner node */
-  uint16_t axis;   /* an inner node's split axis */
+  uint8_t axis;    /* an inner node's split axis */
+  uint8_t flags;   /* GLI_NODE_HAND_OVER */
 } gli_bvh_node;
+
+/* A packet's few remaining lanes may walk this inner node's subtree alone
+ * through the wide tree (accel/packet_traverse.h, accel/wide_bvh.h). */
+#define GLI_NODE_HAND_OVER 1
 
 #define GLI_BVH_MAX_DEPTH 64 /* traversal stacks are this deep */
 #define GLI_BVH_MIN_PRIMS 16 /* fewer bounded primitives: no hierarchy */
 
 typedef struct gli_bvh {
+  /* The same tree collapsed for single rays (accel/wide_bvh.h); built with
+   * it, and refitted by collapsing the refitted tree again. */
+  gli_wide_bvh wide;
   gli_bvh_node *nodes;
   uint32_t node_count;
   uint32_t *refs;
@@ -60,7 +69,12 @@ void gli_bvh_free(gli_bvh *bvh);
 glint_status gli_bvh_refit(const gli_bvh *from, const glint_scene *scene,
                            gli_bvh *bvh, glint_error *error);
 
-/* Bytes the built hierarchy occupies (nodes and references). */
+/* The float box of primitive reference `ref` as the builder bounds it. */
+void gli_bvh_ref_box(const glint_scene *scene, uint32_t ref, float lo[3],
+                     float hi[3]);
+
+/* Bytes the built binary hierarchy occupies (nodes and references; the
+ * wide one: gli_wide_bytes). */
 uint64_t gli_bvh_bytes(const gli_bvh *bvh);
 
 #endif

@@ -2,12 +2,32 @@
  * node's box and the two walks every packet backend uses, written once:
  * closest hit (front to back, boxes behind the lanes' hits skipped) and
  * segment (every leaf a shadow packet's segments pass through, until every
- * lane is blocked). The caller's leaf function tests a leaf's primitives. */
+ * lane is blocked). The caller's leaf function tests a leaf's primitives.
+ *
+ * Both walks are hybrid (Benthin, Wald, Woop, Ernst and Mark 2012,
+ * "Combining single and packet-ray tracing for arbitrary ray distributions
+ * on the Intel MIC architecture"): a packet walks the binary tree while
+ * enough of its lanes stay together; where at most `alone` lanes enter a
+ * node that has a wide counterpart (accel/wide_bvh.h), the caller's subtree
+ * function walks that subtree with each of them alone, through the wide
+ * tree (accel/wide_traverse.h), and the packet goes on without them. */
 #ifndef GLINT_ACCEL_PACKET_TRAVERSE_H
 #define GLINT_ACCEL_PACKET_TRAVERSE_H
 
 #include "accel/bvh.h"
 #include "simd/vvec3.h"
+
+/* The lanes at or below which a packet hands a subtree to its lanes, one
+ * at a time: chosen by measurement on balls-s4, rings-s4 and teapot-s4, one
+ * thread, thresholds 0-4 (docs/performance.md, "Hybrid traversal"): SSE 2
+ * of 4, AVX2 3 of 8, AVX-512 3 of 16. */
+#ifndef GLI_HYBRID_LANES
+#if LANES == 4
+#define GLI_HYBRID_LANES 2
+#else
+#define GLI_HYBRID_LANES 3
+#endif
+#endif
 
 #include "glint.h"
 
@@ -80,27 +100,48 @@ static ALWAYS_INLINE vmask packet_box(const gli_bvh_node *n,
  * the lanes' nearest distances that the walk reads through tmax). */
 typedef void (*packet_leaf_fn)(void *ctx, uint32_t ref, vmask m);
 
+/* Walks the subtree at wide node `wide` with each lane of m alone. */
+typedef void (*packet_alone_fn)(void *ctx, uint32_t wide, vmask m);
+
+/* The wide node that can take over at binary inner node `node` from the
+ * lanes of m, or GLI_WIDE_NONE. The node's flag is tested first: the lane
+ * count is a branch no predictor guesses, which cost gears-s4 (no
+ * hand-over points) 5% when it came first. alone = 0: never. */
+static ALWAYS_INLINE uint32_t hand_over(const gli_bvh *bvh,
+                                        const gli_bvh_node *n, uint32_t node,
+                                        vmask m, int alone) {
+  if (!(n->flags & GLI_NODE_HAND_OVER) || vm_count(m) > alone)
+    return GLI_WIDE_NONE;
+  return bvh->wide.of_binary[node];
+}
+
 /* The closest-hit walk, depth first: the child the packet's direction meets
  * first is pushed last. A node's box is tested when it is popped, against
  * the lanes' nearest hits so far (*tmax, which the leaf function narrows),
  * so boxes behind a hit are skipped. */
-static ALWAYS_INLINE void packet_bvh_closest(const gli_bvh *bvh, vvec3 o,
-                                             vvec3 d, vmask active, vfloat tmin,
-                                             const vfloat *tmax, int newton,
-                                             glint_stats *st,
-                                             packet_leaf_fn leaf, void *ctx) {
+static ALWAYS_INLINE void
+packet_bvh_closest(const gli_bvh *bvh, vvec3 o, vvec3 d, vmask active,
+                   vfloat tmin, const vfloat *tmax, int newton, glint_stats *st,
+                   packet_leaf_fn leaf, int alone, packet_alone_fn walk_alone,
+                   void *ctx) {
   int lanes = vm_count(active);
   packet_inv r = packet_inverse(o, d, active, newton);
   uint32_t stack[GLI_BVH_MAX_DEPTH];
   int sp = 0;
   stack[sp++] = 0;
   while (sp > 0) {
-    const gli_bvh_node *n = &bvh->nodes[stack[--sp]];
+    uint32_t node = stack[--sp];
+    const gli_bvh_node *n = &bvh->nodes[node];
     vmask m = packet_box(n, &r, tmin, *tmax, active);
     count_tests(st, 1, lanes);
     if (vm_none(m))
       continue;
     if (n->count == 0) {
+      uint32_t wide = hand_over(bvh, n, node, m, alone);
+      if (wide != GLI_WIDE_NONE) {
+        walk_alone(ctx, wide, m);
+        continue;
+      }
       int far = !r.neg[n->axis];
       stack[sp++] = n->offset + (uint32_t)far;
       stack[sp++] = n->offset + (uint32_t)!far;
@@ -116,22 +157,28 @@ static ALWAYS_INLINE void packet_bvh_closest(const gli_bvh *bvh, vvec3 o,
  * tmax) pass through, in any order, until no lane is *alive. While a leaf's
  * primitives are tested, *alive holds only the lanes inside its box; the
  * leaf function clears the lanes it blocks. */
-static ALWAYS_INLINE void packet_bvh_segment(const gli_bvh *bvh, vvec3 o,
-                                             vvec3 d, vfloat tmin, vfloat tmax,
-                                             vmask *alive, int newton,
-                                             glint_stats *st,
-                                             packet_leaf_fn leaf, void *ctx) {
+static ALWAYS_INLINE void
+packet_bvh_segment(const gli_bvh *bvh, vvec3 o, vvec3 d, vfloat tmin,
+                   vfloat tmax, vmask *alive, int newton, glint_stats *st,
+                   packet_leaf_fn leaf, int alone, packet_alone_fn walk_alone,
+                   void *ctx) {
   packet_inv r = packet_inverse(o, d, *alive, newton);
   uint32_t stack[GLI_BVH_MAX_DEPTH];
   int sp = 0;
   stack[sp++] = 0;
   while (sp > 0 && vm_any(*alive)) {
-    const gli_bvh_node *n = &bvh->nodes[stack[--sp]];
+    uint32_t node = stack[--sp];
+    const gli_bvh_node *n = &bvh->nodes[node];
     vmask m = packet_box(n, &r, tmin, tmax, *alive);
     count_tests(st, 1, vm_count(*alive));
     if (vm_none(m))
       continue;
     if (n->count == 0) {
+      uint32_t wide = hand_over(bvh, n, node, m, alone);
+      if (wide != GLI_WIDE_NONE) {
+        walk_alone(ctx, wide, m); /* clears the lanes it finds blocked */
+        continue;
+      }
       stack[sp++] = n->offset + 1;
       stack[sp++] = n->offset;
     } else {

@@ -1,7 +1,12 @@
 /* Ray-primitive intersection for W rays at a time (thesis §4.1, listing
  * 4.4): the packet forms of geometry/intersect.h's tests, against the
  * packet scene's records (render/packet_scene.h). Each updates the lanes'
- * nearest hits. */
+ * nearest hits.
+ *
+ * Each formula is written once over lanes of rays and lanes of primitives
+ * (the *_lanes functions): a packet passes its W rays and one primitive
+ * broadcast; a single ray passes itself broadcast and W primitives of a
+ * leaf block (render/leaf_blocks.h). */
 #ifndef GLINT_GEOMETRY_PACKET_INTERSECT_H
 #define GLINT_GEOMETRY_PACKET_INTERSECT_H
 
@@ -26,6 +31,25 @@ static ALWAYS_INLINE void packet_hit_init(packet_hit *h) {
   h->inside = vm_false();
 }
 
+/* Algorithm 2.1's two crossings l1 <= l2 of the line with the sphere, for
+ * the lanes of the result (the others miss it). The distance to the centre
+ * is taken perpendicular to the ray, the stable form of sphere_roots
+ * (geometry/intersect.h). */
+static ALWAYS_INLINE vmask sphere_lanes(vvec3 center, vfloat r2, vvec3 o,
+                                        vvec3 d, vmask active, vfloat *l1,
+                                        vfloat *l2) {
+  vvec3 v = vv_sub(center, o);
+  vfloat proj = vv_dot(v, d);
+  vvec3 perp = vv_madd(v, vf_neg(proj), d);
+  vfloat dist2 = vv_dot(perp, perp);
+  vmask m = vm_and(active, vf_le(dist2, r2));
+  if (vm_none(m))
+    return m; /* the thesis's early rejection, for the whole packet */
+  vfloat half = vf_sqrt(vf_sub(r2, dist2));
+  *l1 = vf_sub(proj, half), *l2 = vf_add(proj, half);
+  return m;
+}
+
 /* Algorithm 2.1 for all lanes against one sphere: updates the hits that are
  * nearer than those found so far. */
 /* Spheres and planes record only the object: each is one primitive, so the
@@ -33,16 +57,11 @@ static ALWAYS_INLINE void packet_hit_init(packet_hit *h) {
 static ALWAYS_INLINE void packet_sphere(const psphere *sp, vvec3 o, vvec3 d,
                                         vmask active, vfloat eps,
                                         packet_hit *h) {
-  vvec3 v = vv_sub(vv_get(sp->center), o);
-  vfloat proj = vv_dot(v, d);
-  vvec3 perp = vv_madd(v, vf_neg(proj), d);
-  vfloat dist2 = vv_dot(perp, perp);
-  vfloat r2 = vs_get(&sp->r2);
-  vmask m = vm_and(active, vf_le(dist2, r2));
+  vfloat l1, l2;
+  vmask m =
+      sphere_lanes(vv_get(sp->center), vs_get(&sp->r2), o, d, active, &l1, &l2);
   if (vm_none(m))
-    return; /* the thesis's early rejection, for the whole packet */
-  vfloat half = vf_sqrt(vf_sub(r2, dist2));
-  vfloat l1 = vf_sub(proj, half), l2 = vf_add(proj, half);
+    return;
   vmask outside = vf_gt(l1, eps);
   vfloat t = vf_select(outside, l1, l2);
   vmask win = vm_and(vm_and(m, vf_gt(l2, eps)), vf_lt(t, h->t));
@@ -65,22 +84,31 @@ static ALWAYS_INLINE void packet_plane(const pplane *pl, vvec3 o, vvec3 d,
   h->object = vi_select(win, vi_set1(pl->object), h->object);
 }
 
+/* A triangle's fields as lanes (see ptriangle). */
+typedef struct triangle_lanes {
+  vvec3 a, edge[3], moment[3], n;
+} triangle_lanes;
+
+static ALWAYS_INLINE triangle_lanes triangle_broadcast(const ptriangle *tr) {
+  triangle_lanes t = {
+      vv_get(tr->a),
+      {vv_get(tr->edge[0]), vv_get(tr->edge[1]), vv_get(tr->edge[2])},
+      {vv_get(tr->moment[0]), vv_get(tr->moment[1]), vv_get(tr->moment[2])},
+      vv_get(tr->n)};
+  return t;
+}
+
 /* The watertight test of triangle_hit (geometry/intersect.h) for all lanes,
  * l = (O - R) x D being the lanes' packet_triangle_moment. The divisions are
  * deferred: t is compared as a multiple of |N·D| (its sign folded in), so
  * lanes that miss never pay for a reciprocal. Returns the lanes that cross
  * the triangle within (eps, tmax), with their t, u, v. */
-static ALWAYS_INLINE vmask packet_triangle_cross(const ptriangle *tr, vvec3 o,
-                                                 vvec3 d, vvec3 l, vmask active,
-                                                 vfloat eps, vfloat tmax,
-                                                 int newton, vfloat *t,
-                                                 vfloat *u, vfloat *v) {
-  vfloat side_ab =
-      vf_add(vv_dot(d, vv_get(tr->moment[0])), vv_dot(vv_get(tr->edge[0]), l));
-  vfloat side_bc =
-      vf_add(vv_dot(d, vv_get(tr->moment[1])), vv_dot(vv_get(tr->edge[1]), l));
-  vfloat side_ca =
-      vf_add(vv_dot(d, vv_get(tr->moment[2])), vv_dot(vv_get(tr->edge[2]), l));
+static ALWAYS_INLINE vmask triangle_cross_lanes(
+    const triangle_lanes *tr, vvec3 o, vvec3 d, vvec3 l, vmask active,
+    vfloat eps, vfloat tmax, int newton, vfloat *t, vfloat *u, vfloat *v) {
+  vfloat side_ab = vf_add(vv_dot(d, tr->moment[0]), vv_dot(tr->edge[0], l));
+  vfloat side_bc = vf_add(vv_dot(d, tr->moment[1]), vv_dot(tr->edge[1], l));
+  vfloat side_ca = vf_add(vv_dot(d, tr->moment[2]), vv_dot(tr->edge[2], l));
   vfloat zero = vf_zero();
   vmask some_neg = vm_or(vm_or(vf_lt(side_ab, zero), vf_lt(side_bc, zero)),
                          vf_lt(side_ca, zero));
@@ -89,13 +117,13 @@ static ALWAYS_INLINE vmask packet_triangle_cross(const ptriangle *tr, vvec3 o,
   vmask m = vm_andnot(active, vm_and(some_neg, some_pos));
   if (vm_none(m))
     return m;
-  vvec3 n = vv_get(tr->n);
+  vvec3 n = tr->n;
   vfloat nd = vv_dot(n, d);
   vfloat sign = vi_as_vf(vi_and(vf_bits(nd), vi_set1((int)0x80000000u)));
   vfloat and_ = vf_abs(nd);
   /* x ^ sign(N·D) multiplies x by that sign, exactly */
-  vfloat ts = vi_as_vf(
-      vi_xor(vf_bits(vv_dot(n, vv_sub(vv_get(tr->a), o))), vf_bits(sign)));
+  vfloat ts =
+      vi_as_vf(vi_xor(vf_bits(vv_dot(n, vv_sub(tr->a, o))), vf_bits(sign)));
   vfloat det = vf_add(vf_add(side_ab, side_bc), side_ca);
   m = vm_and(m, vm_and(vm_and(vf_gt(and_, zero), vf_neq(det, zero)),
                        vm_and(vf_gt(ts, vf_mul(eps, and_)),
@@ -109,6 +137,17 @@ static ALWAYS_INLINE vmask packet_triangle_cross(const ptriangle *tr, vvec3 o,
   /* The reciprocal's last bit can push t to the limits it was tested
    * against as a multiple of N·D: test again. */
   return vm_and(m, vm_and(vf_gt(*t, eps), vf_lt(*t, tmax)));
+}
+
+/* triangle_cross_lanes for one triangle and the packet's lanes. */
+static ALWAYS_INLINE vmask packet_triangle_cross(const ptriangle *tr, vvec3 o,
+                                                 vvec3 d, vvec3 l, vmask active,
+                                                 vfloat eps, vfloat tmax,
+                                                 int newton, vfloat *t,
+                                                 vfloat *u, vfloat *v) {
+  triangle_lanes lanes = triangle_broadcast(tr);
+  return triangle_cross_lanes(&lanes, o, d, l, active, eps, tmax, newton, t, u,
+                              v);
 }
 
 /* The lanes' L = (O - R) x D for packet_triangle_cross. */
@@ -133,18 +172,24 @@ static ALWAYS_INLINE void packet_triangle(const ptriangle *tr, uint32_t index,
   h->prim = vi_select(win, vi_set1((int)index), h->prim);
 }
 
+/* A cone's fields as lanes (see pcone). */
+typedef struct cone_lanes {
+  vvec3 base, axis;
+  vfloat height, rb, k;
+} cone_lanes;
+
 /* The cone quadratic of cone_roots (geometry/intersect.h) for all lanes:
  * the lanes with a first and a second crossing within (eps, tmax) and the
  * height window, nearest first in *t0. */
-static ALWAYS_INLINE void packet_cone_roots(const pcone *c, vvec3 o, vvec3 d,
-                                            vmask active, vfloat eps,
-                                            vfloat tmax, vfloat *t0, vmask *m0,
-                                            vfloat *t1, vmask *m1) {
+static ALWAYS_INLINE void cone_roots_lanes(const cone_lanes *c, vvec3 o,
+                                           vvec3 d, vmask active, vfloat eps,
+                                           vfloat tmax, vfloat *t0, vmask *m0,
+                                           vfloat *t1, vmask *m1) {
   /* From the ray's point nearest the base, o + s d, as cone_roots in
    * geometry/intersect.h explains. */
-  vvec3 axis = vv_get(c->axis);
-  vvec3 w = vv_sub(o, vv_get(c->base));
-  vfloat k = vs_get(&c->k), rb = vs_get(&c->rb), height = vs_get(&c->height);
+  vvec3 axis = c->axis;
+  vvec3 w = vv_sub(o, c->base);
+  vfloat k = c->k, rb = c->rb, height = c->height;
   vfloat s = vf_neg(vv_dot(w, d));
   w = vv_madd(w, s, d);
   vfloat wa = vv_dot(w, axis), da = vv_dot(d, axis);
@@ -184,6 +229,16 @@ static ALWAYS_INLINE void packet_cone_roots(const pcone *c, vvec3 o, vvec3 d,
   *m0 = vm_or(v0, v1);
   *t1 = t1s;
   *m1 = vm_and(v0, v1);
+}
+
+/* cone_roots_lanes for one cone and the packet's lanes. */
+static ALWAYS_INLINE void packet_cone_roots(const pcone *c, vvec3 o, vvec3 d,
+                                            vmask active, vfloat eps,
+                                            vfloat tmax, vfloat *t0, vmask *m0,
+                                            vfloat *t1, vmask *m1) {
+  cone_lanes lanes = {vv_get(c->base), vv_get(c->axis), vs_get(&c->height),
+                      vs_get(&c->rb), vs_get(&c->k)};
+  cone_roots_lanes(&lanes, o, d, active, eps, tmax, t0, m0, t1, m1);
 }
 
 static ALWAYS_INLINE void packet_cone(const pcone *c, vvec3 o, vvec3 d,

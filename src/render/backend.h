@@ -33,9 +33,10 @@ typedef struct data_ops {
                           glint_error *error);
   void (*release)(void *data);
   size_t (*bytes)(const void *data);
-  /* A view of the data that traverses `bvh` (node_count 0: brute force). */
-  glint_status (*bind)(const void *data, const gli_bvh *bvh, void **view,
-                       glint_error *error);
+  /* A view of the data that traverses `bvh` (node_count 0: brute force)
+   * as `accel` says (glint.h). */
+  glint_status (*bind)(const void *data, const gli_bvh *bvh, glint_accel accel,
+                       void **view, glint_error *error);
   void (*unbind)(void *view);
 } data_ops;
 

@@ -140,16 +140,18 @@ glint_status glint_math_parse(const char *name, glint_math *m,
   return st;
 }
 
-static const char *const accel_names[2] = {"bvh", "none"};
+static const char *const accel_names[GLINT_ACCEL_COUNT] = {"bvh", "none",
+                                                           "bvh2", "bvh8"};
 
 const char *glint_accel_name(glint_accel a) {
-  return (unsigned)a < 2 ? accel_names[a] : "unknown";
+  return (unsigned)a < GLINT_ACCEL_COUNT ? accel_names[a] : "unknown";
 }
 
 glint_status glint_accel_parse(const char *name, glint_accel *a,
                                glint_error *error) {
   int v = 0;
-  glint_status st = parse_name(name, accel_names, 2, "acceleration", &v, error);
+  glint_status st = parse_name(name, accel_names, GLINT_ACCEL_COUNT,
+                               "acceleration", &v, error);
   if (st == GLINT_OK)
     *a = (glint_accel)v;
   return st;

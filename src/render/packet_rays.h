@@ -8,8 +8,31 @@
 #include "accel/packet_traverse.h"
 #include "geometry/packet_intersect.h"
 #include "render/packet_scene.h"
+#include "render/block_rays.h"
 #include "scene/scene.h"
 #include "simd/vmath.h"
+
+/* ---- lanes alone (accel/packet_traverse.h's hybrid walks) -------------- */
+
+/* A packet's rays as scalars, stored when its first lane walks alone. */
+typedef struct lane_rays {
+  SIMD_ALIGN float o[3][LANES], d[3][LANES];
+  int stored;
+} lane_rays;
+
+static ALWAYS_INLINE void lane_rays_store(lane_rays *r, vvec3 o, vvec3 d) {
+  if (r->stored)
+    return;
+  vf_store(r->o[0], o.x), vf_store(r->o[1], o.y), vf_store(r->o[2], o.z);
+  vf_store(r->d[0], d.x), vf_store(r->d[1], d.y), vf_store(r->d[2], d.z);
+  r->stored = 1;
+}
+
+static ALWAYS_INLINE void lane_ray(const lane_rays *r, int k, vec3 *o,
+                                   vec3 *d) {
+  *o = v3(r->o[0][k], r->o[1][k], r->o[2][k]);
+  *d = v3(r->d[0][k], r->d[1][k], r->d[2][k]);
+}
 
 /* One referenced primitive against the lanes of m. */
 static ALWAYS_INLINE void packet_prim(const packet_scene *ps, uint32_t ref,
@@ -32,11 +55,57 @@ typedef struct nearest_query {
   vfloat eps;
   int newton;
   packet_hit *h;
+  glint_stats *st;
+  lane_rays lanes;
 } nearest_query;
 
 static ALWAYS_INLINE void nearest_leaf(void *ctx, uint32_t ref, vmask m) {
   nearest_query *q = ctx;
   packet_prim(q->ps, ref, q->o, q->d, q->l, m, q->eps, q->newton, q->h);
+}
+
+/* Each lane of m finds its nearest hit in the subtree alone
+ * (render/block_rays.h), and the packet's hits take what it found. */
+static void nearest_alone(void *ctx, uint32_t wide, vmask m) {
+  nearest_query *q = ctx;
+  const scene_r *s = q->ps->s;
+  packet_hit *h = q->h;
+  lane_rays_store(&q->lanes, q->o, q->d);
+  SIMD_ALIGN float t[LANES], u[LANES], v[LANES];
+  SIMD_ALIGN int object[LANES], prim[LANES];
+  vf_store(t, h->t), vf_store(u, h->u), vf_store(v, h->v);
+  vi_store(object, h->object), vi_store(prim, h->prim);
+  int inside = vm_bits(h->inside), won = 0;
+  for (int bits = vm_bits(m); bits; bits &= bits - 1) {
+    int k = __builtin_ctz((unsigned)bits);
+    vec3 o, d;
+    lane_ray(&q->lanes, k, &o, &d);
+    hit_r hit;
+    float tmax = t[k];
+    q->st->alone_walks++;
+    if (!block_nearest_below(q->ps, q->ps->blocks, wide, o, d, q->newton, &tmax,
+                             &hit, &q->st->alone_tests))
+      continue;
+    won = 1;
+    t[k] = hit.t;
+    switch (hit.shape) {
+    case GLI_SHAPE_SPHERE:
+      object[k] = (int)s->spheres[hit.prim].object;
+      inside = hit.inside ? inside | 1 << k : inside & ~(1 << k);
+      break;
+    case GLI_SHAPE_TRIANGLE:
+      object[k] = (int)s->triangles[hit.prim].object;
+      prim[k] = (int)hit.prim;
+      u[k] = hit.u, v[k] = hit.v;
+      break;
+    default: object[k] = (int)s->cones[hit.prim].object; break;
+    }
+  }
+  if (!won)
+    return;
+  h->t = vf_load(t), h->u = vf_load(u), h->v = vf_load(v);
+  h->object = vi_load(object), h->prim = vi_load(prim);
+  h->inside = vm_from_bits(inside);
 }
 
 /* The lanes' nearest hits: the planes (unbounded, outside the BVH), then
@@ -65,9 +134,12 @@ static ALWAYS_INLINE void packet_nearest(const packet_scene *ps, vvec3 o,
       packet_cone(&ps->cones[i], o, d, active, eps, h);
     return;
   }
-  nearest_query q = {ps, o, d, l, eps, newton, h};
-  packet_bvh_closest(bvh, o, d, active, eps, &h->t, newton, st, nearest_leaf,
-                     &q);
+  nearest_query q = {ps, o, d, l, eps, newton, h, st, {.stored = 0}};
+  if (ps->alone_lanes == LANES) /* --accel bvh8: every ray alone */
+    nearest_alone(&q, 0, active);
+  else
+    packet_bvh_closest(bvh, o, d, active, eps, &h->t, newton, st, nearest_leaf,
+                       ps->alone_lanes, nearest_alone, &q);
 }
 
 /* ---- shadow rays ------------------------------------------------------ */
@@ -114,16 +186,11 @@ static ALWAYS_INLINE void packet_cross_prim(const packet_scene *ps,
   switch (shape) {
   case GLI_SHAPE_SPHERE: {
     const psphere *sp = &ps->spheres[i];
-    vvec3 v = vv_sub(vv_get(sp->center), o);
-    vfloat proj = vv_dot(v, d);
-    vvec3 perp = vv_madd(v, vf_neg(proj), d);
-    vfloat dist2 = vv_dot(perp, perp);
-    vfloat r2 = vs_get(&sp->r2);
-    vmask m = vm_and(sh->alive, vf_le(dist2, r2));
+    vfloat l1, l2;
+    vmask m = sphere_lanes(vv_get(sp->center), vs_get(&sp->r2), o, d, sh->alive,
+                           &l1, &l2);
     if (vm_none(m))
       return;
-    vfloat half = vf_sqrt(vf_sub(r2, dist2));
-    vfloat l1 = vf_sub(proj, half), l2 = vf_add(proj, half);
     vmask c1 = vm_and(m, vm_and(vf_gt(l1, eps), vf_lt(l1, dist)));
     vmask c2 = vm_and(m, vm_and(vf_gt(l2, eps), vf_lt(l2, dist)));
     shadow_cross(ps, sp->object, c1, l1, vm_true(), sh);
@@ -172,7 +239,51 @@ typedef struct segment_query {
   vfloat dist, eps;
   int newton;
   shadow_state *sh;
+  glint_stats *st;
+  lane_rays lanes;
 } segment_query;
+
+/* Each lane of m gathers the crossings in the subtree alone
+ * (render/block_rays.h): the lanes blocked die, the others' kt and Beer
+ * exponents take what they crossed. */
+static void segment_alone(void *ctx, uint32_t wide, vmask m) {
+  segment_query *q = ctx;
+  shadow_state *sh = q->sh;
+  lane_rays_store(&q->lanes, q->o, q->d);
+  SIMD_ALIGN float kt[3][LANES], ex[3][LANES], dist[LANES];
+  vf_store(kt[0], sh->kt.x), vf_store(kt[1], sh->kt.y),
+      vf_store(kt[2], sh->kt.z);
+  vf_store(ex[0], sh->exponent.x), vf_store(ex[1], sh->exponent.y),
+      vf_store(ex[2], sh->exponent.z);
+  vf_store(dist, q->dist);
+  int alive = vm_bits(sh->alive), crossed = 0;
+  for (int bits = vm_bits(m); bits; bits &= bits - 1) {
+    int k = __builtin_ctz((unsigned)bits);
+    vec3 o, d;
+    lane_ray(&q->lanes, k, &o, &d);
+    shadow_acc acc = {v3(1, 1, 1), v3(0, 0, 0)};
+    q->st->alone_walks++;
+    if (!block_segment_below(q->ps, q->ps->blocks, wide, o, d, dist[k],
+                             q->newton, &acc, &q->st->alone_tests)) {
+      alive &= ~(1 << k);
+      continue;
+    }
+    if (acc.kt.x == 1 && acc.kt.y == 1 && acc.kt.z == 1 &&
+        acc.exponent.x == 0 && acc.exponent.y == 0 && acc.exponent.z == 0)
+      continue; /* crossed nothing */
+    crossed = 1;
+    kt[0][k] *= acc.kt.x, kt[1][k] *= acc.kt.y, kt[2][k] *= acc.kt.z;
+    ex[0][k] += acc.exponent.x, ex[1][k] += acc.exponent.y,
+        ex[2][k] += acc.exponent.z;
+    sh->absorbed |= (acc.exponent.x != 0) | (acc.exponent.y != 0) << 1 |
+                    (acc.exponent.z != 0) << 2;
+  }
+  sh->alive = vm_from_bits(alive);
+  if (!crossed)
+    return;
+  sh->kt = (vvec3){vf_load(kt[0]), vf_load(kt[1]), vf_load(kt[2])};
+  sh->exponent = (vvec3){vf_load(ex[0]), vf_load(ex[1]), vf_load(ex[2])};
+}
 
 static ALWAYS_INLINE void segment_leaf(void *ctx, uint32_t ref, vmask alive) {
   (void)alive; /* the walk keeps it in q->sh->alive */
@@ -217,9 +328,12 @@ static ALWAYS_INLINE vvec3 packet_transmission(const packet_scene *ps, vvec3 o,
       packet_cross_prim(ps, GLI_SHAPE_CONE, (uint32_t)i, o, d, l, dist, eps,
                         newton, &sh);
   } else if (vm_any(sh.alive)) {
-    segment_query q = {ps, o, d, l, dist, eps, newton, &sh};
-    packet_bvh_segment(bvh, o, d, eps, dist, &sh.alive, newton, st,
-                       segment_leaf, &q);
+    segment_query q = {ps, o, d, l, dist, eps, newton, &sh, st, {.stored = 0}};
+    if (ps->alone_lanes == LANES) /* --accel bvh8 */
+      segment_alone(&q, 0, sh.alive);
+    else
+      packet_bvh_segment(bvh, o, d, eps, dist, &sh.alive, newton, st,
+                         segment_leaf, ps->alone_lanes, segment_alone, &q);
   }
   vvec3 z = {vf_zero(), vf_zero(), vf_zero()};
   if (vm_none(sh.alive))

@@ -3,7 +3,9 @@
 
 #include "core/error.h"
 #include "core/memory.h"
+#include "accel/packet_traverse.h"
 #include "render/backend.h"
+#include "render/leaf_blocks.h"
 #include "scene/scene.h"
 
 #include <stdlib.h>
@@ -135,14 +137,16 @@ static size_t bytes(const void *data) {
          s->light_count * sizeof *ps->lights;
 }
 
-/* A view: private copies of the two headers, the arrays shared. */
+/* A view: private copies of the two headers, the arrays shared, and the
+ * leaf blocks of its BVH when its packets hand subtrees to single rays. */
 typedef struct packet_view {
   packet_scene ps;
   scene_r s;
+  leaf_blocks *blocks;
 } packet_view;
 
-static glint_status bind(const void *data, const gli_bvh *bvh, void **view,
-                         glint_error *error) {
+static glint_status bind(const void *data, const gli_bvh *bvh,
+                         glint_accel accel, void **view, glint_error *error) {
   packet_view *v = gli_aligned_calloc(1, sizeof *v);
   if (!v)
     return gli_fail(error, GLINT_E_MEMORY, "out of memory");
@@ -151,11 +155,27 @@ static glint_status bind(const void *data, const gli_bvh *bvh, void **view,
   v->s = *ps->s;
   v->s.bvh = bvh;
   v->ps.s = &v->s;
+  v->ps.alone_lanes = !bvh->wide.nodes            ? 0
+                      : accel == GLINT_ACCEL_BVH  ? GLI_HYBRID_LANES
+                      : accel == GLINT_ACCEL_BVH8 ? LANES
+                                                  : 0;
+  if (v->ps.alone_lanes) {
+    glint_status st = leaf_blocks_build(&v->s, bvh, &v->blocks, error);
+    if (st) {
+      gli_aligned_free(v);
+      return st;
+    }
+    v->ps.blocks = v->blocks;
+  }
   *view = &v->ps;
   return GLINT_OK;
 }
 
-static void unbind(void *view) { gli_aligned_free(view); }
+static void unbind(void *view) {
+  packet_view *v = view; /* ps is its first member */
+  leaf_blocks_free(v->blocks);
+  gli_aligned_free(v);
+}
 
 const data_ops ISA_NAME(gli_packet_data) = {convert, release, bytes, bind,
                                             unbind};

@@ -63,6 +63,11 @@ typedef struct packet_scene {
   plight *lights;
   vscalar eps, background[3];
   vscalar tri_origin[3]; /* R of triangle_hit */
+  /* A packet hands a subtree to its lanes one at a time through the wide
+   * BVH when at most this many of them enter it (0: never; LANES: from the
+   * root on: accel/packet_traverse.h). */
+  int alone_lanes;
+  const struct leaf_blocks *blocks; /* what they test (render/leaf_blocks.h) */
 } packet_scene;
 
 /* The converted layout this ISA's backends share (render/backend.h). */

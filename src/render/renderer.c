@@ -113,7 +113,7 @@ glint_status gli_render_settings_check(const glint_render_settings *s,
   if ((unsigned)s->math >= GLINT_MATH_COUNT)
     return gli_fail(e, GLINT_E_ARGUMENT, "unknown math variant %d",
                     (int)s->math);
-  if ((unsigned)s->accel > GLINT_ACCEL_NONE)
+  if ((unsigned)s->accel >= GLINT_ACCEL_COUNT)
     return gli_fail(e, GLINT_E_ARGUMENT, "unknown acceleration %d",
                     (int)s->accel);
   if ((unsigned)s->backend >= GLINT_BACKEND_COUNT)
@@ -157,7 +157,8 @@ glint_status glint_renderer_create(glint_world *world,
                                               world->scene->height, error);
   if (st)
     return st;
-  glint_backend backend = glint_backend_resolve(settings->backend);
+  glint_backend backend =
+      glint_backend_choose(settings->backend, world->scene, settings);
   if (!glint_backend_supported(backend))
     return gli_fail(error, GLINT_E_UNSUPPORTED,
                     "backend '%s' is not supported by this CPU or build",
@@ -177,9 +178,9 @@ glint_status glint_renderer_create(glint_world *world,
   const void *data = NULL;
   const gli_bvh *bvh = &r->no_bvh;
   if ((st = gli_world_data(world, r->ops->data, &data, error)) ||
-      (settings->accel == GLINT_ACCEL_BVH &&
+      (settings->accel != GLINT_ACCEL_NONE &&
        (st = gli_world_bvh(world, &bvh, error))) ||
-      (st = r->layout->bind(data, bvh, &r->view, error))) {
+      (st = r->layout->bind(data, bvh, settings->accel, &r->view, error))) {
     glint_renderer_destroy(r);
     return st;
   }
@@ -220,9 +221,9 @@ glint_status glint_renderer_set_world(glint_renderer *r, glint_world *world,
   void *view = NULL;
   glint_status st;
   if ((st = gli_world_data(world, r->ops->data, &data, error)) ||
-      (r->settings.accel == GLINT_ACCEL_BVH &&
+      (r->settings.accel != GLINT_ACCEL_NONE &&
        (st = gli_world_bvh(world, &bvh, error))) ||
-      (st = r->layout->bind(data, bvh, &view, error)))
+      (st = r->layout->bind(data, bvh, r->settings.accel, &view, error)))
     return st;
   if (r->view)
     r->layout->unbind(r->view);
@@ -366,6 +367,8 @@ static void stats_add(glint_stats *a, const glint_stats *b) {
   a->sub_beams += b->sub_beams;
   a->packet_tests += b->packet_tests;
   a->active_lanes += b->active_lanes;
+  a->alone_walks += b->alone_walks;
+  a->alone_tests += b->alone_tests;
   if (b->generations > a->generations)
     a->generations = b->generations;
   for (int g = 0; g < GLINT_STATS_MAX_GENERATIONS; g++) {

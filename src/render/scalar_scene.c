@@ -6,8 +6,7 @@
 
 #include "core/error.h"
 #include "core/memory.h"
-#include "accel/traverse.h"
-#include "geometry/intersect.h"
+#include "render/scalar_rays.h"
 #include "scene/scene.h"
 
 #include <stdlib.h>
@@ -196,207 +195,15 @@ void scalar_scene_release(scene_r *s) {
   free(s);
 }
 
-/* ---- nearest hit ------------------------------------------------------- */
-
-/* One primitive of the BVH's (or the brute-force loop's) against the ray;
- * narrows *tmax on a nearer hit. */
-static inline void hit_prim(const scene_r *s, uint32_t shape, uint32_t i,
-                            vec3 o, vec3 d, vec3 l, real *tmax, hit_r *hit,
-                            int *found) {
-  real t, u, v;
-  switch (shape) {
-  case GLI_SHAPE_SPHERE: {
-    int inside;
-    if (sphere_hit(s->spheres[i].center, s->spheres[i].r2, o, d, s->eps, *tmax,
-                   &t, &inside)) {
-      *tmax = hit->t = t;
-      hit->shape = GLI_SHAPE_SPHERE;
-      hit->prim = i;
-      hit->inside = inside;
-      *found = 1;
-    }
-    break;
-  }
-  case GLI_SHAPE_TRIANGLE: {
-    const triangle_r *tr = &s->triangles[i];
-    if (triangle_hit(tr->a, tr->edge, tr->moment, tr->n, o, d, l, s->eps, *tmax,
-                     &t, &u, &v)) {
-      *tmax = hit->t = t;
-      hit->shape = GLI_SHAPE_TRIANGLE;
-      hit->prim = i;
-      hit->u = u;
-      hit->v = v;
-      *found = 1;
-    }
-    break;
-  }
-  default: { /* GLI_SHAPE_CONE */
-    const cone_r *c = &s->cones[i];
-    real ts[2];
-    if (cone_roots(c->base, c->axis, c->height, c->rb, c->k, o, d, s->eps,
-                   *tmax, ts)) {
-      *tmax = hit->t = ts[0];
-      hit->shape = GLI_SHAPE_CONE;
-      hit->prim = i;
-      *found = 1;
-    }
-    break;
-  }
-  }
-}
-
-/* What a closest-hit walk's leaves need. */
-typedef struct nearest_query {
-  const scene_r *s;
-  vec3 o, d, l;
-  hit_r *hit;
-  int *found;
-} nearest_query;
-
-static inline void nearest_leaf(void *ctx, uint32_t ref, real *tmax) {
-  nearest_query *q = ctx;
-  hit_prim(q->s, GLI_REF_SHAPE(ref), GLI_REF_INDEX(ref), q->o, q->d, q->l, tmax,
-           q->hit, q->found);
-}
+/* ---- the queries (render/scalar_rays.h) -------------------------------- */
 
 int scalar_nearest_hit(const scene_r *s, vec3 o, vec3 d, real tmax,
                        hit_r *hit) {
-  vec3 l = triangle_ray_moment(s->tri_origin, o, d);
-  int found = 0;
-  real t;
-  for (size_t i = 0; i < s->plane_count; i++)
-    if (plane_hit(s->planes[i].n, s->planes[i].d, o, d, s->eps, tmax, &t)) {
-      tmax = hit->t = t;
-      hit->shape = GLI_SHAPE_PLANE;
-      hit->prim = (uint32_t)i;
-      found = 1;
-    }
-  if (s->bvh->node_count == 0) { /* the thesis's brute force (§4.3) */
-    for (size_t i = 0; i < s->sphere_count; i++)
-      hit_prim(s, GLI_SHAPE_SPHERE, (uint32_t)i, o, d, l, &tmax, hit, &found);
-    for (size_t i = 0; i < s->triangle_count; i++)
-      hit_prim(s, GLI_SHAPE_TRIANGLE, (uint32_t)i, o, d, l, &tmax, hit, &found);
-    for (size_t i = 0; i < s->cone_count; i++)
-      hit_prim(s, GLI_SHAPE_CONE, (uint32_t)i, o, d, l, &tmax, hit, &found);
-    return found;
-  }
-  nearest_query q = {s, o, d, l, hit, &found};
-  bvh_closest(s->bvh, o, d, s->eps, &tmax, nearest_leaf, &q);
-  return found;
-}
-
-/* ---- shadow rays ------------------------------------------------------- */
-
-/* The transmission along a shadow ray is a product over crossings, so their
- * order does not matter. The distance travelled inside objects is
- * sum(t_exit) - sum(t_entry) over the crossings on the segment (an object
- * the ray starts inside has no entry; lights are assumed to lie outside
- * transparent objects), so absorption needs no pairing of crossings either:
- * exp(sum over entries of a t - sum over exits of a t). */
-typedef struct shadow_acc {
-  vec3 kt;       /* product of kt */
-  vec3 exponent; /* Beer's law exponent, <= 0 */
-} shadow_acc;
-
-/* Returns 0 when the crossing is opaque. */
-static inline int cross_surface(const scene_r *s, shadow_acc *acc,
-                                uint32_t object, real t, int entering) {
-  const material_r *m = &s->materials[s->objects[object].material];
-  if (m->kt == 0)
-    return 0;
-  acc->kt = v3_scale(acc->kt, m->kt);
-  if (m->absorbs)
-    acc->exponent = v3_madd(acc->exponent, entering ? t : -t, m->absorb);
-  return 1;
-}
-
-/* Every crossing of one primitive within (eps, dist); 0 if opaque. */
-static inline int cross_prim(const scene_r *s, shadow_acc *acc, uint32_t shape,
-                             uint32_t i, vec3 o, vec3 d, vec3 l, real dist) {
-  real eps = s->eps;
-  switch (shape) {
-  case GLI_SHAPE_SPHERE: {
-    real l1, l2;
-    const sphere_r *sp = &s->spheres[i];
-    if (!sphere_roots(sp->center, sp->r2, o, d, &l1, &l2))
-      return 1;
-    if (l1 > eps && l1 < dist && !cross_surface(s, acc, sp->object, l1, 1))
-      return 0;
-    if (l2 > eps && l2 < dist && !cross_surface(s, acc, sp->object, l2, 0))
-      return 0;
-    return 1;
-  }
-  case GLI_SHAPE_TRIANGLE: {
-    real t, u, v;
-    const triangle_r *tr = &s->triangles[i];
-    if (triangle_hit(tr->a, tr->edge, tr->moment, tr->n, o, d, l, eps, dist, &t,
-                     &u, &v) &&
-        !cross_surface(s, acc, tr->object, t, v3_dot(tr->ng, d) < 0))
-      return 0;
-    return 1;
-  }
-  default: { /* GLI_SHAPE_CONE */
-    const cone_r *c = &s->cones[i];
-    real ts[2];
-    int n = cone_roots(c->base, c->axis, c->height, c->rb, c->k, o, d, eps,
-                       dist, ts);
-    for (int k = 0; k < n; k++) {
-      vec3 p = v3_madd(o, ts[k], d);
-      int entering =
-          v3_dot(cone_normal(c->base, c->axis, c->rb, c->k, p), d) < 0;
-      if (!cross_surface(s, acc, c->object, ts[k], entering))
-        return 0;
-    }
-    return 1;
-  }
-  }
-}
-
-/* What a segment walk's leaves need. */
-typedef struct segment_query {
-  const scene_r *s;
-  shadow_acc *acc;
-  vec3 o, d, l;
-  real dist;
-} segment_query;
-
-static inline int segment_leaf(void *ctx, uint32_t ref) {
-  segment_query *q = ctx;
-  return cross_prim(q->s, q->acc, GLI_REF_SHAPE(ref), GLI_REF_INDEX(ref), q->o,
-                    q->d, q->l, q->dist);
+  return ray_nearest(s, o, d, tmax, hit);
 }
 
 vec3 scalar_transmission(const scene_r *s, vec3 o, vec3 d, real dist) {
-  vec3 l = triangle_ray_moment(s->tri_origin, o, d);
-  shadow_acc acc = {v3(1, 1, 1), v3(0, 0, 0)};
-  const vec3 black = v3(0, 0, 0);
-  real t;
-  for (size_t i = 0; i < s->plane_count; i++) {
-    const plane_r *p = &s->planes[i];
-    if (plane_hit(p->n, p->d, o, d, s->eps, dist, &t) &&
-        !cross_surface(s, &acc, p->object, t, v3_dot(p->n, d) < 0))
-      return black;
-  }
-  if (s->bvh->node_count == 0) {
-    for (size_t i = 0; i < s->sphere_count; i++)
-      if (!cross_prim(s, &acc, GLI_SHAPE_SPHERE, (uint32_t)i, o, d, l, dist))
-        return black;
-    for (size_t i = 0; i < s->triangle_count; i++)
-      if (!cross_prim(s, &acc, GLI_SHAPE_TRIANGLE, (uint32_t)i, o, d, l, dist))
-        return black;
-    for (size_t i = 0; i < s->cone_count; i++)
-      if (!cross_prim(s, &acc, GLI_SHAPE_CONE, (uint32_t)i, o, d, l, dist))
-        return black;
-  } else {
-    segment_query q = {s, &acc, o, d, l, dist};
-    if (!bvh_segment(s->bvh, o, d, s->eps, dist, segment_leaf, &q))
-      return black;
-  }
-  if (acc.exponent.x == 0 && acc.exponent.y == 0 && acc.exponent.z == 0)
-    return acc.kt;
-  return v3_mul(acc.kt, v3(r_exp(r_fmin(acc.exponent.x, 0)),
-                           r_exp(r_fmin(acc.exponent.y, 0)),
-                           r_exp(r_fmin(acc.exponent.z, 0))));
+  return ray_transmission(s, o, d, dist);
 }
 
 /* ---- the world's conversion and a renderer's view (render/backend.h) ---- */
@@ -413,13 +220,14 @@ static void release(void *data) { scalar_scene_release(data); }
 
 static size_t bytes(const void *data) { return scalar_scene_bytes(data); }
 
-static glint_status bind(const void *data, const gli_bvh *bvh, void **view,
-                         glint_error *error) {
+static glint_status bind(const void *data, const gli_bvh *bvh,
+                         glint_accel accel, void **view, glint_error *error) {
   scene_r *v = malloc(sizeof *v);
   if (!v)
     return gli_fail(error, GLINT_E_MEMORY, "out of memory");
   *v = *(const scene_r *)data;
   v->bvh = bvh;
+  v->walk_wide = accel == GLINT_ACCEL_BVH8 && bvh->wide.nodes;
   *view = v;
   return GLINT_OK;
 }

@@ -74,6 +74,9 @@ typedef struct scene_r {
   /* The world's BVH, bound per renderer (render/backend.h); node_count 0:
    * every primitive is tested (--accel none). */
   const gli_bvh *bvh;
+  /* Single rays walk the wide tree (bvh->wide, --accel bvh8) rather than
+   * the binary one. */
+  int walk_wide;
   vec3 background, ambient;
   vec3 tri_origin; /* R of triangle_hit: the centre of the triangles */
   real eps;

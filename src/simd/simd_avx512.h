@@ -173,4 +173,28 @@ static inline int vf_compress_store(float *p, vmask m, vfloat a) {
   return _mm_popcnt_u32((unsigned)m);
 }
 
+/* The children of a wide BVH node (accel/wide_bvh.h) for one ray: all
+ * eight in a 256-bit register (AVX-512VL gives its compare a mask). */
+#define GLI_NODE_LANES 8
+typedef __m256 vnode;
+static inline vnode vn_load(const float *p) { return _mm256_load_ps(p); }
+static inline vnode vn_set1(float a) { return _mm256_set1_ps(a); }
+static inline vnode vn_sub(vnode a, vnode b) { return _mm256_sub_ps(a, b); }
+static inline vnode vn_mul(vnode a, vnode b) { return _mm256_mul_ps(a, b); }
+static inline vnode vn_min(vnode a, vnode b) { return _mm256_min_ps(a, b); }
+static inline vnode vn_max(vnode a, vnode b) { return _mm256_max_ps(a, b); }
+static inline void vn_store(float *p, vnode a) { _mm256_storeu_ps(p, a); }
+/* Bit k: a[k] <= b[k]. */
+static inline int vn_le_bits(vnode a, vnode b) {
+  return (int)_mm256_cmp_ps_mask(a, b, _CMP_LE_OQ);
+}
+
+/* The primitives of a wide BVH leaf as one ray tests them
+ * (render/leaf_blocks.h): eight, the lower half of a register (the upper lanes
+ * read as zero, and are never active). */
+#define GLI_BLOCK_LANES 8
+static inline vfloat vf_load_block(const float *p) {
+  return _mm512_maskz_loadu_ps(0xff, p);
+}
+
 #endif

@@ -20,7 +20,7 @@ static inline vfloat vs_get(const vscalar *p) { return *p; }
 static inline vfloat vf_set1(float a) { return _mm_set1_ps(a); }
 static inline vfloat vf_zero(void) { return _mm_setzero_ps(); }
 static inline vfloat vf_load(const float *p) { return _mm_load_ps(p); }
-static inline vfloat vf_loadu(const float *p) { return _mm_loadu_ps(p); }
+static inline vfloat vf_loadu(const float *p) { return _mm_load_ps(p); }
 static inline void vf_store(float *p, vfloat a) { _mm_store_ps(p, a); }
 static inline vfloat vf_add(vfloat a, vfloat b) { return _mm_add_ps(a, b); }
 static inline vfloat vf_sub(vfloat a, vfloat b) { return _mm_sub_ps(a, b); }
@@ -162,5 +162,26 @@ static inline int vf_compress_store(float *p, vmask m, vfloat a) {
   _mm_storeu_si128((__m128i *)p, shuffled);
   return vm_count(m);
 }
+
+/* The children of a wide BVH node (accel/wide_bvh.h) for one ray: four
+ * of its eight at a time. */
+#define GLI_NODE_LANES 4
+typedef __m128 vnode;
+static inline vnode vn_load(const float *p) { return _mm_load_ps(p); }
+static inline vnode vn_set1(float a) { return _mm_set1_ps(a); }
+static inline vnode vn_sub(vnode a, vnode b) { return _mm_sub_ps(a, b); }
+static inline vnode vn_mul(vnode a, vnode b) { return _mm_mul_ps(a, b); }
+static inline vnode vn_min(vnode a, vnode b) { return _mm_min_ps(a, b); }
+static inline vnode vn_max(vnode a, vnode b) { return _mm_max_ps(a, b); }
+static inline void vn_store(float *p, vnode a) { _mm_storeu_ps(p, a); }
+/* Bit k: a[k] <= b[k]. */
+static inline int vn_le_bits(vnode a, vnode b) {
+  return _mm_movemask_ps(_mm_cmple_ps(a, b));
+}
+
+/* The primitives of a wide BVH leaf as one ray tests them
+ * (render/leaf_blocks.h): four of them, one register. */
+#define GLI_BLOCK_LANES 4
+static inline vfloat vf_load_block(const float *p) { return _mm_load_ps(p); }
 
 #endif
