@@ -35,11 +35,6 @@ static const struct {
     {GLINT_BACKEND_AVX512, 16, gli_beam_nearest_hit_avx512},
 };
 
-static double uniform(unsigned long long *s) {
-  *s = *s * 6364136223846793005ULL + 1442695040888963407ULL;
-  return (double)(*s >> 11) / 9007199254740992.0;
-}
-
 /* A random unit vector. */
 static vec3 random_dir(unsigned long long *s) {
   double z = 2 * uniform(s) - 1, a = 6.283185307179586 * uniform(s);

@@ -135,11 +135,6 @@ static void long_numbers_are_read_whole(void **state) {
 
 /* ---- watertight meshes --------------------------------------------------- */
 
-static double uniform(unsigned long long *state) {
-  *state = *state * 6364136223846793005ULL + 1442695040888963407ULL;
-  return (double)(*state >> 11) / 9007199254740992.0;
-}
-
 #define CX 31.3
 #define CY -17.7
 #define CZ 21.1

@@ -43,4 +43,11 @@ static inline int backend_missing(glint_backend b) {
 /* The exit code for "this test cannot run here" (ctest reports SKIPPED). */
 #define SKIP_EXIT 77
 
+/* A seeded uniform number in [0, 1) (a 64-bit linear congruential
+ * generator, Knuth's constants): the random rays of the tests, repeatable. */
+static inline double uniform(unsigned long long *s) {
+  *s = *s * 6364136223846793005ULL + 1442695040888963407ULL;
+  return (double)(*s >> 11) / 9007199254740992.0;
+}
+
 #endif

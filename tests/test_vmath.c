@@ -48,11 +48,6 @@ static const double exp_bound[GLINT_MATH_COUNT] = {[GLINT_MATH_MINIMAX] = 1e-5,
 static float x[N], y[N], out[N];
 
 /* A small deterministic generator, so the test sees the same inputs. */
-static double uniform(unsigned long long *s) {
-  *s = *s * 6364136223846793005ULL + 1442695040888963407ULL;
-  return (double)(*s >> 11) / 9007199254740992.0;
-}
-
 static void pow_errors(void **state) {
   (void)state;
   unsigned long long seed = 42;

@@ -13,7 +13,7 @@
 #include "accel/bvh.h"
 #include "render/scalar_scene.h"
 #include "scene/scene.h"
-#include "shared.h"
+#include "bvh_scenes.h"
 
 #include <math.h>
 #include <stdio.h>
@@ -31,29 +31,6 @@
 #define scalar_nearest gli_scalar_nearest_hit_float
 #define scalar_transmission_of gli_scalar_transmission_float
 #endif
-
-typedef struct scene_list {
-  const char *names[8];
-} scene_list;
-static const scene_list own = {{"giza", NULL}};
-static const scene_list spd = {
-    {"scenes/spd/balls-s2.nff", "scenes/spd/gears-s1.nff",
-     "scenes/spd/mount-s4.nff", "scenes/spd/rings-s2.nff",
-     "scenes/spd/teapot-s2.nff", "scenes/spd/tree-s4.nff", NULL}};
-
-static glint_scene *load(const char *name) {
-  glint_scene *s;
-  if (strchr(name, '/'))
-    ASSERT_OK(glint_scene_load(shared_path(name), &s, &e_));
-  else
-    ASSERT_OK(glint_scene_builtin(name, &s, &e_));
-  return s;
-}
-
-static double uniform(unsigned long long *s) {
-  *s = *s * 6364136223846793005ULL + 1442695040888963407ULL;
-  return (double)(*s >> 11) / 9007199254740992.0;
-}
 
 /* ---- the tree ----------------------------------------------------------- */
 

@@ -173,18 +173,16 @@ wide_closest(const gli_bvh *bvh, uint32_t start, vec3 o, vec3 d, real tmin,
 static inline __attribute__((always_inline)) int
 wide_segment(const gli_bvh *bvh, uint32_t start, vec3 o, vec3 d, real tmin,
              real tmax, wide_segment_fn leaf, void *ctx, uint64_t *tests) {
-  const gli_wide_node *nodes = bvh->wide.nodes;
   wide_ray r = wide_ray_make(o, d);
-  wide_item stack[GLI_WIDE_STACK];
-  int sp = 0;
-  wide_item cur = {start, 0, tmin};
-  for (;;) {
+  /* Any order will do: no entry distances are kept or compared. */
+  wide_item cur = {start, 0, tmin}, stack[GLI_WIDE_STACK];
+  for (int sp = 0;;) {
     if (cur.count) {
       ++*tests;
       if (!leaf(ctx, cur.child, cur.count))
         return 0;
     } else {
-      const gli_wide_node *n = &nodes[cur.child];
+      const gli_wide_node *n = &bvh->wide.nodes[cur.child];
       real entry[GLI_WIDE];
       unsigned hits = wide_hits(n, &r, tmin, tmax, entry);
       ++*tests;

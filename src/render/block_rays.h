@@ -21,6 +21,14 @@ typedef struct block_ray {
   int newton;
 } block_ray;
 
+static ALWAYS_INLINE block_ray block_ray_make(const packet_scene *ps, vec3 o,
+                                              vec3 d, int newton) {
+  vec3 l = triangle_ray_moment(ps->s->tri_origin, o, d);
+  block_ray r = {ps,         vv_set1(o),       vv_set1(d),
+                 vv_set1(l), vs_get(&ps->eps), newton};
+  return r;
+}
+
 static ALWAYS_INLINE vmask block_lanes(uint32_t count) {
   return vm_from_bits((int)((1u << count) - 1));
 }
@@ -136,14 +144,9 @@ static ALWAYS_INLINE int block_nearest_below(const packet_scene *ps,
                                              uint32_t node, vec3 o, vec3 d,
                                              int newton, float *tmax,
                                              hit_r *hit, uint64_t *tests) {
-  const scene_r *s = ps->s;
-  vec3 l = triangle_ray_moment(s->tri_origin, o, d);
-  block_nearest_query q = {
-      {ps, vv_set1(o), vv_set1(d), vv_set1(l), vs_get(&ps->eps), newton},
-      blocks,
-      hit,
-      0};
-  wide_closest(s->bvh, node, o, d, s->eps, tmax, block_nearest_leaf, &q, tests);
+  block_nearest_query q = {block_ray_make(ps, o, d, newton), blocks, hit, 0};
+  wide_closest(ps->s->bvh, node, o, d, ps->s->eps, tmax, block_nearest_leaf, &q,
+               tests);
   return q.found;
 }
 
@@ -247,15 +250,10 @@ static ALWAYS_INLINE int block_segment_below(const packet_scene *ps,
                                              uint32_t node, vec3 o, vec3 d,
                                              float dist, int newton,
                                              shadow_acc *acc, uint64_t *tests) {
-  const scene_r *s = ps->s;
-  vec3 l = triangle_ray_moment(s->tri_origin, o, d);
-  block_segment_query q = {
-      {ps, vv_set1(o), vv_set1(d), vv_set1(l), vs_get(&ps->eps), newton},
-      blocks,
-      vf_set1(dist),
-      acc};
-  return wide_segment(s->bvh, node, o, d, s->eps, dist, block_segment_leaf, &q,
-                      tests);
+  block_segment_query q = {block_ray_make(ps, o, d, newton), blocks,
+                           vf_set1(dist), acc};
+  return wide_segment(ps->s->bvh, node, o, d, ps->s->eps, dist,
+                      block_segment_leaf, &q, tests);
 }
 
 #endif
