@@ -33,23 +33,6 @@ static ALWAYS_INLINE vmask block_lanes(uint32_t count) {
   return vm_from_bits((int)((1u << count) - 1));
 }
 
-static ALWAYS_INLINE vvec3 block_vec(const float (*rows)[BL]) {
-  vvec3 r = {vf_load_block(rows[0]), vf_load_block(rows[1]),
-             vf_load_block(rows[2])};
-  return r;
-}
-
-static ALWAYS_INLINE triangle_lanes
-block_triangle_lanes(const block_triangle *b) {
-  triangle_lanes t = {
-      block_vec(b->a),
-      {block_vec(b->edge[0]), block_vec(b->edge[1]), block_vec(b->edge[2])},
-      {block_vec(b->moment[0]), block_vec(b->moment[1]),
-       block_vec(b->moment[2])},
-      block_vec(b->n)};
-  return t;
-}
-
 static ALWAYS_INLINE cone_lanes block_cone_lanes(const block_cone *b) {
   cone_lanes c = {block_vec(b->base), block_vec(b->axis),
                   vf_load_block(b->height), vf_load_block(b->rb),
@@ -88,7 +71,7 @@ static void block_nearest_leaf(void *ctx, uint32_t first, uint32_t count,
   const leaf_run *run = &lb->runs[lb->first_run[first]];
   for (uint32_t done = 0; done < count; done += run->count, run++) {
     vmask active = block_lanes(run->count);
-    vfloat t, u = vf_zero(), v = vf_zero(), l1, l2;
+    vfloat t = vf_zero(), u = vf_zero(), v = vf_zero(), l1, l2;
     vmask win, outside = vm_false();
     switch (run->shape) {
     case GLI_SHAPE_SPHERE: {
@@ -103,14 +86,14 @@ static void block_nearest_leaf(void *ctx, uint32_t first, uint32_t count,
       break;
     }
     case GLI_SHAPE_TRIANGLE: {
-      triangle_lanes tl = block_triangle_lanes(&lb->triangles[run->block]);
-      win = triangle_cross_lanes(&tl, r->o, r->d, r->l, active, r->eps,
+      triangle_lanes tl = {1, NULL, &lb->triangles[run->block]};
+      win = triangle_cross_lanes(tl, r->o, r->d, r->l, active, r->eps,
                                  vf_set1(*tmax), r->newton, &t, &u, &v);
       break;
     }
     default: {
       cone_lanes cl = block_cone_lanes(&lb->cones[run->block]);
-      vfloat t1;
+      vfloat t1 = vf_zero();
       vmask m1;
       cone_roots_lanes(&cl, r->o, r->d, active, r->eps, vf_set1(*tmax), &t,
                        &win, &t1, &m1);
@@ -208,20 +191,20 @@ static int block_segment_leaf(void *ctx, uint32_t first, uint32_t count) {
     }
     case GLI_SHAPE_TRIANGLE: {
       const block_triangle *b = &lb->triangles[run->block];
-      triangle_lanes tl = block_triangle_lanes(b);
-      vfloat t, u, v;
-      vmask c = triangle_cross_lanes(&tl, r->o, r->d, r->l, active, r->eps,
+      triangle_lanes tl = {1, NULL, b};
+      vfloat t = vf_zero(), u, v;
+      vmask c = triangle_cross_lanes(tl, r->o, r->d, r->l, active, r->eps,
                                      q->dist, r->newton, &t, &u, &v);
       /* Entering: against the normal, which the unnormalised one shares. */
       if (!block_cross(s, b->prim, GLI_SHAPE_TRIANGLE, c, t,
-                       vf_lt(vv_dot(tl.n, r->d), vf_zero()), q->acc))
+                       vf_lt(vv_dot(tri_normal(tl), r->d), vf_zero()), q->acc))
         return 0;
       break;
     }
     default: {
       const block_cone *b = &lb->cones[run->block];
       cone_lanes cl = block_cone_lanes(b);
-      vfloat t0, t1;
+      vfloat t0 = vf_zero(), t1 = vf_zero();
       vmask m0, m1;
       cone_roots_lanes(&cl, r->o, r->d, active, r->eps, q->dist, &t0, &m0, &t1,
                        &m1);

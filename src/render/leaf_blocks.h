@@ -10,6 +10,7 @@
 #define GLINT_RENDER_LEAF_BLOCKS_H
 
 #include "render/packet_scene.h"
+#include "simd/vvec3.h"
 
 #define BL GLI_BLOCK_LANES
 
@@ -49,6 +50,13 @@ typedef struct leaf_blocks {
   block_cone *cones;
   size_t run_count, sphere_blocks, triangle_blocks, cone_blocks;
 } leaf_blocks;
+
+/* Three rows of a block (a field's x, y and z) as lanes. */
+static inline vvec3 block_vec(const float (*rows)[BL]) {
+  vvec3 r = {vf_load_block(rows[0]), vf_load_block(rows[1]),
+             vf_load_block(rows[2])};
+  return r;
+}
 
 #define leaf_blocks_build ISA_NAME(gli_leaf_blocks_build)
 #define leaf_blocks_free ISA_NAME(gli_leaf_blocks_free)

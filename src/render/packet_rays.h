@@ -14,18 +14,24 @@
 
 /* ---- lanes alone (accel/packet_traverse.h's hybrid walks) -------------- */
 
-/* A packet's rays as scalars, stored when its first lane walks alone. */
+/* Whether the packet walks of this translation unit hand subtrees over.
+ * The stream backends say 0 (render/stream_tracer.c): their packets are
+ * refilled every generation, so few of their lanes part ways (at best 3-5%
+ * faster with hand-overs on balls-s4 and rings-s4), while the mere presence
+ * of the hand-over in the walk's loop cost them 9% on gears-s4. */
+#ifndef PACKET_HAND_OVER
+#define PACKET_HAND_OVER 1
+#endif
+
+/* A packet's rays as scalars, for its lanes that walk alone (stored at
+ * each hand-over, which is rare, rather than for every packet). */
 typedef struct lane_rays {
   SIMD_ALIGN float o[3][LANES], d[3][LANES];
-  int stored;
 } lane_rays;
 
 static ALWAYS_INLINE void lane_rays_store(lane_rays *r, vvec3 o, vvec3 d) {
-  if (r->stored)
-    return;
   vf_store(r->o[0], o.x), vf_store(r->o[1], o.y), vf_store(r->o[2], o.z);
   vf_store(r->d[0], d.x), vf_store(r->d[1], d.y), vf_store(r->d[2], d.z);
-  r->stored = 1;
 }
 
 static ALWAYS_INLINE void lane_ray(const lane_rays *r, int k, vec3 *o,
@@ -56,7 +62,6 @@ typedef struct nearest_query {
   int newton;
   packet_hit *h;
   glint_stats *st;
-  lane_rays lanes;
 } nearest_query;
 
 static ALWAYS_INLINE void nearest_leaf(void *ctx, uint32_t ref, vmask m) {
@@ -66,11 +71,13 @@ static ALWAYS_INLINE void nearest_leaf(void *ctx, uint32_t ref, vmask m) {
 
 /* Each lane of m finds its nearest hit in the subtree alone
  * (render/block_rays.h), and the packet's hits take what it found. */
-static void nearest_alone(void *ctx, uint32_t wide, vmask m) {
+static __attribute__((cold, noinline)) void
+nearest_alone(void *ctx, uint32_t wide, vmask m) {
   nearest_query *q = ctx;
   const scene_r *s = q->ps->s;
   packet_hit *h = q->h;
-  lane_rays_store(&q->lanes, q->o, q->d);
+  lane_rays lanes;
+  lane_rays_store(&lanes, q->o, q->d);
   SIMD_ALIGN float t[LANES], u[LANES], v[LANES];
   SIMD_ALIGN int object[LANES], prim[LANES];
   vf_store(t, h->t), vf_store(u, h->u), vf_store(v, h->v);
@@ -79,7 +86,7 @@ static void nearest_alone(void *ctx, uint32_t wide, vmask m) {
   for (int bits = vm_bits(m); bits; bits &= bits - 1) {
     int k = __builtin_ctz((unsigned)bits);
     vec3 o, d;
-    lane_ray(&q->lanes, k, &o, &d);
+    lane_ray(&lanes, k, &o, &d);
     hit_r hit;
     float tmax = t[k];
     q->st->alone_walks++;
@@ -134,12 +141,13 @@ static ALWAYS_INLINE void packet_nearest(const packet_scene *ps, vvec3 o,
       packet_cone(&ps->cones[i], o, d, active, eps, h);
     return;
   }
-  nearest_query q = {ps, o, d, l, eps, newton, h, st, {.stored = 0}};
+  nearest_query q = {ps, o, d, l, eps, newton, h, st};
   if (ps->alone_lanes == LANES) /* --accel bvh8: every ray alone */
     nearest_alone(&q, 0, active);
   else
     packet_bvh_closest(bvh, o, d, active, eps, &h->t, newton, st, nearest_leaf,
-                       ps->alone_lanes, nearest_alone, &q);
+                       PACKET_HAND_OVER ? ps->alone_lanes : 0, nearest_alone,
+                       &q);
 }
 
 /* ---- shadow rays ------------------------------------------------------ */
@@ -240,16 +248,17 @@ typedef struct segment_query {
   int newton;
   shadow_state *sh;
   glint_stats *st;
-  lane_rays lanes;
 } segment_query;
 
 /* Each lane of m gathers the crossings in the subtree alone
  * (render/block_rays.h): the lanes blocked die, the others' kt and Beer
  * exponents take what they crossed. */
-static void segment_alone(void *ctx, uint32_t wide, vmask m) {
+static __attribute__((cold, noinline)) void
+segment_alone(void *ctx, uint32_t wide, vmask m) {
   segment_query *q = ctx;
   shadow_state *sh = q->sh;
-  lane_rays_store(&q->lanes, q->o, q->d);
+  lane_rays lanes;
+  lane_rays_store(&lanes, q->o, q->d);
   SIMD_ALIGN float kt[3][LANES], ex[3][LANES], dist[LANES];
   vf_store(kt[0], sh->kt.x), vf_store(kt[1], sh->kt.y),
       vf_store(kt[2], sh->kt.z);
@@ -260,7 +269,7 @@ static void segment_alone(void *ctx, uint32_t wide, vmask m) {
   for (int bits = vm_bits(m); bits; bits &= bits - 1) {
     int k = __builtin_ctz((unsigned)bits);
     vec3 o, d;
-    lane_ray(&q->lanes, k, &o, &d);
+    lane_ray(&lanes, k, &o, &d);
     shadow_acc acc = {v3(1, 1, 1), v3(0, 0, 0)};
     q->st->alone_walks++;
     if (!block_segment_below(q->ps, q->ps->blocks, wide, o, d, dist[k],
@@ -328,12 +337,13 @@ static ALWAYS_INLINE vvec3 packet_transmission(const packet_scene *ps, vvec3 o,
       packet_cross_prim(ps, GLI_SHAPE_CONE, (uint32_t)i, o, d, l, dist, eps,
                         newton, &sh);
   } else if (vm_any(sh.alive)) {
-    segment_query q = {ps, o, d, l, dist, eps, newton, &sh, st, {.stored = 0}};
+    segment_query q = {ps, o, d, l, dist, eps, newton, &sh, st};
     if (ps->alone_lanes == LANES) /* --accel bvh8 */
       segment_alone(&q, 0, sh.alive);
     else
       packet_bvh_segment(bvh, o, d, eps, dist, &sh.alive, newton, st,
-                         segment_leaf, ps->alone_lanes, segment_alone, &q);
+                         segment_leaf, PACKET_HAND_OVER ? ps->alone_lanes : 0,
+                         segment_alone, &q);
   }
   vvec3 z = {vf_zero(), vf_zero(), vf_zero()};
   if (vm_none(sh.alive))

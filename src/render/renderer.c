@@ -123,6 +123,16 @@ glint_status gli_render_settings_check(const glint_render_settings *s,
 
 /* ---- creation ------------------------------------------------------------ */
 
+/* How the renderer's layout walks the BVH: the stream backends never hand
+ * subtrees over (render/packet_rays.h), so they need no leaf blocks. */
+static glint_accel walk_of(const glint_renderer *r) {
+  int stream = r->backend == GLINT_BACKEND_STREAM_SSE ||
+               r->backend == GLINT_BACKEND_STREAM_AVX2 ||
+               r->backend == GLINT_BACKEND_STREAM_AVX512;
+  return stream && r->settings.accel == GLINT_ACCEL_BVH ? GLINT_ACCEL_BVH2
+                                                        : r->settings.accel;
+}
+
 /* Scratch for frames up to `depth` on every worker (the stream backends'
  * buffers grow with the depth); the beams need none. */
 static glint_status grow_scratch(glint_renderer *r, int depth,
@@ -180,7 +190,7 @@ glint_status glint_renderer_create(glint_world *world,
   if ((st = gli_world_data(world, r->ops->data, &data, error)) ||
       (settings->accel != GLINT_ACCEL_NONE &&
        (st = gli_world_bvh(world, &bvh, error))) ||
-      (st = r->layout->bind(data, bvh, settings->accel, &r->view, error))) {
+      (st = r->layout->bind(data, bvh, walk_of(r), &r->view, error))) {
     glint_renderer_destroy(r);
     return st;
   }
@@ -223,7 +233,7 @@ glint_status glint_renderer_set_world(glint_renderer *r, glint_world *world,
   if ((st = gli_world_data(world, r->ops->data, &data, error)) ||
       (r->settings.accel != GLINT_ACCEL_NONE &&
        (st = gli_world_bvh(world, &bvh, error))) ||
-      (st = r->layout->bind(data, bvh, r->settings.accel, &view, error)))
+      (st = r->layout->bind(data, bvh, walk_of(r), &view, error)))
     return st;
   if (r->view)
     r->layout->unbind(r->view);

@@ -35,6 +35,12 @@
  * The buffers, their compaction and the pixels' accumulation are
  * render/ray_stream.h's; this file schedules the generations and shades.
  * Compiled once per ISA, like the beam tracer. */
+
+/* Stream packets walk the binary BVH without handing subtrees to single
+ * rays (render/packet_rays.h says why); --accel bvh8 still sends every ray
+ * alone. */
+#define PACKET_HAND_OVER 0
+
 #include "render/backend.h"
 #include "render/packet_shading.h"
 #include "render/primary.h"
