@@ -326,6 +326,71 @@ static void bad_arguments_are_refused(void **state) {
   glint_scene_destroy(scene);
 }
 
+/* A scene of n mirror spheres in a row, and a matte floor. */
+static glint_scene *mirrors(int n) {
+  glint_scene *s;
+  ASSERT_OK(glint_scene_create(&s, &e_));
+  glint_material mirror, matte;
+  glint_material_default(&mirror);
+  glint_material_default(&matte);
+  mirror.kr = 0.8;
+  uint32_t m, f;
+  ASSERT_OK(glint_scene_add_material(s, &mirror, &m, &e_));
+  ASSERT_OK(glint_scene_add_material(s, &matte, &f, &e_));
+  ASSERT_OK(glint_scene_add_plane(s, (glint_vec3){0, 1, 0},
+                                  (glint_vec3){0, 0, 0}, f, &e_));
+  for (int i = 0; i < n; i++)
+    ASSERT_OK(glint_scene_add_sphere(s, (glint_vec3){i, 1, 0}, 0.4, m, &e_));
+  return s;
+}
+
+/* GLINT_BACKEND_AUTO (src/render/backend_choice.c): the widest beams unless
+ * rays scatter: 64 specular primitives from depth 2, 4 from depth 8; and a
+ * renderer runs what glint_backend_choose says. Other backends pass as
+ * glint_backend_resolve gives them. */
+static void auto_picks_streams_where_rays_scatter(void **state) {
+  (void)state;
+  glint_backend beams = glint_backend_resolve(GLINT_BACKEND_AUTO);
+  glint_backend streams = glint_backend_resolve(GLINT_BACKEND_STREAM);
+  static const struct {
+    int spheres, depth, stream;
+  } cases[] = {{64, 2, 1}, {64, 1, 0}, {63, 5, 0}, {63, 8, 1},
+               {4, 8, 1},  {3, 15, 0}, {0, 15, 0}, {200, 5, 1}};
+  for (size_t i = 0; i < sizeof cases / sizeof *cases; i++) {
+    glint_scene *s = mirrors(cases[i].spheres);
+    glint_render_settings rs;
+    glint_render_settings_default(&rs);
+    rs.max_depth = cases[i].depth;
+    rs.width = rs.height = 8;
+    rs.spp = 1;
+    rs.threads = 1;
+    glint_backend want = cases[i].stream ? streams : beams;
+    assert_int_equal(glint_backend_choose(GLINT_BACKEND_AUTO, s, &rs), want);
+    assert_int_equal(glint_backend_choose(GLINT_BACKEND_SCALAR_FLOAT, s, &rs),
+                     GLINT_BACKEND_SCALAR_FLOAT);
+    glint_image *im;
+    glint_stats st;
+    ASSERT_OK(glint_render(s, &rs, &im, &st, &e_));
+    assert_int_equal(st.backend, want);
+    glint_image_destroy(im);
+    glint_scene_destroy(s);
+  }
+  /* The thesis's scenes: beams for Whitted at any depth, streams for
+   * Billiard from depth 8. */
+  glint_scene *w, *b;
+  ASSERT_OK(glint_scene_builtin("whitted", &w, &e_));
+  ASSERT_OK(glint_scene_builtin("billiard", &b, &e_));
+  glint_render_settings rs;
+  glint_render_settings_default(&rs);
+  rs.max_depth = 15;
+  assert_int_equal(glint_backend_choose(GLINT_BACKEND_AUTO, w, &rs), beams);
+  assert_int_equal(glint_backend_choose(GLINT_BACKEND_AUTO, b, &rs), streams);
+  rs.max_depth = 5;
+  assert_int_equal(glint_backend_choose(GLINT_BACKEND_AUTO, b, &rs), beams);
+  glint_scene_destroy(w);
+  glint_scene_destroy(b);
+}
+
 int main(void) {
   const struct CMUnitTest tests[] = {
       cmocka_unit_test(frames_equal_glint_render),
@@ -333,6 +398,7 @@ int main(void) {
       cmocka_unit_test(tiles_cover_the_frame_once),
       cmocka_unit_test(renderers_share_a_world),
       cmocka_unit_test(bad_arguments_are_refused),
+      cmocka_unit_test(auto_picks_streams_where_rays_scatter),
   };
   return cmocka_run_group_tests(tests, NULL, NULL);
 }
