@@ -83,22 +83,27 @@ static inline void ray_nearest_wide_leaf(void *ctx, uint32_t first,
     ray_nearest_leaf(ctx, refs[k], tmax);
 }
 
-/* The nearest hit in the wide BVH (accel/wide_bvh.h), narrowing *tmax. */
-static inline int ray_nearest_wide(const scene_r *s, vec3 o, vec3 d, vec3 l,
-                                   real *tmax, hit_r *hit) {
+/* The nearest hit in the wide BVH (accel/wide_bvh.h), narrowing *tmax.
+ * Apart (noinline): its walk's stack of several KiB then stays out of the
+ * frame of the query every ray makes. The ray comes by address (o, d and
+ * l): by value, every query packed its vectors for the call through memory
+ * in a way the CPU cannot forward (the scalar tracer 25% slower on
+ * Whitted, which never walks the wide tree). */
+static __attribute__((noinline)) int
+ray_nearest_wide(const scene_r *s, const vec3 ray[3], real *tmax, hit_r *hit) {
   int found = 0;
   uint64_t tests = 0;
-  ray_nearest_query q = {s, o, d, l, hit, &found};
-  wide_closest(s->bvh, 0, o, d, s->eps, tmax, ray_nearest_wide_leaf, &q,
-               &tests);
+  ray_nearest_query q = {s, ray[0], ray[1], ray[2], hit, &found};
+  wide_closest(s->bvh, 0, ray[0], ray[1], s->eps, tmax, ray_nearest_wide_leaf,
+               &q, &tests);
   return found;
 }
 
 /* The nearest hit along o + t d, eps < t < tmax: the planes (unbounded,
  * outside the BVH), then the binary BVH, or the wide one (--accel bvh8),
  * or every primitive (--accel none, the thesis's brute force, §4.3). */
-static inline int ray_nearest(const scene_r *s, vec3 o, vec3 d, real tmax,
-                              hit_r *hit) {
+static inline __attribute__((always_inline)) int
+ray_nearest(const scene_r *s, vec3 o, vec3 d, real tmax, hit_r *hit) {
   vec3 l = triangle_ray_moment(s->tri_origin, o, d);
   int found = 0;
   real t;
@@ -118,8 +123,10 @@ static inline int ray_nearest(const scene_r *s, vec3 o, vec3 d, real tmax,
       hit_prim(s, GLI_SHAPE_CONE, (uint32_t)i, o, d, l, &tmax, hit, &found);
     return found;
   }
-  if (s->walk_wide)
-    return ray_nearest_wide(s, o, d, l, &tmax, hit) | found;
+  if (s->walk_wide) {
+    const vec3 ray[3] = {o, d, l};
+    return ray_nearest_wide(s, ray, &tmax, hit) | found;
+  }
   ray_nearest_query q = {s, o, d, l, hit, &found};
   bvh_closest(s->bvh, o, d, s->eps, &tmax, ray_nearest_leaf, &q);
   return found;
@@ -216,6 +223,18 @@ static inline int ray_segment_wide_leaf(void *ctx, uint32_t first,
   return 1;
 }
 
+/* The crossings in the wide BVH; 0 when one is opaque. Apart, as
+ * ray_nearest_wide. */
+static __attribute__((noinline)) int ray_segment_wide(const scene_r *s,
+                                                      const vec3 ray[3],
+                                                      real dist,
+                                                      shadow_acc *acc) {
+  uint64_t tests = 0;
+  ray_segment_query q = {s, acc, ray[0], ray[1], ray[2], dist};
+  return wide_segment(s->bvh, 0, ray[0], ray[1], s->eps, dist,
+                      ray_segment_wide_leaf, &q, &tests);
+}
+
 /* The light a shadow ray's crossings let through: kt times Beer's law. */
 static inline vec3 shadow_acc_result(const shadow_acc *acc) {
   if (acc->exponent.x == 0 && acc->exponent.y == 0 && acc->exponent.z == 0)
@@ -227,8 +246,8 @@ static inline vec3 shadow_acc_result(const shadow_acc *acc) {
 
 /* docs/specification.md §4's transmission from o along unit d over dist:
  * the planes, then the BVH as ray_nearest walks it. */
-static inline vec3 ray_transmission(const scene_r *s, vec3 o, vec3 d,
-                                    real dist) {
+static inline __attribute__((always_inline)) vec3
+ray_transmission(const scene_r *s, vec3 o, vec3 d, real dist) {
   vec3 l = triangle_ray_moment(s->tri_origin, o, d);
   shadow_acc acc = {v3(1, 1, 1), v3(0, 0, 0)};
   const vec3 black = v3(0, 0, 0);
@@ -250,10 +269,8 @@ static inline vec3 ray_transmission(const scene_r *s, vec3 o, vec3 d,
       if (!cross_prim(s, &acc, GLI_SHAPE_CONE, (uint32_t)i, o, d, l, dist))
         return black;
   } else if (s->walk_wide) {
-    uint64_t tests = 0;
-    ray_segment_query q = {s, &acc, o, d, l, dist};
-    if (!wide_segment(s->bvh, 0, o, d, s->eps, dist, ray_segment_wide_leaf, &q,
-                      &tests))
+    const vec3 ray[3] = {o, d, l};
+    if (!ray_segment_wide(s, ray, dist, &acc))
       return black;
   } else {
     ray_segment_query q = {s, &acc, o, d, l, dist};
