@@ -34,7 +34,8 @@ static void usage(FILE *f) {
       "      --schedule NAME  dynamic (default): units (tiles or frames)\n"
       "                       handed out as ranks finish; static: unit i to\n"
       "                       rank i mod N, the baseline\n"
-      "      --tile N         tile side in pixels, 8..4096 (default: 64)\n"
+      "      --tile N         tile side in pixels, a multiple of 16 up to\n"
+      "                       4096 (default: 64)\n"
       "      --timeout S      a rank that owes work and sends nothing for S\n"
       "                       seconds ends the job (default: 120); more than\n"
       "                       one tile or frame takes\n"
@@ -166,8 +167,18 @@ static int parse(int argc, char **argv, mpi_options *o) {
         return EXIT_USAGE;
       }
       o->dynamic = strcmp(v, "dynamic") == 0;
-    } else if ((r = arg_int(&c, NULL, "--tile", 8, 4096, &o->tile_size))) {
+    } else if ((r = arg_int(&c, NULL, "--tile", GLINT_TILE_SIZE, 4096,
+                            &o->tile_size))) {
       if (r == ARG_BAD) {
+        free(rest);
+        return EXIT_USAGE;
+      }
+      if (o->tile_size % GLINT_TILE_SIZE) {
+        /* glint_render's tiles inside ours: every backend's image is then
+         * glint render's (glint.h, GLINT_TILE_SIZE) */
+        cli_error("--tile: %d is not a multiple of %d, the renderer's own "
+                  "tile",
+                  o->tile_size, GLINT_TILE_SIZE);
         free(rest);
         return EXIT_USAGE;
       }

@@ -604,6 +604,15 @@ void glint_renderer_destroy(glint_renderer *renderer);
 glint_status glint_renderer_set_world(glint_renderer *renderer,
                                       glint_world *world, glint_error *error);
 
+/* A frame (or its region) is rendered in tiles of GLINT_TILE_SIZE pixels
+ * square, from the region's top-left corner. Each pixel's image is the same
+ * whatever the threads; the stream backends' also depends on which pixels
+ * share its tile (they accumulate a pixel's light in the order its tile's
+ * rays come), so a caller that renders one image as several regions gets
+ * glint_render's image byte for byte with every backend only when the
+ * regions' corners lie on that grid. */
+#define GLINT_TILE_SIZE 16
+
 /* One finished tile, handed over while the frame renders: pixels
  * [x, x + width) x [y, y + height) of the frame (region coordinates are
  * frame pixels), linear RGB, already stored in the film. `pixels` points at

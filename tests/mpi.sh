@@ -60,7 +60,7 @@ run() { # $1: ranks; the rest: glint-mpi's arguments
 # The same image: ranks x tile sizes x schedules.
 "$glint" render whitted -W 161 -H 119 -s 2 -o ref.png -q || fail "glint render"
 for n in 1 2 3 4; do
-  for tile in 16 50; do
+  for tile in 16 48; do
     for schedule in dynamic static; do
       run $n whitted -W 161 -H 119 -s 2 --tile $tile --schedule $schedule \
         -o "t$n-$tile-$schedule.png" >run.out 2>run.err ||
@@ -70,12 +70,12 @@ for n in 1 2 3 4; do
     done
   done
 done
-grep -q "^t4-50-static.png: 161x119, .*, 4 ranks, static schedule, 12 tiles of 50 pixels" run.out ||
+grep -q "^t4-48-static.png: 161x119, .*, 4 ranks, static schedule, 12 tiles of 48 pixels" run.out ||
   fail "the summary: $(head -1 run.out)"
 
 # A region, into a linear film.
 "$glint" render billiard -W 200 -H 150 -s 1 --region 20,30,101,77 -o ref.pfm -q
-run 3 billiard -W 200 -H 150 -s 1 --region 20,30,101,77 --tile 24 -o r.pfm -q \
+run 3 billiard -W 200 -H 150 -s 1 --region 20,30,101,77 --tile 32 -o r.pfm -q \
   >run.out 2>run.err || fail "region: exit status $?"
 cmp -s ref.pfm r.pfm || fail "region: not glint render's film"
 
@@ -138,6 +138,10 @@ run 2 whitted --schedule sometimes >run.out 2>run.err
 [ $? -ne 0 ] || fail "a bad --schedule: exit status 0"
 [ "$(grep -c "schedule: 'sometimes' is not dynamic or static" run.err)" -eq 1 ] ||
   fail "a bad --schedule: not one message"
+run 2 whitted --tile 24 >run.out 2>run.err
+[ $? -ne 0 ] || fail "a --tile off the renderer's grid: exit status 0"
+[ "$(grep -c "tile: 24 is not a multiple of 16" run.err)" -eq 1 ] ||
+  fail "a --tile off the renderer's grid: not one message"
 
 # The pid of rank $1 of the running job (ranks run in this test's folder).
 rank_pid() {

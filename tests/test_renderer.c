@@ -345,7 +345,7 @@ static glint_scene *mirrors(int n) {
 }
 
 /* GLINT_BACKEND_AUTO (src/render/backend_choice.c): the widest beams unless
- * rays scatter: 64 specular primitives from depth 2, 4 from depth 8; and a
+ * rays scatter: 64 specular primitives from depth 2, 4 from depth 5; and a
  * renderer runs what glint_backend_choose says. Other backends pass as
  * glint_backend_resolve gives them. */
 static void auto_picks_streams_where_rays_scatter(void **state) {
@@ -354,8 +354,8 @@ static void auto_picks_streams_where_rays_scatter(void **state) {
   glint_backend streams = glint_backend_resolve(GLINT_BACKEND_STREAM);
   static const struct {
     int spheres, depth, stream;
-  } cases[] = {{64, 2, 1}, {64, 1, 0}, {63, 5, 0}, {63, 8, 1},
-               {4, 8, 1},  {3, 15, 0}, {0, 15, 0}, {200, 5, 1}};
+  } cases[] = {{64, 2, 1}, {64, 1, 0}, {63, 4, 0}, {63, 5, 1},
+               {4, 5, 1},  {3, 15, 0}, {0, 15, 0}, {200, 5, 1}};
   for (size_t i = 0; i < sizeof cases / sizeof *cases; i++) {
     glint_scene *s = mirrors(cases[i].spheres);
     glint_render_settings rs;
@@ -376,7 +376,7 @@ static void auto_picks_streams_where_rays_scatter(void **state) {
     glint_scene_destroy(s);
   }
   /* The thesis's scenes: beams for Whitted at any depth, streams for
-   * Billiard from depth 8. */
+   * Billiard from depth 5. */
   glint_scene *w, *b;
   ASSERT_OK(glint_scene_builtin("whitted", &w, &e_));
   ASSERT_OK(glint_scene_builtin("billiard", &b, &e_));
@@ -385,7 +385,7 @@ static void auto_picks_streams_where_rays_scatter(void **state) {
   rs.max_depth = 15;
   assert_int_equal(glint_backend_choose(GLINT_BACKEND_AUTO, w, &rs), beams);
   assert_int_equal(glint_backend_choose(GLINT_BACKEND_AUTO, b, &rs), streams);
-  rs.max_depth = 5;
+  rs.max_depth = 4;
   assert_int_equal(glint_backend_choose(GLINT_BACKEND_AUTO, b, &rs), beams);
   glint_scene_destroy(w);
   glint_scene_destroy(b);

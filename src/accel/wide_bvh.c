@@ -206,31 +206,41 @@ static uint32_t collapse(collapser *c, const slot *from, int depth) {
 
 /* Marks the binary nodes where a packet may hand its few remaining lanes a
  * subtree: the roots of wide nodes (the others have no wide counterpart)
- * whose subtrees hold a sphere or a cone. Where only triangles lie, single
- * rays do not pay: a packet's triangle test is cheap, a few products per
- * lane, while its sphere and cone tests take square roots and divisions
- * for every lane (measured: gears-s4, all triangles, 8% slower with
- * hand-overs; balls-s4 and rings-s4 11-15% faster; docs/performance.md). */
+ * whose subtrees hold a sphere or a cone among at least HAND_OVER_REFS
+ * references. Where only triangles lie, single rays do not pay: a packet's
+ * triangle test is cheap, a few products per lane, while its sphere and
+ * cone tests take square roots and divisions for every lane (gears-s4, all
+ * triangles, was 8% slower with hand-overs; balls-s4 and rings-s4 11-15%
+ * faster). Nor in small subtrees, where a packet's few box tests cost less
+ * than its lanes' set-up (the stress scenes mirror-room and glass-in-glass,
+ * 52 and 108 primitives, were 11-16% slower with hand-overs everywhere;
+ * from 128 references none lost and sticks gained most: README,
+ * "Performance"). */
+#define HAND_OVER_REFS 128
+
 static void mark_hand_overs(gli_bvh *binary, const gli_wide_bvh *wide) {
-  /* children come after their parents: one backward pass */
-  uint8_t *round = malloc(binary->node_count);
-  for (uint32_t i = binary->node_count; i-- > 0;) {
+  /* children come after their parents: one backward pass, counting each
+   * subtree's references (top bit: a sphere or cone among them) */
+  uint32_t *below = malloc(binary->node_count * sizeof *below);
+  const uint32_t round = 0x80000000u;
+  for (uint32_t i = binary->node_count; i-- > 0 && below;) {
     gli_bvh_node *n = &binary->nodes[i];
-    uint8_t r = 0;
     if (n->count) {
+      below[i] = n->count;
       for (uint32_t k = n->offset; k < n->offset + n->count; k++)
-        r |= GLI_REF_SHAPE(binary->refs[k]) != GLI_SHAPE_TRIANGLE;
-    } else if (round) {
-      r = round[n->offset] | round[n->offset + 1];
+        if (GLI_REF_SHAPE(binary->refs[k]) != GLI_SHAPE_TRIANGLE)
+          below[i] |= round;
+    } else {
+      uint32_t a = below[n->offset], b = below[n->offset + 1];
+      below[i] = ((a & ~round) + (b & ~round)) | ((a | b) & round);
     }
-    if (round)
-      round[i] = r;
-    n->flags =
-        (uint8_t)(n->count == 0 && r && wide->of_binary[i] != GLI_WIDE_NONE
-                      ? GLI_NODE_HAND_OVER
-                      : 0);
+    n->flags = (uint8_t)(n->count == 0 && (below[i] & round) &&
+                                 (below[i] & ~round) >= HAND_OVER_REFS &&
+                                 wide->of_binary[i] != GLI_WIDE_NONE
+                             ? GLI_NODE_HAND_OVER
+                             : 0);
   }
-  free(round);
+  free(below); /* (out of memory: no hand-overs, still correct) */
 }
 
 glint_status gli_wide_build(gli_bvh *binary, const glint_scene *scene,

@@ -3,22 +3,24 @@
  * packet's rays in registers from the camera to the last bounce and win
  * while those rays stay together; ray streams regroup the rays of every
  * generation into full packets, at the cost of storing them, and win once
- * rays scatter: after many bounces among specular surfaces. Measured (one
- * thread, glint bench, docs/performance.md "The default backend"): the
- * beams are 10-23% faster on Whitted at every depth, on Billiard and Giza
- * up to depth 5 and on the SPD scenes with few specular surfaces
- * (mount-s6, tetra-s6); the streams are 1.2-2.5x faster on Billiard and
- * Giza from depth 10 and 1.2-1.5x on the SPD scenes full of mirrors (balls,
- * gears, rings, teapot) at depth 5. */
+ * rays scatter: after bounces among many specular surfaces. Measured (one
+ * thread, scripts/bench-compare.sh; README, "Performance"): the beams are
+ * 5-20% faster on Whitted (one mirror) at every depth and on Billiard and
+ * Giza up to depth 3; the two are level there at depth 5; the streams are
+ * 1.2-2.5x faster on Billiard and Giza from depth 10, 1.2-1.5x on the SPD
+ * scenes full of mirrors (balls, gears, rings, teapot) at depth 5 and 3x on
+ * the mirror-room stress scene at depth 15. */
 #include "core/error.h"
 #include "render/backend.h"
 #include "scene/scene.h"
 
 /* Specular primitives (kr or kt > 0, planes aside) that make a scene's rays
- * scatter at any depth from 2, and the fewer that do from depth 8. */
+ * scatter at any depth from 2, and the fewer that do from depth 5 (where
+ * Billiard's and Giza's beams and streams are level; the streams 1.2x
+ * faster on the mirror-room stress scene). */
 #define SCATTER_PRIMS 64
 #define SCATTER_PRIMS_DEEP 4
-#define DEEP 8
+#define DEEP 5
 
 static size_t specular_prims(const glint_scene *scene) {
   size_t n = 0;

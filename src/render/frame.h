@@ -10,7 +10,7 @@
 /* Tiles are the unit of work handed to threads. 16x16 pixels divides into
  * every beam shape (2x2, 4x2, 4x4) and keeps 1200 tiles in a 640x480 frame
  * for load balancing. */
-#define GLI_TILE_SIZE 16
+#define GLI_TILE_SIZE GLINT_TILE_SIZE
 
 /* The pinhole camera of docs/specification.md §2 as an orthonormal basis,
  * computed once per frame in double whatever the precision (see
