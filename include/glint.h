@@ -410,7 +410,9 @@ typedef enum glint_accel {
   GLINT_ACCEL_BVH = 0,
   GLINT_ACCEL_NONE, /* every ray against every object: the thesis */
   GLINT_ACCEL_BVH2, /* the binary tree only: packets never split */
-  GLINT_ACCEL_BVH8, /* every ray alone through the wide tree */
+  /* Every ray alone through the wide tree: the scalar and beam backends
+   * (the stream backends walk the binary tree, as with BVH2). */
+  GLINT_ACCEL_BVH8,
   GLINT_ACCEL_COUNT
 } glint_accel;
 const char *glint_accel_name(glint_accel accel);

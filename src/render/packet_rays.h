@@ -14,11 +14,13 @@
 
 /* ---- lanes alone (accel/packet_traverse.h's hybrid walks) -------------- */
 
-/* Whether the packet walks of this translation unit hand subtrees over.
- * The stream backends say 0 (render/stream_tracer.c): their packets are
- * refilled every generation, so few of their lanes part ways (at best 3-5%
- * faster with hand-overs on balls-s4 and rings-s4), while the mere presence
- * of the hand-over in the walk's loop cost them 9% on gears-s4. */
+/* Whether the packet walks of this translation unit hand rays over to the
+ * wide tree (hybrid walks, --accel bvh8). The stream backends say 0
+ * (render/stream_tracer.c): their packets are refilled every generation, so
+ * few of their lanes part ways (at best 3-5% faster with hand-overs on
+ * balls-s4 and rings-s4), while the mere presence of the hand-over cost them
+ * 9% on gears-s4 (in the walk's loop) and 10% with AVX2 on small scenes (the
+ * calls for bvh8, outside it). */
 #ifndef PACKET_HAND_OVER
 #define PACKET_HAND_OVER 1
 #endif
@@ -142,7 +144,7 @@ static ALWAYS_INLINE void packet_nearest(const packet_scene *ps, vvec3 o,
     return;
   }
   nearest_query q = {ps, o, d, l, eps, newton, h, st};
-  if (ps->alone_lanes == LANES) /* --accel bvh8: every ray alone */
+  if (PACKET_HAND_OVER && ps->alone_lanes == LANES) /* --accel bvh8 */
     nearest_alone(&q, 0, active);
   else
     packet_bvh_closest(bvh, o, d, active, eps, &h->t, newton, st, nearest_leaf,
@@ -338,7 +340,7 @@ static ALWAYS_INLINE vvec3 packet_transmission(const packet_scene *ps, vvec3 o,
                         newton, &sh);
   } else if (vm_any(sh.alive)) {
     segment_query q = {ps, o, d, l, dist, eps, newton, &sh, st};
-    if (ps->alone_lanes == LANES) /* --accel bvh8 */
+    if (PACKET_HAND_OVER && ps->alone_lanes == LANES) /* --accel bvh8 */
       segment_alone(&q, 0, sh.alive);
     else
       packet_bvh_segment(bvh, o, d, eps, dist, &sh.alive, newton, st,

@@ -36,9 +36,8 @@
  * render/ray_stream.h's; this file schedules the generations and shades.
  * Compiled once per ISA, like the beam tracer. */
 
-/* Stream packets walk the binary BVH without handing subtrees to single
- * rays (render/packet_rays.h says why); --accel bvh8 still sends every ray
- * alone. */
+/* Stream packets walk the binary BVH and never hand rays to the wide one,
+ * whatever --accel says (render/packet_rays.h says why). */
 #define PACKET_HAND_OVER 0
 
 #include "render/backend.h"
