@@ -132,6 +132,7 @@ static void wide_tree_is_sound(void **state) {
       assert_true(holds(b.nodes[i].lo, b.nodes[i].hi, lo, hi));
     }
     assert_int_equal(b.wide.of_binary[0], 0); /* the roots */
+    assert_int_equal(marked, b.wide.hand_overs);
     printf("%-26s binary %u nodes (depth %d), wide %u nodes (depth %d, "
            "%.1f KiB, %.2f ms), %u named, %u hand-over points\n",
            scenes[si], b.node_count, b.depth, b.wide.node_count, b.wide.depth,

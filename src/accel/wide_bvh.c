@@ -218,7 +218,7 @@ static uint32_t collapse(collapser *c, const slot *from, int depth) {
  * "Performance"). */
 #define HAND_OVER_REFS 128
 
-static void mark_hand_overs(gli_bvh *binary, const gli_wide_bvh *wide) {
+static void mark_hand_overs(gli_bvh *binary, gli_wide_bvh *wide) {
   /* children come after their parents: one backward pass, counting each
    * subtree's references (top bit: a sphere or cone among them) */
   uint32_t *below = malloc(binary->node_count * sizeof *below);
@@ -239,6 +239,7 @@ static void mark_hand_overs(gli_bvh *binary, const gli_wide_bvh *wide) {
                                  wide->of_binary[i] != GLI_WIDE_NONE
                              ? GLI_NODE_HAND_OVER
                              : 0);
+    wide->hand_overs += n->flags & GLI_NODE_HAND_OVER;
   }
   free(below); /* (out of memory: no hand-overs, still correct) */
 }

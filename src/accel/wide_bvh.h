@@ -46,6 +46,9 @@ typedef struct gli_wide_bvh {
   uint32_t *refs;
   uint32_t ref_count;
   int depth;
+  /* Binary nodes marked GLI_NODE_HAND_OVER (0: packets never hand over,
+   * and take the walk without it). */
+  uint32_t hand_overs;
   double build_seconds;
 } gli_wide_bvh;
 

@@ -117,6 +117,19 @@ nearest_alone(void *ctx, uint32_t wide, vmask m) {
   h->inside = vm_from_bits(inside);
 }
 
+/* The hybrid closest-hit walk (--accel bvh, where the tree has hand-over
+ * points) or every lane alone (bvh8): apart from packet_nearest, so that
+ * the walk every other packet takes, inlined there, holds no call. */
+static __attribute__((noinline)) void
+nearest_hybrid(nearest_query *q, const gli_bvh *bvh, vmask active) {
+  const packet_scene *ps = q->ps;
+  if (ps->alone_lanes == LANES)
+    nearest_alone(q, 0, active);
+  else
+    packet_bvh_closest(bvh, q->o, q->d, active, q->eps, &q->h->t, q->newton,
+                       q->st, nearest_leaf, ps->alone_lanes, nearest_alone, q);
+}
+
 /* The lanes' nearest hits: the planes (unbounded, outside the BVH), then
  * the BVH's primitives, or every primitive when there is no BVH (the
  * thesis's brute force, §4.3). */
@@ -144,12 +157,11 @@ static ALWAYS_INLINE void packet_nearest(const packet_scene *ps, vvec3 o,
     return;
   }
   nearest_query q = {ps, o, d, l, eps, newton, h, st};
-  if (PACKET_HAND_OVER && ps->alone_lanes == LANES) /* --accel bvh8 */
-    nearest_alone(&q, 0, active);
+  if (PACKET_HAND_OVER && ps->alone_lanes)
+    nearest_hybrid(&q, bvh, active);
   else
     packet_bvh_closest(bvh, o, d, active, eps, &h->t, newton, st, nearest_leaf,
-                       PACKET_HAND_OVER ? ps->alone_lanes : 0, nearest_alone,
-                       &q);
+                       0, nearest_alone, &q);
 }
 
 /* ---- shadow rays ------------------------------------------------------ */
@@ -303,6 +315,18 @@ static ALWAYS_INLINE void segment_leaf(void *ctx, uint32_t ref, vmask alive) {
                     q->l, q->dist, q->eps, q->newton, q->sh);
 }
 
+/* The hybrid segment walk, apart as nearest_hybrid. */
+static __attribute__((noinline)) void segment_hybrid(segment_query *q,
+                                                     const gli_bvh *bvh) {
+  const packet_scene *ps = q->ps;
+  if (ps->alone_lanes == LANES)
+    segment_alone(q, 0, q->sh->alive);
+  else
+    packet_bvh_segment(bvh, q->o, q->d, q->eps, q->dist, &q->sh->alive,
+                       q->newton, q->st, segment_leaf, ps->alone_lanes,
+                       segment_alone, q);
+}
+
 static ALWAYS_INLINE vvec3 packet_transmission(const packet_scene *ps, vvec3 o,
                                                vvec3 d, vfloat dist,
                                                vmask active, glint_math math,
@@ -340,12 +364,11 @@ static ALWAYS_INLINE vvec3 packet_transmission(const packet_scene *ps, vvec3 o,
                         newton, &sh);
   } else if (vm_any(sh.alive)) {
     segment_query q = {ps, o, d, l, dist, eps, newton, &sh, st};
-    if (PACKET_HAND_OVER && ps->alone_lanes == LANES) /* --accel bvh8 */
-      segment_alone(&q, 0, sh.alive);
+    if (PACKET_HAND_OVER && ps->alone_lanes)
+      segment_hybrid(&q, bvh);
     else
       packet_bvh_segment(bvh, o, d, eps, dist, &sh.alive, newton, st,
-                         segment_leaf, PACKET_HAND_OVER ? ps->alone_lanes : 0,
-                         segment_alone, &q);
+                         segment_leaf, 0, segment_alone, &q);
   }
   vvec3 z = {vf_zero(), vf_zero(), vf_zero()};
   if (vm_none(sh.alive))

@@ -155,8 +155,9 @@ static glint_status bind(const void *data, const gli_bvh *bvh,
   v->s = *ps->s;
   v->s.bvh = bvh;
   v->ps.s = &v->s;
-  v->ps.alone_lanes = !bvh->wide.nodes            ? 0
-                      : accel == GLINT_ACCEL_BVH  ? GLI_HYBRID_LANES
+  v->ps.alone_lanes = !bvh->wide.nodes ? 0
+                      : accel == GLINT_ACCEL_BVH
+                          ? (bvh->wide.hand_overs ? GLI_HYBRID_LANES : 0)
                       : accel == GLINT_ACCEL_BVH8 ? LANES
                                                   : 0;
   if (v->ps.alone_lanes) {
