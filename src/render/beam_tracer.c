@@ -9,7 +9,20 @@
  * twice more inside: once with the default maths as compile-time constants
  * (minimax pow/exp, Newton-refined rcp), which is the fast path, and once
  * reading --math and --no-newton at run time, for the experiments of the
- * thesis's §5.4. */
+ * thesis's §5.4.
+ *
+ * And it is compiled twice per ISA: render/beam_tracer_plain.c includes it
+ * with BEAM_PLAIN, for views whose BVH has no hand-over points
+ * (accel/packet_traverse.h), whose tiles then take a tracer without the
+ * hybrid walks: the walks' mere presence cost the smallest renders 5-10%
+ * (Whitted and Giza at depth 1, tetra-s6). */
+#ifndef BEAM_PLAIN
+#define BEAM_PLAIN 0
+#endif
+#if BEAM_PLAIN
+#define PACKET_HAND_OVER 0
+#endif
+
 #include "render/backend.h"
 #include "render/packet_shading.h"
 #include "render/primary.h"
@@ -184,9 +197,24 @@ static ALWAYS_INLINE void render_tile_body(const packet_scene *ps,
     }
 }
 
+#define render_tile_plain ISA_NAME(gli_beam_render_tile_plain)
+void render_tile_plain(const void *view, const frame_params *frame,
+                       const tile_rect *tile, void *scratch, float *rgb,
+                       glint_stats *st);
+
+#if BEAM_PLAIN
+void render_tile_plain(const void *view, const frame_params *frame,
+                       const tile_rect *tile, void *scratch, float *rgb,
+                       glint_stats *st) {
+#else
 static void render_tile(const void *view, const frame_params *frame,
                         const tile_rect *tile, void *scratch, float *rgb,
                         glint_stats *st) {
+  if (!((const packet_scene *)view)->alone_lanes) {
+    render_tile_plain(view, frame, tile, scratch, rgb, st);
+    return;
+  }
+#endif
   (void)scratch;
   const packet_scene *ps = view;
   if (frame->math == GLINT_MATH_MINIMAX && frame->rcp_newton)
@@ -196,6 +224,7 @@ static void render_tile(const void *view, const frame_params *frame,
                      trace_generic);
 }
 
+#if !BEAM_PLAIN
 /* Primary beams' nearest hits only, for glint_trace_primary. */
 static uint64_t primary_tile(const void *view, const frame_params *frame,
                              const tile_rect *tile, glint_stats *st) {
@@ -244,3 +273,4 @@ void ISA_NAME(gli_beam_nearest_hit)(const void *view, const float *o,
     object[i] = ob[i];
   }
 }
+#endif
