@@ -35,34 +35,6 @@ static const struct {
     {GLINT_BACKEND_AVX512, 16, gli_beam_nearest_hit_avx512},
 };
 
-static int object_of(const scene_r *s, const hit_r *h) {
-  switch (h->shape) {
-  case GLI_SHAPE_SPHERE: return (int)s->spheres[h->prim].object;
-  case GLI_SHAPE_PLANE: return (int)s->planes[h->prim].object;
-  case GLI_SHAPE_CONE: return (int)s->cones[h->prim].object;
-  default: return (int)s->triangles[h->prim].object;
-  }
-}
-
-/* Rays from inside the scene's bounds (and its camera) in all directions. */
-static void make_ray(const glint_scene_info *info, unsigned long long *seed,
-                     float o[3], float d[3]) {
-  if (uniform(seed) < 0.3) {
-    o[0] = (float)info->camera.from.x;
-    o[1] = (float)info->camera.from.y;
-    o[2] = (float)info->camera.from.z;
-  } else {
-    const double *lo = &info->bounds_min.x, *hi = &info->bounds_max.x;
-    for (int k = 0; k < 3; k++)
-      o[k] = (float)(lo[k] + (hi[k] - lo[k]) * (1.2 * uniform(seed) - 0.1));
-  }
-  double z = 2 * uniform(seed) - 1, a = 6.283185307179586 * uniform(seed);
-  double r = sqrt(1 - z * z);
-  d[0] = (float)(r * cos(a));
-  d[1] = (float)(r * sin(a));
-  d[2] = (float)z;
-}
-
 static void compare(const char *scene, const char *backend, int obj_a,
                     float t_a, int obj_b, float t_b, int *ties) {
   int same_t = obj_a >= 0 && obj_b >= 0 &&
@@ -199,15 +171,6 @@ static void renders_equal(void **state) {
     }
     glint_scene_destroy(g);
   }
-}
-
-/* Whether box a holds box b. */
-static int holds(const float alo[3], const float ahi[3], const float blo[3],
-                 const float bhi[3]) {
-  for (int k = 0; k < 3; k++)
-    if (blo[k] < alo[k] || bhi[k] > ahi[k])
-      return 0;
-  return 1;
 }
 
 /* Every inner node of `b` comes before its children and holds their boxes,

@@ -34,14 +34,6 @@
 
 /* ---- the tree ----------------------------------------------------------- */
 
-static int holds(const float lo[3], const float hi[3], const float blo[3],
-                 const float bhi[3]) {
-  for (int k = 0; k < 3; k++)
-    if (blo[k] < lo[k] || bhi[k] > hi[k])
-      return 0;
-  return 1;
-}
-
 /* Child k of wide node n as a box. */
 static void child_box(const gli_wide_node *n, int k, float lo[3], float hi[3]) {
   for (int a = 0; a < 3; a++)
@@ -197,35 +189,6 @@ static void row_of_spheres_hits_as_computed(void **state) {
 
 /* ---- random rays -------------------------------------------------------- */
 
-static void make_ray(const glint_scene_info *info, unsigned long long *seed,
-                     vec3 *o, vec3 *d) {
-  double c[3] = {(info->bounds_min.x + info->bounds_max.x) / 2,
-                 (info->bounds_min.y + info->bounds_max.y) / 2,
-                 (info->bounds_min.z + info->bounds_max.z) / 2};
-  double ext[3] = {info->bounds_max.x - info->bounds_min.x,
-                   info->bounds_max.y - info->bounds_min.y,
-                   info->bounds_max.z - info->bounds_min.z};
-  double p[3], q[3], len = 0;
-  for (int k = 0; k < 3; k++) {
-    p[k] = c[k] + (uniform(seed) - 0.5) * 1.5 * ext[k];
-    q[k] = c[k] + (uniform(seed) - 0.5) * 0.8 * ext[k];
-    len += (q[k] - p[k]) * (q[k] - p[k]);
-  }
-  len = sqrt(len);
-  *o = v3((real)p[0], (real)p[1], (real)p[2]);
-  *d = v3((real)((q[0] - p[0]) / len), (real)((q[1] - p[1]) / len),
-          (real)((q[2] - p[2]) / len));
-}
-
-static uint32_t object_of(const scene_r *s, const hit_r *h) {
-  switch (h->shape) {
-  case GLI_SHAPE_SPHERE: return s->spheres[h->prim].object;
-  case GLI_SHAPE_PLANE: return s->planes[h->prim].object;
-  case GLI_SHAPE_TRIANGLE: return s->triangles[h->prim].object;
-  default: return s->cones[h->prim].object;
-  }
-}
-
 static void wide_hits_equal_binary_and_brute_force(void **state) {
   const char *const *scenes = ((const scene_list *)*state)->names;
   for (size_t si = 0; scenes[si]; si++) {
@@ -240,8 +203,9 @@ static void wide_hits_equal_binary_and_brute_force(void **state) {
     unsigned long long seed = 4242 + si;
     int ties = 0, shadow_differ = 0;
     for (int i = 0; i < RAYS; i++) {
-      vec3 o, d;
-      make_ray(&info, &seed, &o, &d);
+      float of[3], df[3];
+      make_ray(&info, &seed, of, df);
+      vec3 o = v3(of[0], of[1], of[2]), d = v3(df[0], df[1], df[2]);
       hit_r hw, hb, hn;
       int fw = scalar_nearest(wide, o, d, REAL_MAX, &hw);
       int fb = scalar_nearest(bin, o, d, REAL_MAX, &hb);
