@@ -19,8 +19,8 @@
 
 /* The lanes at or below which a packet hands a subtree to its lanes, one
  * at a time: chosen by measurement on balls-s4, rings-s4 and teapot-s4, one
- * thread, thresholds 0-4 (docs/performance.md, "Hybrid traversal"): SSE 2
- * of 4, AVX2 3 of 8, AVX-512 3 of 16. */
+ * thread, thresholds 0-4 (README, "Performance"): SSE 2 of 4, AVX2 3 of 8,
+ * AVX-512 3 of 16. */
 #ifndef GLI_HYBRID_LANES
 #if LANES == 4
 #define GLI_HYBRID_LANES 2

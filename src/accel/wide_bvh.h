@@ -3,10 +3,10 @@
  * ray tests all eight in one SIMD instruction per plane (Wald, Benthin and
  * Boulos 2008, "Getting rid of packets"; Embree's BVH8). Single rays walk it
  * (accel/wide_traverse.h): the scalar backends, and the lanes of a packet
- * that too few lanes keep together (accel/packet_traverse.h). It shares the
- * binary BVH's references, and each wide node is the collapse of one binary
- * node, so a packet walking the binary tree can hand a subtree over to its
- * lanes one at a time. */
+ * that too few lanes keep together (accel/packet_traverse.h). It keeps a
+ * copy of the binary BVH's references (reordered within leaves), and each
+ * wide node is the collapse of one binary node, so a packet walking the
+ * binary tree can hand a subtree over to its lanes one at a time. */
 #ifndef GLINT_ACCEL_WIDE_BVH_H
 #define GLINT_ACCEL_WIDE_BVH_H
 

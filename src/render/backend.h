@@ -42,6 +42,9 @@ typedef struct data_ops {
 
 typedef struct gli_backend_ops {
   data_kind data;
+  /* Whether its rays may walk the wide BVH alone (the hybrid walks,
+   * --accel bvh8); the stream backends' never do (render/packet_rays.h). */
+  int walks_alone;
   /* Per-thread working memory for frames up to max_depth, allocated by the
    * renderer (aligned, zeroed); NULL: none. */
   size_t (*scratch_bytes)(int max_depth);

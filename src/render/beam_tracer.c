@@ -250,7 +250,7 @@ static uint64_t primary_tile(const void *view, const frame_params *frame,
 }
 
 /* The beams need no scratch: their state lives on the stack. */
-const gli_backend_ops ISA_NAME(gli_beam_ops) = {ISA_DATA_KIND, NULL,
+const gli_backend_ops ISA_NAME(gli_beam_ops) = {ISA_DATA_KIND, 1, NULL,
                                                 render_tile, primary_tile};
 
 /* For the tests: the packet nearest hit of W rays (SoA arrays of W floats),

@@ -123,15 +123,12 @@ glint_status gli_render_settings_check(const glint_render_settings *s,
 
 /* ---- creation ------------------------------------------------------------ */
 
-/* How the renderer's layout walks the BVH: the stream backends' packets
- * never hand rays over to the wide tree (render/packet_rays.h), so they
- * walk the binary tree and need no leaf blocks. */
+/* How the renderer's layout walks the BVH: a backend whose rays never walk
+ * alone walks the binary tree, and needs no leaf blocks. */
 static glint_accel walk_of(const glint_renderer *r) {
-  int stream = r->backend == GLINT_BACKEND_STREAM_SSE ||
-               r->backend == GLINT_BACKEND_STREAM_AVX2 ||
-               r->backend == GLINT_BACKEND_STREAM_AVX512;
-  return stream && r->settings.accel != GLINT_ACCEL_NONE ? GLINT_ACCEL_BVH2
-                                                         : r->settings.accel;
+  return !r->ops->walks_alone && r->settings.accel != GLINT_ACCEL_NONE
+             ? GLINT_ACCEL_BVH2
+             : r->settings.accel;
 }
 
 /* Scratch for frames up to `depth` on every worker (the stream backends'

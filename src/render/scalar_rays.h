@@ -1,8 +1,9 @@
 /* What one ray finds in the scene, in the translation unit's precision: its
  * nearest hit and the transmission of a shadow ray (docs/specification.md
- * §4). The scalar backends' queries (render/scalar_scene.c), and the same
- * code for a packet's lane that walks part of the BVH alone
- * (render/packet_rays.h): each formula of the model once for single rays. */
+ * §4): the scalar backends' queries (render/scalar_scene.c). A packet's
+ * lane that walks part of the BVH alone (render/block_rays.h) shares its
+ * hit record and the shadow crossings' accounting (shadow_acc,
+ * cross_surface), and tests primitives with the packet formulas. */
 #ifndef GLINT_RENDER_SCALAR_RAYS_H
 #define GLINT_RENDER_SCALAR_RAYS_H
 

@@ -214,5 +214,5 @@ static uint64_t primary_tile(const void *view, const frame_params *frame,
 }
 
 const gli_backend_ops REAL_NAME(gli_scalar_ops) = {
-    REAL_IS_DOUBLE ? DATA_SCALAR_DOUBLE : DATA_SCALAR_FLOAT, NULL, render_tile,
-    primary_tile};
+    REAL_IS_DOUBLE ? DATA_SCALAR_DOUBLE : DATA_SCALAR_FLOAT, 1, NULL,
+    render_tile, primary_tile};

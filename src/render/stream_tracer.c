@@ -433,5 +433,5 @@ static uint64_t primary_tile(const void *view, const frame_params *frame,
   return ISA_NAME(gli_beam_ops).primary_tile(view, frame, tile, st);
 }
 
-const gli_backend_ops ISA_NAME(gli_stream_ops) = {ISA_DATA_KIND, scratch_bytes,
-                                                  render_tile, primary_tile};
+const gli_backend_ops ISA_NAME(gli_stream_ops) = {
+    ISA_DATA_KIND, 0, scratch_bytes, render_tile, primary_tile};
