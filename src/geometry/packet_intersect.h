@@ -51,6 +51,17 @@ static ALWAYS_INLINE vmask sphere_lanes(vvec3 center, vfloat r2, vvec3 o,
   return m;
 }
 
+/* The crossing a ray meets first beyond eps, of the two sphere_lanes found
+ * for the lanes of m: l1 from outside, l2 from inside (*outside says
+ * which); returns the lanes where it lies nearer than tmax. */
+static ALWAYS_INLINE vmask sphere_first(vmask m, vfloat l1, vfloat l2,
+                                        vfloat eps, vfloat tmax, vfloat *t,
+                                        vmask *outside) {
+  *outside = vf_gt(l1, eps);
+  *t = vf_select(*outside, l1, l2);
+  return vm_and(vm_and(m, vf_gt(l2, eps)), vf_lt(*t, tmax));
+}
+
 /* Algorithm 2.1 for all lanes against one sphere: updates the hits that are
  * nearer than those found so far. */
 /* Spheres and planes record only the object: each is one primitive, so the
@@ -63,9 +74,9 @@ static ALWAYS_INLINE void packet_sphere(const psphere *sp, vvec3 o, vvec3 d,
       sphere_lanes(vv_get(sp->center), vs_get(&sp->r2), o, d, active, &l1, &l2);
   if (vm_none(m))
     return;
-  vmask outside = vf_gt(l1, eps);
-  vfloat t = vf_select(outside, l1, l2);
-  vmask win = vm_and(vm_and(m, vf_gt(l2, eps)), vf_lt(t, h->t));
+  vfloat t;
+  vmask outside;
+  vmask win = sphere_first(m, l1, l2, eps, h->t, &t, &outside);
   h->t = vf_select(win, t, h->t);
   h->object = vi_select(win, vi_set1(sp->object), h->object);
   h->inside = vm_select(win, vm_andnot(vm_true(), outside), h->inside);

@@ -80,9 +80,7 @@ static void block_nearest_leaf(void *ctx, uint32_t first, uint32_t count,
                              r->d, active, &l1, &l2);
       if (vm_none(m))
         continue;
-      outside = vf_gt(l1, r->eps);
-      t = vf_select(outside, l1, l2);
-      win = vm_and(vm_and(m, vf_gt(l2, r->eps)), vf_lt(t, vf_set1(*tmax)));
+      win = sphere_first(m, l1, l2, r->eps, vf_set1(*tmax), &t, &outside);
       break;
     }
     case GLI_SHAPE_TRIANGLE: {
