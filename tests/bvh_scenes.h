@@ -1,6 +1,7 @@
 /* What the BVH tests (tests/test_bvh.c, tests/test_wide_bvh.c) share: the
  * scenes they walk (Giza, the only thesis scene above the BVH's size
- * threshold, and SPD scenes of every shape: spheres, cones, polygons,
+ * threshold; glass-rods, whose opaque rods are split before the build and
+ * glass ones not; and SPD scenes of every shape: spheres, cones, polygons,
  * patches, which need ../shared), random rays through them, the object a
  * scalar hit names, and box containment. Include after choosing the scalar
  * precision (math/real.h). */
@@ -12,22 +13,28 @@
 #include "test_util.h"
 
 #include <math.h>
+#include <stdio.h>
 #include <string.h>
 
 typedef struct scene_list {
   const char *names[8];
 } scene_list;
-static const scene_list own = {{"giza", NULL}};
+static const scene_list own = {{"giza", "stress/glass-rods.json", NULL}};
 static const scene_list spd = {
     {"scenes/spd/balls-s2.nff", "scenes/spd/gears-s1.nff",
      "scenes/spd/mount-s4.nff", "scenes/spd/rings-s2.nff",
      "scenes/spd/teapot-s2.nff", "scenes/spd/tetra-s4.nff",
      "scenes/spd/tree-s4.nff", NULL}};
 
-/* A built-in scene by name, or a file under ../shared by its path there. */
+/* A built-in scene by name, one of the repository's scenes/stress/, or a
+ * file under ../shared by its path there. */
 static glint_scene *load(const char *name) {
   glint_scene *s;
-  if (strchr(name, '/'))
+  if (strncmp(name, "stress/", 7) == 0) {
+    char path[512];
+    snprintf(path, sizeof path, "%s/scenes/%s", GLINT_SOURCE_DIR, name);
+    ASSERT_OK(glint_scene_load(path, &s, &e_));
+  } else if (strchr(name, '/'))
     ASSERT_OK(glint_scene_load(shared_path(name), &s, &e_));
   else
     ASSERT_OK(glint_scene_builtin(name, &s, &e_));

@@ -3,7 +3,9 @@
 rays at full speed"): sticks.json, thousands of thin cylinders in every
 direction; mirror-room.json, a closed room of mirrors with glass and matte
 balls; glass-in-glass.json, rows of glass spheres nested three deep, each
-absorbing its own colour. Deterministic: run it again and the files are the
+absorbing its own colour; glass-rods.json, long rods of glass and metal
+crossing in every direction over a floor (split cylinders next to ones that
+must not be: accel/presplit.h). Deterministic: run it again and the files are the
 same. Usage: tools/stress_scenes.py [FOLDER] (default scenes/stress)."""
 import json
 import math
@@ -147,6 +149,36 @@ def glass_in_glass(rng):
         "objects": objs}
 
 
+def glass_rods(rng):
+    objs = [{"type": "plane", "material": "floor", "normal": [0, 1, 0], "point": [0, -3, 0]}]
+    for i in range(240):
+        c = [rng.uniform(-3, 3), rng.uniform(-2, 3), rng.uniform(-3, 3)]
+        d = unit(rng)
+        half = rng.uniform(0.8, 2.5)
+        r = rng.uniform(0.04, 0.12)
+        objs.append({"type": "cone", "material": ["glass", "steel", "tinted"][i % 3],
+                     "base": vec([c[k] - half * d[k] for k in range(3)]), "base_radius": num(r),
+                     "apex": vec([c[k] + half * d[k] for k in range(3)]),
+                     "apex_radius": num(r * rng.uniform(0.5, 1))})
+    return {
+        "camera": {"from": [7, 5, 10], "at": [0, 0, 0], "up": [0, 1, 0], "fov": 50},
+        "image": {"width": 512, "height": 512},
+        "background": [0.2, 0.25, 0.35],
+        "ambient": [0.3, 0.3, 0.3],
+        "lights": [{"position": [8, 12, 6], "color": [0.8, 0.8, 0.8]},
+                   {"position": [-8, 6, -3], "color": [0.4, 0.4, 0.5]}],
+        "materials": {
+            "floor": {"color": [1, 1, 1], "ka": 0.1, "kd": 0.9,
+                      "texture": {"type": "checker-planar", "odd": [0.9, 0.9, 0.9],
+                                  "even": [0.2, 0.2, 0.2], "size": 1}},
+            "glass": {"color": [1, 1, 1], "ka": 0.01, "kd": 0.01, "ks": 0.9, "h": 80,
+                      "kr": 0.1, "kt": 0.9, "ior": 1.5},
+            "tinted": {"color": [1, 1, 1], "ka": 0.01, "kd": 0.01, "ks": 0.9, "h": 80,
+                       "kr": 0.1, "kt": 0.85, "ior": 1.4, "absorb": [0.6, 0.2, 0.05]},
+            "steel": {"color": [0.7, 0.72, 0.75], "kd": 0.3, "ks": 0.6, "h": 60, "kr": 0.6}},
+        "objects": objs}
+
+
 def main():
     folder = sys.argv[1] if len(sys.argv) > 1 else os.path.join(
         os.path.dirname(os.path.abspath(__file__)), "..", "scenes", "stress")
@@ -154,6 +186,7 @@ def main():
     write(folder, "sticks.json", sticks(random.Random(1)))
     write(folder, "mirror-room.json", mirror_room(random.Random(2)))
     write(folder, "glass-in-glass.json", glass_in_glass(random.Random(3)))
+    write(folder, "glass-rods.json", glass_rods(random.Random(4)))
 
 
 if __name__ == "__main__":
