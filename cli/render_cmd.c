@@ -188,11 +188,9 @@ static void print_stats(FILE *out, const glint_stats *s,
           s->prepare_seconds, (double)s->scene_bytes / 1048576.0);
   if (s->bvh_nodes)
     fprintf(out,
-            "  bvh                %llu nodes, %llu references (%llu from "
-            "split cones), %.2f MiB, built in %.1f ms\n",
-            (unsigned long long)s->bvh_nodes, (unsigned long long)s->bvh_refs,
-            (unsigned long long)s->bvh_split_refs,
-            (double)s->bvh_bytes / 1048576.0, s->bvh_build_seconds * 1e3);
+            "  bvh                %llu nodes, %.2f MiB, built in %.1f ms\n",
+            (unsigned long long)s->bvh_nodes, (double)s->bvh_bytes / 1048576.0,
+            s->bvh_build_seconds * 1e3);
   if (s->wide_nodes)
     fprintf(out,
             "  wide bvh           %llu nodes of 8, %.2f MiB, collapsed in "

@@ -468,11 +468,9 @@ typedef struct glint_stats {
   double render_seconds;  /* tracing and shading, all tiles */
   uint64_t primary_rays, secondary_rays, shadow_rays;
   uint64_t reflected_rays, refracted_rays, total_internal_reflections;
-  /* Acceleration structure: the binary BVH (its primitive references,
-   * of which bvh_split_refs are the extra parts of long cylinders and
-   * cones split before the build), and the 8-wide one collapsed from it
-   * for single rays (its nodes, bytes and collapse time). */
-  uint64_t bvh_nodes, bvh_bytes, bvh_refs, bvh_split_refs;
+  /* Acceleration structure: the binary BVH, and the 8-wide one collapsed
+   * from it for single rays (its nodes, bytes and collapse time). */
+  uint64_t bvh_nodes, bvh_bytes;
   double bvh_build_seconds;
   uint64_t wide_nodes, wide_bytes;
   double wide_build_seconds;

@@ -1,7 +1,7 @@
 /* The wide BVH (accel/wide_bvh.h) and single rays through it
  * (accel/wide_traverse.h), in the scalar backends' precision this file is
  * compiled for (it is built twice, float and double): the collapsed tree is
- * sound (every primitive once, or a split cone's parts, every box holding what is below it, small
+ * sound (every primitive once, every box holding what is below it, small
  * leaves, each wide node the collapse of the binary node it names); on a
  * row of spheres the hits are the hand-computed ones; and on random rays
  * the nearest hits and shadow transmissions through the wide tree equal the
@@ -44,7 +44,7 @@ static void child_box(const gli_wide_node *n, int k, float lo[3], float hi[3]) {
  * seen[], and each lies inside the box (lo, hi) the parent gave it. */
 static void walk(const glint_scene *g, const gli_bvh *b, uint32_t w,
                  const float lo[3], const float hi[3], int depth,
-                 uint32_t *seen) {
+                 unsigned char *seen) {
   const gli_wide_bvh *wb = &b->wide;
   assert_true(w < wb->node_count);
   assert_true(depth <= wb->depth && depth <= GLI_WIDE_MAX_DEPTH);
@@ -69,22 +69,14 @@ static void walk(const glint_scene *g, const gli_bvh *b, uint32_t w,
       uint32_t ref = wb->refs[r];
       float plo[3], phi[3];
       gli_bvh_ref_box(g, ref, plo, phi);
+      assert_true(holds(clo, chi, plo, phi));
       size_t flat = GLI_REF_INDEX(ref);
       if (GLI_REF_SHAPE(ref) != GLI_SHAPE_SPHERE)
         flat += g->sphere_count;
       if (GLI_REF_SHAPE(ref) == GLI_SHAPE_CONE)
         flat += g->triangle_count;
-      if (b->parts && GLI_REF_SHAPE(ref) == GLI_SHAPE_CONE) {
-        /* maybe a part of a split cone (accel/presplit.h), which the box
-         * need only hold where the part is: it meets the cone's box (the
-         * parts' cover is test_bvh's, hits against brute force below) */
-        for (int a = 0; a < 3; a++)
-          assert_true(clo[a] <= phi[a] && plo[a] <= chi[a]);
-      } else {
-        assert_true(holds(clo, chi, plo, phi));
-        assert_int_equal(seen[flat], 0);
-      }
-      seen[flat]++;
+      assert_int_equal(seen[flat], 0);
+      seen[flat] = 1;
       /* grouped by shape: render/leaf_blocks.h relies on it */
       if (r > n->child[k])
         assert_true(GLI_REF_SHAPE(wb->refs[r - 1]) <= GLI_REF_SHAPE(ref));
@@ -102,16 +94,13 @@ static void wide_tree_is_sound(void **state) {
     size_t prims = g->sphere_count + g->triangle_count + g->cone_count;
     assert_non_null(b.wide.nodes);
     assert_true(b.wide.node_count >= 1);
-    assert_int_equal(b.wide.ref_count, b.ref_count);
-    uint32_t *seen = calloc(prims, sizeof *seen), live = 0;
+    assert_int_equal(b.wide.ref_count, prims);
+    unsigned char *seen = calloc(prims, 1);
     walk(g, &b, 0, b.nodes[0].lo, b.nodes[0].hi, 1, seen);
-    for (size_t i = 0; i < prims; i++) {
-      assert_true(seen[i] >= 1);
-      live += seen[i];
-    }
-    assert_int_equal(live, prims + b.extra_refs);
+    for (size_t i = 0; i < prims; i++)
+      assert_int_equal(seen[i], 1);
     free(seen);
-    /* Each wide node a binary node names holds that node's box exactly,
+    /* Each wide node a binary node names holds exactly that node's box,
      * and the hand-over marks sit on such nodes only. */
     uint32_t named = 0, marked = 0;
     for (uint32_t i = 0; i < b.node_count; i++) {
@@ -131,10 +120,7 @@ static void wide_tree_is_sound(void **state) {
           lo[a] = fminf(lo[a], b.wide.nodes[w].bounds[0][a][k]);
           hi[a] = fmaxf(hi[a], b.wide.nodes[w].bounds[1][a][k]);
         }
-      /* (smaller where it splits a leaf holding parts of split cones, a
-       * part's box being smaller than its cone's) */
-      if (!b.parts)
-        assert_true(holds(lo, hi, b.nodes[i].lo, b.nodes[i].hi));
+      assert_true(holds(lo, hi, b.nodes[i].lo, b.nodes[i].hi));
       assert_true(holds(b.nodes[i].lo, b.nodes[i].hi, lo, hi));
     }
     assert_int_equal(b.wide.of_binary[0], 0); /* the roots */

@@ -4,8 +4,8 @@ rays at full speed"): sticks.json, thousands of thin cylinders in every
 direction; mirror-room.json, a closed room of mirrors with glass and matte
 balls; glass-in-glass.json, rows of glass spheres nested three deep, each
 absorbing its own colour; glass-rods.json, long rods of glass and metal
-crossing in every direction over a floor (split cylinders next to ones that
-must not be: accel/presplit.h). Deterministic: run it again and the files are the
+crossing in every direction over a floor, shadows passing through glass.
+Deterministic: run it again and the files are the
 same. Usage: tools/stress_scenes.py [FOLDER] (default scenes/stress)."""
 import json
 import math

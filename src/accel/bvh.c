@@ -6,9 +6,6 @@
  * and the cheapest split wins unless keeping a leaf is cheaper. */
 #include "accel/bvh.h"
 
-#include "accel/bounds.h"
-#include "accel/presplit.h"
-
 #include "core/error.h"
 #include "core/memory.h"
 #include "core/timer.h"
@@ -34,6 +31,78 @@ static const float prim_cost[3] = {
     [GLI_SHAPE_TRIANGLE] = 1.0f,
     [GLI_SHAPE_CONE] = 0.6f,
 };
+
+typedef struct box {
+  float lo[3], hi[3];
+} box;
+
+/* Float bounds that contain [lo, hi] given in double: rounded to nearest,
+ * then one step outward when that went inward (nextafterf is a call;
+ * scaling by 1 -/+ 2^-23 is one float step for normal numbers, and bounds
+ * around zero only need to be conservative). */
+static inline double dmin(double a, double b) { return a < b ? a : b; }
+static inline double dmax(double a, double b) { return a > b ? a : b; }
+static float down(double x) {
+  float f = (float)x;
+  if ((double)f <= x)
+    return f;
+  return f > 0 ? f * (1 - 0x1p-23f) : f < 0 ? f * (1 + 0x1p-23f) : -FLT_MIN;
+}
+static float up(double x) {
+  float f = (float)x;
+  if ((double)f >= x)
+    return f;
+  return f > 0 ? f * (1 + 0x1p-23f) : f < 0 ? f * (1 - 0x1p-23f) : FLT_MIN;
+}
+
+static box box_of(double lo[3], double hi[3]) {
+  box b;
+  for (int k = 0; k < 3; k++) {
+    b.lo[k] = down(lo[k]);
+    b.hi[k] = up(hi[k]);
+  }
+  return b;
+}
+
+static box sphere_box(const gli_sphere_prim *s) {
+  double c[3] = {s->center.x, s->center.y, s->center.z};
+  double lo[3], hi[3];
+  for (int k = 0; k < 3; k++)
+    lo[k] = c[k] - s->radius, hi[k] = c[k] + s->radius;
+  return box_of(lo, hi);
+}
+
+static box triangle_box(const gli_triangle_prim *t) {
+  double lo[3] = {DBL_MAX, DBL_MAX, DBL_MAX},
+         hi[3] = {-DBL_MAX, -DBL_MAX, -DBL_MAX};
+  for (int i = 0; i < 3; i++) {
+    double v[3] = {t->v[i].x, t->v[i].y, t->v[i].z};
+    for (int k = 0; k < 3; k++)
+      lo[k] = dmin(lo[k], v[k]), hi[k] = dmax(hi[k], v[k]);
+  }
+  return box_of(lo, hi);
+}
+
+/* The two end disks' boxes: a disk of radius r with unit normal a reaches
+ * r sqrt(1 - a_k^2) along axis k. */
+static box cone_box(const gli_cone_prim *c) {
+  double a[3] = {c->apex.x - c->base.x, c->apex.y - c->base.y,
+                 c->apex.z - c->base.z};
+  double len = sqrt(a[0] * a[0] + a[1] * a[1] + a[2] * a[2]);
+  double p[2][3] = {{c->base.x, c->base.y, c->base.z},
+                    {c->apex.x, c->apex.y, c->apex.z}};
+  double r[2] = {c->base_radius, c->apex_radius};
+  double lo[3] = {DBL_MAX, DBL_MAX, DBL_MAX},
+         hi[3] = {-DBL_MAX, -DBL_MAX, -DBL_MAX};
+  for (int e = 0; e < 2; e++)
+    for (int k = 0; k < 3; k++) {
+      double ak = a[k] / len;
+      double ext = r[e] * sqrt(dmax(0.0, 1 - ak * ak));
+      lo[k] = dmin(lo[k], p[e][k] - ext);
+      hi[k] = dmax(hi[k], p[e][k] + ext);
+    }
+  return box_of(lo, hi);
+}
 
 /* ---- the builder ------------------------------------------------------ */
 
@@ -74,7 +143,6 @@ static float box4_area(box4 b) {
 typedef struct builder {
   box4 *boxes; /* by reference, in the order of refs */
   uint32_t *refs;
-  gli_ref_part *parts; /* of split primitives (accel/presplit.h) */
   gli_bvh_node *nodes;
   uint32_t node_count;
   int depth;
@@ -111,9 +179,6 @@ static void swap_refs(builder *b, uint32_t i, uint32_t j) {
   uint32_t r = b->refs[i];
   b->refs[i] = b->refs[j];
   b->refs[j] = r;
-  gli_ref_part p = b->parts[i];
-  b->parts[i] = b->parts[j];
-  b->parts[j] = p;
   box4 t = b->boxes[i];
   b->boxes[i] = b->boxes[j];
   b->boxes[j] = t;
@@ -267,33 +332,6 @@ by_count:
   return mid;
 }
 
-/* Two parts of one split primitive (accel/presplit.h) that end in one
- * leaf: one reference is enough there, for the span of both. */
-static size_t drop_repeats(builder *b) {
-  size_t live = 0;
-  for (uint32_t i = 0; i < b->node_count; i++) {
-    gli_bvh_node *n = &b->nodes[i];
-    uint32_t *r = b->refs + n->offset, kept = 0;
-    gli_ref_part *p = b->parts + n->offset;
-    for (uint32_t k = 0; k < n->count; k++) {
-      uint32_t q = 0;
-      while (q < kept && r[q] != r[k])
-        q++;
-      if (q == kept) {
-        r[kept] = r[k];
-        p[kept++] = p[k];
-      } else {
-        p[q].s0 = fminf(p[q].s0, p[k].s0);
-        p[q].s1 = fmaxf(p[q].s1, p[k].s1);
-      }
-    }
-    if (n->count)
-      n->count = (uint16_t)kept;
-    live += n->count;
-  }
-  return live;
-}
-
 /* Expected node visits and primitive tests of a ray through the tree
  * (every node's area over the root's; leaves count their primitives). */
 static double sah_cost(const gli_bvh *bvh) {
@@ -322,11 +360,6 @@ static glint_status collapse_wide(gli_bvh *bvh, const glint_scene *scene,
   return st;
 }
 
-/* The box of all of reference r's primitive in the scene as it is now. */
-static gli_ref_box ref_box(const glint_scene *scene, uint32_t r) {
-  return gli_ref_part_box(scene, r, (gli_ref_part){0, 1});
-}
-
 glint_status gli_bvh_build(const glint_scene *scene, gli_bvh *bvh,
                            glint_error *error) {
   double t0 = gli_now();
@@ -343,37 +376,16 @@ glint_status gli_bvh_build(const glint_scene *scene, gli_bvh *bvh,
   if (n > GLI_MAX_BVH_PRIMS)
     return gli_fail(error, GLINT_E_ARGUMENT,
                     "too many primitives for the BVH (%zu)", n);
-  /* Room for the parts of split references (accel/presplit.h). */
-  size_t prims = n;
-  size_t capacity = n + GLI_PRESPLIT_BUDGET * scene->cone_count;
-  if (capacity > GLI_MAX_BVH_PRIMS)
-    capacity = GLI_MAX_BVH_PRIMS;
   builder b = {0};
-  gli_ref_box *piece = malloc(capacity * sizeof *piece);
-  b.refs = malloc(capacity * sizeof *b.refs);
-  b.parts = malloc(capacity * sizeof *b.parts);
-  if (piece && b.refs && b.parts) {
-    size_t r = 0;
-    for (size_t i = 0; i < scene->sphere_count; i++)
-      b.refs[r++] = GLI_REF(GLI_SHAPE_SPHERE, i);
-    for (size_t i = 0; i < scene->triangle_count; i++)
-      b.refs[r++] = GLI_REF(GLI_SHAPE_TRIANGLE, i);
-    for (size_t i = 0; i < scene->cone_count; i++)
-      b.refs[r++] = GLI_REF(GLI_SHAPE_CONE, i);
-    for (size_t i = 0; i < n; i++)
-      piece[i] = ref_box(scene, b.refs[i]);
-    n = gli_presplit(scene, b.refs, piece, b.parts, n, capacity);
-  }
   b.boxes = aligned_alloc(GLI_ALIGN,
                           ((n * sizeof *b.boxes + GLI_ALIGN - 1) / GLI_ALIGN) *
                               GLI_ALIGN);
+  b.refs = malloc(n * sizeof *b.refs);
   b.nodes = aligned_alloc(
       GLI_ALIGN,
       ((2 * n * sizeof *b.nodes + GLI_ALIGN - 1) / GLI_ALIGN) * GLI_ALIGN);
   task *stack = malloc(sizeof *stack * 4 * GLI_BVH_MAX_DEPTH);
-  if (!piece || !b.boxes || !b.refs || !b.parts || !b.nodes || !stack) {
-    free(piece);
-    free(b.parts);
+  if (!b.boxes || !b.refs || !b.nodes || !stack) {
     gli_aligned_free(b.boxes);
     free(b.refs);
     gli_aligned_free(b.nodes);
@@ -381,11 +393,26 @@ glint_status gli_bvh_build(const glint_scene *scene, gli_bvh *bvh,
     return gli_fail(error, GLINT_E_MEMORY,
                     "out of memory building the BVH of %zu primitives", n);
   }
-  for (size_t i = 0; i < n; i++)
-    b.boxes[i] =
-        (box4){_mm_setr_ps(piece[i].lo[0], piece[i].lo[1], piece[i].lo[2], 0),
-               _mm_setr_ps(piece[i].hi[0], piece[i].hi[1], piece[i].hi[2], 0)};
-  free(piece);
+  size_t r = 0;
+  box bx;
+  for (size_t i = 0; i < scene->sphere_count; i++, r++) {
+    b.refs[r] = GLI_REF(GLI_SHAPE_SPHERE, i);
+    bx = sphere_box(&scene->spheres[i]);
+    b.boxes[r] = (box4){_mm_setr_ps(bx.lo[0], bx.lo[1], bx.lo[2], 0),
+                        _mm_setr_ps(bx.hi[0], bx.hi[1], bx.hi[2], 0)};
+  }
+  for (size_t i = 0; i < scene->triangle_count; i++, r++) {
+    b.refs[r] = GLI_REF(GLI_SHAPE_TRIANGLE, i);
+    bx = triangle_box(&scene->triangles[i]);
+    b.boxes[r] = (box4){_mm_setr_ps(bx.lo[0], bx.lo[1], bx.lo[2], 0),
+                        _mm_setr_ps(bx.hi[0], bx.hi[1], bx.hi[2], 0)};
+  }
+  for (size_t i = 0; i < scene->cone_count; i++, r++) {
+    b.refs[r] = GLI_REF(GLI_SHAPE_CONE, i);
+    bx = cone_box(&scene->cones[i]);
+    b.boxes[r] = (box4){_mm_setr_ps(bx.lo[0], bx.lo[1], bx.lo[2], 0),
+                        _mm_setr_ps(bx.hi[0], bx.hi[1], bx.hi[2], 0)};
+  }
 
   /* Depth first with an explicit stack; the left child is processed first
    * so nodes are laid out close to their parents. */
@@ -427,7 +454,6 @@ glint_status gli_bvh_build(const glint_scene *scene, gli_bvh *bvh,
   }
   free(stack);
   gli_aligned_free(b.boxes);
-  size_t live = drop_repeats(&b);
 
   gli_bvh_node *shrunk = gli_aligned_calloc(b.node_count, sizeof *shrunk);
   if (shrunk) {
@@ -439,20 +465,25 @@ glint_status gli_bvh_build(const glint_scene *scene, gli_bvh *bvh,
   bvh->node_count = b.node_count;
   bvh->refs = b.refs;
   bvh->ref_count = (uint32_t)n;
-  bvh->extra_refs = (uint32_t)(live - prims);
-  if (n > prims)
-    bvh->parts = b.parts;
-  else
-    free(b.parts);
   bvh->depth = b.depth;
   bvh->cost = bvh->built_cost = sah_cost(bvh);
   bvh->build_seconds = gli_now() - t0;
   return collapse_wide(bvh, scene, error);
 }
 
+/* The box of reference r in the scene as it is now. */
+static box ref_box(const glint_scene *scene, uint32_t r) {
+  uint32_t i = GLI_REF_INDEX(r);
+  switch (GLI_REF_SHAPE(r)) {
+  case GLI_SHAPE_SPHERE: return sphere_box(&scene->spheres[i]);
+  case GLI_SHAPE_TRIANGLE: return triangle_box(&scene->triangles[i]);
+  default: return cone_box(&scene->cones[i]);
+  }
+}
+
 void gli_bvh_ref_box(const glint_scene *scene, uint32_t ref, float lo[3],
                      float hi[3]) {
-  gli_ref_box b = ref_box(scene, ref);
+  box b = ref_box(scene, ref);
   memcpy(lo, b.lo, sizeof b.lo);
   memcpy(hi, b.hi, sizeof b.hi);
 }
@@ -478,15 +509,6 @@ glint_status gli_bvh_refit(const gli_bvh *from, const glint_scene *scene,
     return gli_fail(error, GLINT_E_MEMORY, "out of memory refitting the BVH");
   }
   memcpy(bvh->refs, from->refs, from->ref_count * sizeof *bvh->refs);
-  if (from->parts) {
-    bvh->parts = malloc(from->ref_count * sizeof *bvh->parts);
-    if (!bvh->parts) {
-      gli_bvh_free(bvh);
-      return gli_fail(error, GLINT_E_MEMORY, "out of memory refitting the BVH");
-    }
-    memcpy(bvh->parts, from->parts, from->ref_count * sizeof *bvh->parts);
-  }
-  bvh->extra_refs = from->extra_refs;
   memcpy(bvh->nodes, from->nodes, from->node_count * sizeof *bvh->nodes);
   bvh->node_count = from->node_count;
   bvh->ref_count = from->ref_count;
@@ -498,11 +520,7 @@ glint_status gli_bvh_refit(const gli_bvh *from, const glint_scene *scene,
     box4 b = box4_empty();
     if (n->count) {
       for (uint32_t k = n->offset; k < n->offset + n->count; k++) {
-        /* a split cone's part is fractions of its axis, which stay
-         * where they are on the cone however it moves */
-        gli_ref_box bx =
-            bvh->parts ? gli_ref_part_box(scene, bvh->refs[k], bvh->parts[k])
-                       : ref_box(scene, bvh->refs[k]);
+        box bx = ref_box(scene, bvh->refs[k]);
         box4_grow(&b, (box4){_mm_setr_ps(bx.lo[0], bx.lo[1], bx.lo[2], 0),
                              _mm_setr_ps(bx.hi[0], bx.hi[1], bx.hi[2], 0)});
       }
@@ -543,12 +561,10 @@ void gli_bvh_free(gli_bvh *bvh) {
   gli_wide_free(&bvh->wide);
   gli_aligned_free(bvh->nodes);
   free(bvh->refs);
-  free(bvh->parts);
   memset(bvh, 0, sizeof *bvh);
 }
 
 uint64_t gli_bvh_bytes(const gli_bvh *bvh) {
   return (uint64_t)bvh->node_count * sizeof(gli_bvh_node) +
-         (uint64_t)bvh->ref_count * sizeof(uint32_t) +
-         (bvh->parts ? (uint64_t)bvh->ref_count * sizeof *bvh->parts : 0);
+         (uint64_t)bvh->ref_count * sizeof(uint32_t);
 }

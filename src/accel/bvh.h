@@ -7,7 +7,6 @@
 #ifndef GLINT_ACCEL_BVH_H
 #define GLINT_ACCEL_BVH_H
 
-#include "accel/presplit.h"
 #include "accel/wide_bvh.h"
 #include "glint.h"
 
@@ -43,13 +42,8 @@ typedef struct gli_bvh {
   gli_wide_bvh wide;
   gli_bvh_node *nodes;
   uint32_t node_count;
-  uint32_t *refs; /* leaves' ranges; entries outside them unused */
+  uint32_t *refs;
   uint32_t ref_count;
-  /* References in leaves beyond one a primitive: the parts of split cones
-   * (accel/presplit.h), and what part each reference stands for (NULL
-   * when none was split). */
-  uint32_t extra_refs;
-  gli_ref_part *parts;
   int depth;
   double build_seconds;
   /* What it was built over: a refit needs the same primitives. */

@@ -126,12 +126,6 @@ static void open_slot(collapser *c, const slot *s, slot *a, slot *b) {
   } /* (out of memory: halve them unsorted, still correct) */
   *a = range_slot(c, s->begin, half);
   *b = range_slot(c, s->begin + half, s->count - half);
-  /* A piece of a split primitive (accel/presplit.h) is needed only inside
-   * the leaf that holds it, whose box may be smaller than the primitive's */
-  for (int k = 0; k < 3; k++) {
-    a->lo[k] = fmaxf(a->lo[k], s->lo[k]), a->hi[k] = fminf(a->hi[k], s->hi[k]);
-    b->lo[k] = fmaxf(b->lo[k], s->lo[k]), b->hi[k] = fminf(b->hi[k], s->hi[k]);
-  }
 }
 
 static uint32_t new_node(collapser *c) {

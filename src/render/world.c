@@ -84,10 +84,6 @@ void gli_world_stats(glint_world *w, glint_stats *stats) {
   stats->bvh_nodes = w->bvh_built ? w->bvh.node_count : 0;
   stats->bvh_bytes = w->bvh_built ? gli_bvh_bytes(&w->bvh) : 0;
   stats->bvh_build_seconds = w->bvh_built ? w->bvh.build_seconds : 0;
-  stats->bvh_refs = w->bvh_built ? w->bvh.spheres + w->bvh.triangles +
-                                       w->bvh.cones + w->bvh.extra_refs
-                                 : 0;
-  stats->bvh_split_refs = w->bvh_built ? w->bvh.extra_refs : 0;
   stats->wide_nodes = w->bvh_built ? w->bvh.wide.node_count : 0;
   stats->wide_bytes = w->bvh_built ? gli_wide_bytes(&w->bvh.wide) : 0;
   stats->wide_build_seconds = w->bvh_built ? w->bvh.wide.build_seconds : 0;
