@@ -109,6 +109,12 @@ int cli_is_film_path(const char *path);
  * whether one came (cancel, say so, exit 130). */
 void cli_catch_stop_signals(void);
 int cli_stopped(void);
+/* A stop signal ends the process STOP_GRACE seconds later if the render has
+ * not ended by then (cli/render_cmd.c), removing `writer`'s temporary file
+ * (NULL: none); while `finishing` (a rendered image being written), it
+ * lets the process go on. */
+void cli_remove_on_stop(const glint_image_writer *writer);
+void cli_stop_finishing(int finishing);
 
 /* Seconds on a monotonic clock, for timing stages. */
 double cli_now(void);

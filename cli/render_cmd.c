@@ -71,17 +71,49 @@ static void render_usage(FILE *f) {
       "\n"
       "After rendering, one line gives the wall time, the rays traced and the\n"
       "rate. Errors exit with status 2 and write no file; Ctrl-C stops the\n"
-      "render, leaves any existing file untouched and exits with 130. Short\n"
+      "render (at the next tile, or abandoning it 2 s later), leaves any\n"
+      "existing file untouched and exits with 130. Short\n"
       "options take -W 800, -W800 or -W=800; -- ends the options.\n",
       f);
 }
 
 /* The signal that asked glint to stop (SIGINT, SIGTERM, SIGHUP), or 0. A
- * handler can only reach a variable of static storage; the render sees it
+ * handler can only reach variables of static storage; the render sees it
  * through the progress callback and cancels at the next tile. */
 static volatile sig_atomic_t stop_signal;
 
-static void on_stop_signal(int sig) { stop_signal = sig; }
+/* A tile can take far longer than anyone waits (a deep recursion through
+ * glass doubles its rays at every level): STOP_GRACE seconds after the
+ * signal, an alarm ends the process from its handler, removing the image
+ * file being written (stop_temp, when stop_temp_set) so that nothing is
+ * left behind, unless the render has ended and the file is being finished
+ * (stop_finishing), which then completes. Only where the command asked
+ * for it (stop_watch: glint render; glint-mpi stops its ranks its own way). */
+#define STOP_GRACE 2
+#define STOP_GRACE_TEXT "2"
+static char stop_temp[4096];
+static volatile sig_atomic_t stop_watch, stop_temp_set, stop_finishing;
+
+static void on_stop_signal(int sig) {
+  if (!stop_signal && stop_watch)
+    alarm(STOP_GRACE);
+  stop_signal = sig;
+}
+
+static void on_stop_overdue(int sig) {
+  (void)sig;
+  if (stop_finishing)
+    return;
+  if (stop_temp_set)
+    unlink(stop_temp);
+  static const char msg[] = "glint: interrupted; the render did not stop "
+                            "within " STOP_GRACE_TEXT " s and was abandoned, "
+                            "leaving no partial file\n";
+  if (write(STDERR_FILENO, msg, sizeof msg - 1) < 0) {
+    /* nothing else to try */
+  }
+  _exit(EXIT_INTERRUPTED);
+}
 
 int cli_stopped(void) { return stop_signal != 0; }
 
@@ -93,6 +125,25 @@ void cli_catch_stop_signals(void) {
   sigaction(SIGINT, &sa, NULL);
   sigaction(SIGTERM, &sa, NULL);
   sigaction(SIGHUP, &sa, NULL);
+  sa.sa_handler = on_stop_overdue;
+  sa.sa_flags = SA_RESTART; /* an image being finished must not see EINTR */
+  sigaction(SIGALRM, &sa, NULL);
+}
+
+void cli_remove_on_stop(const glint_image_writer *writer) {
+  stop_watch = 1;
+  stop_temp_set = 0;
+  const char *temp = glint_image_writer_temp_path(writer);
+  if (temp && strlen(temp) < sizeof stop_temp) {
+    memcpy(stop_temp, temp, strlen(temp) + 1);
+    stop_temp_set = 1;
+  }
+}
+
+void cli_stop_finishing(int finishing) {
+  stop_finishing = finishing;
+  if (!finishing && stop_signal && stop_watch)
+    alarm(STOP_GRACE); /* the grace passed while finishing: a new one */
 }
 
 typedef struct progress_state {
@@ -518,6 +569,7 @@ int cmd_render(int argc, char **argv) {
   }
 
   cli_catch_stop_signals(); /* from here on Ctrl-C cancels and says so */
+  cli_remove_on_stop(sink.writer);
   progress_state ps = {-1, !quiet && isatty(STDERR_FILENO)};
   rs.progress = on_progress;
   rs.progress_user = &ps;
@@ -528,6 +580,7 @@ int cmd_render(int argc, char **argv) {
                         ? glint_render(scene, &rs, &image, &stats, &err)
                         : render_film(scene, &rs, sink.writer ? &sink : NULL,
                                       &film, &stats, &err);
+  cli_stop_finishing(1);
   if (ps.show)
     fputs("\r\033[K", stderr);
   glint_scene_destroy(scene);

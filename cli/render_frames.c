@@ -86,7 +86,10 @@ int render_frames(glint_scene *scene, const render_options *o,
       status = EXIT_USAGE;
       break;
     }
+    cli_remove_on_stop(sink.writer);
+    cli_stop_finishing(0);
     glint_status rst = glint_renderer_render(renderer, &frame, NULL, &st, &err);
+    cli_stop_finishing(1);
     if (cli_stopped()) {
       glint_image_writer_discard(sink.writer);
       cli_error("interrupted at frame %d, which was not written; frames "

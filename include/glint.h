@@ -705,6 +705,11 @@ glint_status glint_image_writer_finish(glint_image_writer *writer,
                                        glint_error *error);
 /* Abandons the file (an existing one stays untouched) and frees the writer. */
 void glint_image_writer_discard(glint_image_writer *writer);
+/* The temporary file beside the path that the writer fills until
+ * glint_image_writer_finish renames it into place (NULL for a writer into
+ * memory). For a program that may have to leave at once, from a signal,
+ * without the writer: removing this file is then all that is left to do. */
+const char *glint_image_writer_temp_path(const glint_image_writer *writer);
 
 /* The same encoder into memory, for a file to be written elsewhere (by
  * another process: glint-mpi's ranks encode their frames, rank 0 writes

@@ -1,10 +1,10 @@
 /* What the BVH tests (tests/test_bvh.c, tests/test_wide_bvh.c) share: the
  * scenes they walk (Giza, the only thesis scene above the BVH's size
  * threshold; glass-rods, long cones of glass and metal across each other,
- * whose shadows pass through glass; and SPD scenes of every shape: spheres, cones, polygons,
- * patches, which need ../shared), random rays through them, the object a
- * scalar hit names, and box containment. Include after choosing the scalar
- * precision (math/real.h). */
+ * whose shadows pass through glass; and SPD scenes of every shape: spheres,
+ * cones, polygons, patches, which need ../shared), random rays through them,
+ * the object a scalar hit names, and box containment. Include after choosing
+ * the scalar precision (math/real.h). */
 #ifndef GLINT_TEST_BVH_SCENES_H
 #define GLINT_TEST_BVH_SCENES_H
 

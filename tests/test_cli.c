@@ -709,18 +709,25 @@ static void frames_with_moving_objects(void **state) {
   assert_int_equal(system(cmd), 0);
 }
 
-/* Ctrl-C: a message, status 130, the existing file untouched. */
-static void interrupt_keeps_the_old_file(void **state) {
-  (void)state;
+/* Runs `glint render ARGS... -o keep.png` over an existing keep.png, sends
+ * `sig` half a second in, and waits (at most 30 s: then it hangs, and
+ * fails). Returns the exit status, with stderr in `err` and the tenths of
+ * a second it took to end in `*tenths`; keep.png must be untouched and no
+ * temporary file left. */
+static int interrupt_render(const char *const *args, int sig, int *tenths) {
   char p[128], err_path[128];
   snprintf(p, sizeof p, "%s/keep.png", dir);
   snprintf(err_path, sizeof err_path, "%s/.stderr", dir);
   FILE *f = fopen(p, "wb");
   fputs("precious", f);
   fclose(f);
-  const char *argv[] = {GLINT_EXE, "render", "billiard", "-d",   "64",
-                        "-s",      "4096",   "-W",       "1024", "-H",
-                        "1024",    "-o",     p,          NULL};
+  const char *argv[32] = {GLINT_EXE, "render"};
+  int n = 2;
+  while (*args && n < 28)
+    argv[n++] = *args++;
+  argv[n++] = "-o";
+  argv[n++] = p;
+  argv[n] = NULL;
   posix_spawn_file_actions_t fa;
   posix_spawn_file_actions_init(&fa);
   posix_spawn_file_actions_addopen(&fa, 2, err_path,
@@ -730,19 +737,54 @@ static void interrupt_keeps_the_old_file(void **state) {
       posix_spawn(&pid, GLINT_EXE, &fa, NULL, (char *const *)argv, environ), 0);
   posix_spawn_file_actions_destroy(&fa);
   usleep(500 * 1000); /* well into the render, minutes from its end */
-  kill(pid, SIGINT);
-  int status;
-  waitpid(pid, &status, 0);
+  kill(pid, sig);
+  int status = 0;
+  *tenths = 0;
+  while (waitpid(pid, &status, WNOHANG) == 0 && *tenths < 300) {
+    usleep(100 * 1000);
+    ++*tenths;
+  }
+  if (*tenths == 300) {
+    kill(pid, SIGKILL);
+    waitpid(pid, &status, 0);
+    fail_msg("glint render went on 30 s after signal %d", sig);
+  }
   slurp(err_path, err, sizeof err);
   unlink(err_path);
   assert_true(WIFEXITED(status));
-  assert_int_equal(WEXITSTATUS(status), 130);
-  assert_non_null(strstr(err, "glint: interrupted;"));
   char buf[32];
   slurp(p, buf, sizeof buf);
   assert_string_equal(buf, "precious");
   unlink(p);
   assert_true(folder_is_empty()); /* no temporary file left */
+  return WEXITSTATUS(status);
+}
+
+/* Ctrl-C: a message, status 130, the existing file untouched. */
+static void interrupt_keeps_the_old_file(void **state) {
+  (void)state;
+  const char *args[] = {"billiard", "-d",   "64", "-s",   "4096",
+                        "-W",       "1024", "-H", "1024", NULL};
+  int tenths;
+  assert_int_equal(interrupt_render(args, SIGINT, &tenths), 130);
+  assert_non_null(strstr(err, "glint: interrupted;"));
+}
+
+/* A stop signal during a render whose tiles take far longer than anyone
+ * waits (glass rods at depth 60: the rays double at every level): the
+ * process ends STOP_GRACE (2) seconds later, says so, exits 130 and leaves
+ * the old file and no temporary one. */
+static void an_endless_render_stops_within_the_grace(void **state) {
+  (void)state;
+  char scene[512];
+  snprintf(scene, sizeof scene, "%s/scenes/stress/glass-rods.json",
+           GLINT_SOURCE_DIR);
+  const char *args[] = {scene, "-d", "60",           "-W", "64", "-H",
+                        "64",  "-b", "scalar-float", "-t", "1",  NULL};
+  int tenths;
+  assert_int_equal(interrupt_render(args, SIGTERM, &tenths), 130);
+  assert_true(tenths >= 15); /* the grace, not an early end */
+  assert_non_null(strstr(err, "did not stop within 2 s"));
 }
 
 static void compare_threshold_and_difference(void **state) {
@@ -796,6 +838,7 @@ int main(void) {
       cmocka_unit_test(frames_of_an_animation),
       cmocka_unit_test(frames_with_moving_objects),
       cmocka_unit_test(interrupt_keeps_the_old_file),
+      cmocka_unit_test(an_endless_render_stops_within_the_grace),
       cmocka_unit_test(compare_threshold_and_difference),
   };
   return cmocka_run_group_tests(tests, setup, teardown);

@@ -344,6 +344,10 @@ glint_status glint_image_writer_finish_memory(glint_image_writer *w,
   return st;
 }
 
+const char *glint_image_writer_temp_path(const glint_image_writer *w) {
+  return w && !w->in_memory ? w->file.temp : NULL;
+}
+
 void glint_image_writer_discard(glint_image_writer *w) {
   if (!w)
     return;
