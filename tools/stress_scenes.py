@@ -49,18 +49,21 @@ def unit(rng):
     return (r * math.cos(a), r * math.sin(a), z)
 
 
+def rod(material, c, d, half, base_radius, apex_radius):
+    """A cone centred at c along unit direction d, 2 half long."""
+    return {"type": "cone", "material": material,
+            "base": vec([c[k] - half * d[k] for k in range(3)]), "base_radius": num(base_radius),
+            "apex": vec([c[k] + half * d[k] for k in range(3)]), "apex_radius": num(apex_radius)}
+
+
 def sticks(rng):
     objs = []
     for i in range(3000):
         c = [rng.uniform(-5, 5) for _ in range(3)]
         d = unit(rng)
         half = rng.uniform(0.5, 1.5)
-        base = [c[k] - half * d[k] for k in range(3)]
-        apex = [c[k] + half * d[k] for k in range(3)]
         r = rng.uniform(0.01, 0.03)
-        objs.append({"type": "cone", "material": ["steel", "copper", "chalk"][i % 3],
-                     "base": vec(base), "base_radius": num(r),
-                     "apex": vec(apex), "apex_radius": num(r)})
+        objs.append(rod(["steel", "copper", "chalk"][i % 3], c, d, half, r, r))
     return {
         "camera": {"from": [9, 7, 13], "at": [0, 0, 0], "up": [0, 1, 0], "fov": 50},
         "image": {"width": 512, "height": 512},
@@ -156,10 +159,8 @@ def glass_rods(rng):
         d = unit(rng)
         half = rng.uniform(0.8, 2.5)
         r = rng.uniform(0.04, 0.12)
-        objs.append({"type": "cone", "material": ["glass", "steel", "tinted"][i % 3],
-                     "base": vec([c[k] - half * d[k] for k in range(3)]), "base_radius": num(r),
-                     "apex": vec([c[k] + half * d[k] for k in range(3)]),
-                     "apex_radius": num(r * rng.uniform(0.5, 1))})
+        objs.append(rod(["glass", "steel", "tinted"][i % 3], c, d, half, r,
+                        r * rng.uniform(0.5, 1)))
     return {
         "camera": {"from": [7, 5, 10], "at": [0, 0, 0], "up": [0, 1, 0], "fov": 50},
         "image": {"width": 512, "height": 512},
