@@ -424,6 +424,13 @@ glint_status glint_accel_parse(const char *name, glint_accel *accel,
 #define GLINT_MAX_SPP 4096
 #define GLINT_MAX_DIMENSION 16384
 #define GLINT_MAX_THREADS 1024
+/* The largest magnitude of a scene's coordinates and sizes (positions,
+ * radii, vertices, the camera, lights; also after an animation's
+ * transforms): single precision, in which most backends trace, squares
+ * distances and multiplies them, and 1e15 keeps every such product far
+ * inside its range (3.4e38). A scene beyond it is refused, not rendered
+ * black. */
+#define GLINT_MAX_COORDINATE 1e15
 
 /* Called after each finished tile with the fraction done; may be called from
  * any worker thread, but never by two at once. Return non-zero to cancel. */

@@ -1045,7 +1045,7 @@ static void bad_arguments(void **state) {
   fixture *f = *state;
   const char *p = write_text(f, "arg.obj",
                              "v 0 0 0\nv 1 0 0\nv 0 1 0\n"
-                             "v 1e300 0 0\nf 1 2 3\nf 1 2 4\n");
+                             "v 1e14 0 0\nf 1 2 3\nf 1 2 4\n");
   uint32_t m;
   glint_scene *s = new_scene(&m);
   glint_error e;
@@ -1064,11 +1064,12 @@ static void bad_arguments(void **state) {
   assert_non_null(strstr(e.message, "material"));
   assert_int_equal(glint_scene_add_mesh_file(s, NULL, 1, (V){0, 0, 0}, m, &e),
                    GLINT_E_ARGUMENT);
-  /* Scaling 1e300 by 1e10 overflows: refused after one good triangle was
-   * pushed, and rolled back. */
+  /* Scaling 1e14 by 1e10 goes beyond GLINT_MAX_COORDINATE: refused after
+   * one good triangle was pushed, and rolled back. */
   assert_int_equal(glint_scene_add_mesh_file(s, p, 1e10, (V){0, 0, 0}, m, &e),
                    GLINT_E_ARGUMENT);
   assert_non_null(strstr(e.message, "arg.obj: triangle 1"));
+  assert_non_null(strstr(e.message, "magnitude at most 1e15"));
   assert_int_equal(s->object_count, 0);
   assert_int_equal(s->triangle_count, 0);
   /* The error record is optional. */
@@ -1076,6 +1077,15 @@ static void bad_arguments(void **state) {
                    GLINT_E_ARGUMENT);
   assert_int_equal(s->triangle_count, 0);
   ASSERT_OK(glint_scene_add_mesh_file(s, p, 1, (V){0, 0, 0}, m, &e_));
+  assert_int_equal(s->triangle_count, 2);
+  /* A file's own vertex beyond the limit (finite in double, infinite in
+   * float) is refused as well. */
+  const char *far = write_text(f, "far.obj",
+                               "v 0 0 0\nv 1 0 0\nv 0 1e300 0\n"
+                               "f 1 2 3\n");
+  assert_int_equal(glint_scene_add_mesh_file(s, far, 1, (V){0, 0, 0}, m, &e),
+                   GLINT_E_ARGUMENT);
+  assert_non_null(strstr(e.message, "far.obj: triangle 0"));
   assert_int_equal(s->triangle_count, 2);
   glint_scene_destroy(s);
 }

@@ -118,6 +118,11 @@ static void malformed_files(void **state) {
       "num.nff:9: expected a number for the sphere's centre, found 'zero'");
   EXPECT_FAIL("nan.nff", VIEW "f 1 1 1 1 0 1 0 1\ns 0 0 0 nan\n", GLINT_E_PARSE,
               "nan.nff:9: the sphere's radius is 'nan', not a finite number");
+  /* Finite but beyond GLINT_MAX_COORDINATE: its square overflows floats. */
+  EXPECT_FAIL("huge.nff", VIEW "f 1 1 1 1 0 1 0 1\ns 0 0 0 1e39\n",
+              GLINT_E_PARSE,
+              "huge.nff:9: sphere: centre and radius must be finite numbers of "
+              "magnitude at most 1e15");
   EXPECT_FAIL("inf.nff", VIEW "b 1 inf 0\n", GLINT_E_PARSE,
               "inf.nff:8: the background colour is 'inf', not a finite number");
   EXPECT_FAIL("unknown.nff", VIEW "torus 0 0 0 1 2\n", GLINT_E_PARSE,

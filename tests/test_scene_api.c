@@ -67,6 +67,65 @@ static void primitives_refuse_bad_numbers(void **state) {
   glint_scene_destroy(s);
 }
 
+/* GLINT_MAX_COORDINATE: 1e15 and -1e15 are accepted everywhere a scene
+ * takes a coordinate or a size, anything beyond is refused with the
+ * limit named; and at the limit every backend still draws the image double
+ * precision draws: a sphere of radius 1e15 round the camera, seen from
+ * inside, lights every pixel (its squared radius, 1e30, is far inside
+ * single precision; 1e20's, 1e40, would overflow it and leave the image
+ * black in float and white in double, as before the limit). */
+static void coordinates_stay_within_the_limit(void **state) {
+  (void)state;
+  uint32_t m;
+  glint_scene *s = scene_with_material(&m);
+  V ok = {0, 0, 0}, far = {0, 0, 1.0000001e15}, edge = {-1e15, 0, 0};
+  const char *limit = "magnitude at most 1e15";
+  EXPECT_ERR(glint_scene_add_sphere(s, far, 1, m, &e_), GLINT_E_ARGUMENT,
+             limit);
+  EXPECT_ERR(glint_scene_add_sphere(s, ok, 1e300, m, &e_), GLINT_E_ARGUMENT,
+             limit);
+  EXPECT_ERR(glint_scene_add_plane(s, (V){0, 1, 0}, far, m, &e_),
+             GLINT_E_ARGUMENT, limit);
+  EXPECT_ERR(glint_scene_add_triangle(s, ok, (V){1, 0, 0}, far, m, &e_),
+             GLINT_E_ARGUMENT, limit);
+  EXPECT_ERR(glint_scene_add_cone(s, ok, 1, far, 0.5, m, &e_), GLINT_E_ARGUMENT,
+             limit);
+  EXPECT_ERR(glint_scene_add_cone(s, ok, 2e15, (V){0, 1, 0}, 0, m, &e_),
+             GLINT_E_ARGUMENT, limit);
+  EXPECT_ERR(glint_scene_add_light(s, far, (V){1, 1, 1}, &e_), GLINT_E_ARGUMENT,
+             limit);
+  glint_camera cam = {{0, 0, -8}, {0, 0, 0}, {0, 1, 0}, 40};
+  cam.from = far;
+  EXPECT_ERR(glint_scene_set_camera(s, &cam, &e_), GLINT_E_ARGUMENT, limit);
+  glint_scene_info info;
+  glint_scene_get_info(s, &info);
+  assert_int_equal(info.objects, 0);
+
+  ASSERT_OK(glint_scene_add_sphere(s, edge, 1, m, &e_));
+  ASSERT_OK(glint_scene_add_sphere(s, ok, 1e15, m, &e_));
+  ASSERT_OK(glint_scene_add_light(s, (V){0, 5, -5}, (V){1, 1, 1}, &e_));
+  cam.from = (V){0, 0, -8};
+  ASSERT_OK(glint_scene_set_camera(s, &cam, &e_));
+  for (int be = GLINT_BACKEND_SCALAR_FLOAT; be < GLINT_BACKEND_COUNT; be++) {
+    if (backend_missing((glint_backend)be))
+      continue;
+    glint_render_settings rs;
+    glint_render_settings_default(&rs);
+    rs.width = 16;
+    rs.height = 12;
+    rs.backend = (glint_backend)be;
+    glint_image *im;
+    ASSERT_OK(glint_render(s, &rs, &im, NULL, &e_));
+    const uint8_t *p = glint_image_pixels_const(im);
+    for (int i = 0; i < 16 * 12 * 3; i++)
+      if (p[i] == 0)
+        fail_msg("%s: pixel %d of the huge sphere is black",
+                 glint_backend_name((glint_backend)be), i / 3);
+    glint_image_destroy(im);
+  }
+  glint_scene_destroy(s);
+}
+
 static void materials_refuse_bad_values(void **state) {
   (void)state;
   uint32_t m;
@@ -300,6 +359,7 @@ static void scenes_load_from_memory(void **state) {
 int main(void) {
   const struct CMUnitTest tests[] = {
       cmocka_unit_test(primitives_refuse_bad_numbers),
+      cmocka_unit_test(coordinates_stay_within_the_limit),
       cmocka_unit_test(materials_refuse_bad_values),
       cmocka_unit_test(camera_refuses_degenerate_views),
       cmocka_unit_test(render_refuses_bad_settings),

@@ -350,8 +350,8 @@ glint_status glint_scene_at_time(const glint_scene *s, double time,
     if (gli_object_transform(still, s->animation.motions[i].object, &t)) {
       glint_scene_destroy(still);
       return gli_fail(error, GLINT_E_ARGUMENT,
-                      "object %u's motion at %g s moves it beyond finite "
-                      "numbers",
+                      "object %u's motion at %g s moves it beyond "
+                      "coordinates of magnitude 1e15",
                       s->animation.motions[i].object, time);
     }
   }

@@ -134,7 +134,7 @@ static glint_status add_to_scene(glint_scene *s, const char *path, mesh_data *m,
     st = gli_scene_push_triangle(s, m->pos[v[0]], m->pos[v[1]], m->pos[v[2]],
                                  normals, e);
     if (st) {
-      /* Only scaling can make a finite file's coordinates infinite. */
+      /* A coordinate beyond GLINT_MAX_COORDINATE, in the file or scaled. */
       char msg[sizeof e->message];
       snprintf(msg, sizeof msg, "%s", e ? e->message : "");
       st = gli_fail(e, st, "%s: triangle %zu, scaled by %g: %s", path, i, scale,

@@ -13,6 +13,12 @@ int gli_vec3_finite(glint_vec3 v) {
   return isfinite(v.x) && isfinite(v.y) && isfinite(v.z);
 }
 
+int gli_in_range(double x) { return fabs(x) <= GLINT_MAX_COORDINATE; }
+
+int gli_vec3_in_range(glint_vec3 v) {
+  return gli_in_range(v.x) && gli_in_range(v.y) && gli_in_range(v.z);
+}
+
 static double vlen(glint_vec3 v) {
   return sqrt(v.x * v.x + v.y * v.y + v.z * v.z);
 }
@@ -70,10 +76,10 @@ static glint_status oom(glint_error *error) {
 }
 
 glint_status gli_camera_check(const glint_camera *c, glint_error *error) {
-  if (!gli_vec3_finite(c->from) || !gli_vec3_finite(c->at) ||
-      !gli_vec3_finite(c->up) || !isfinite(c->fov_x_degrees))
+  if (!gli_vec3_in_range(c->from) || !gli_vec3_in_range(c->at) ||
+      !gli_vec3_in_range(c->up) || !isfinite(c->fov_x_degrees))
     return gli_fail(error, GLINT_E_ARGUMENT,
-                    "camera: coordinates must be finite numbers");
+                    "camera: coordinates must be " GLI_RANGE_TEXT);
   if (!(c->fov_x_degrees > 0 && c->fov_x_degrees < 180))
     return gli_fail(error, GLINT_E_ARGUMENT,
                     "camera: field of view %g is not between 0 and 180 "
@@ -120,8 +126,8 @@ static glint_status check_color(glint_vec3 c, const char *what,
   return GLINT_OK;
 }
 
-static glint_status set_color(glint_vec3 *field, glint_vec3 c,
-                              const char *what, glint_error *error) {
+static glint_status set_color(glint_vec3 *field, glint_vec3 c, const char *what,
+                              glint_error *error) {
   glint_status st = check_color(c, what, error);
   if (st == GLINT_OK)
     *field = c;
@@ -140,8 +146,9 @@ glint_status glint_scene_set_ambient(glint_scene *s, glint_vec3 c,
 
 glint_status glint_scene_add_light(glint_scene *s, glint_vec3 p, glint_vec3 c,
                                    glint_error *error) {
-  if (!gli_vec3_finite(p))
-    return gli_fail(error, GLINT_E_ARGUMENT, "light position must be finite");
+  if (!gli_vec3_in_range(p))
+    return gli_fail(error, GLINT_E_ARGUMENT,
+                    "light position must be " GLI_RANGE_TEXT);
   glint_status st = check_color(c, "light colour", error);
   if (st != GLINT_OK)
     return st;
@@ -211,9 +218,9 @@ glint_status gli_scene_begin_object(glint_scene *s, gli_shape shape,
 
 glint_status glint_scene_add_sphere(glint_scene *s, glint_vec3 c, double r,
                                     uint32_t material, glint_error *error) {
-  if (!gli_vec3_finite(c) || !isfinite(r))
+  if (!gli_vec3_in_range(c) || !gli_in_range(r))
     return gli_fail(error, GLINT_E_ARGUMENT,
-                    "sphere: coordinates must be finite numbers");
+                    "sphere: centre and radius must be " GLI_RANGE_TEXT);
   if (!(r > 0))
     return gli_fail(error, GLINT_E_ARGUMENT, "sphere: radius %g must be > 0",
                     r);
@@ -234,9 +241,9 @@ glint_status glint_scene_add_sphere(glint_scene *s, glint_vec3 c, double r,
 
 glint_status glint_scene_add_plane(glint_scene *s, glint_vec3 n, glint_vec3 p,
                                    uint32_t material, glint_error *error) {
-  if (!gli_vec3_finite(n) || !gli_vec3_finite(p))
+  if (!gli_vec3_in_range(n) || !gli_vec3_in_range(p))
     return gli_fail(error, GLINT_E_ARGUMENT,
-                    "plane: coordinates must be finite numbers");
+                    "plane: coordinates must be " GLI_RANGE_TEXT);
   double len = vlen(n);
   if (!(len > 0) || !isfinite(len))
     return gli_fail(error, GLINT_E_ARGUMENT,
@@ -258,9 +265,9 @@ glint_status glint_scene_add_plane(glint_scene *s, glint_vec3 n, glint_vec3 p,
 glint_status gli_scene_push_triangle(glint_scene *s, glint_vec3 a, glint_vec3 b,
                                      glint_vec3 c, const glint_vec3 normals[3],
                                      glint_error *error) {
-  if (!gli_vec3_finite(a) || !gli_vec3_finite(b) || !gli_vec3_finite(c))
+  if (!gli_vec3_in_range(a) || !gli_vec3_in_range(b) || !gli_vec3_in_range(c))
     return gli_fail(error, GLINT_E_ARGUMENT,
-                    "triangle: coordinates must be finite numbers");
+                    "triangle: coordinates must be " GLI_RANGE_TEXT);
   gli_object *o = &s->objects[s->object_count - 1];
   if (s->triangle_count >= UINT32_MAX - 1)
     return gli_fail(error, GLINT_E_ARGUMENT, "too many triangles");
@@ -268,9 +275,9 @@ glint_status gli_scene_push_triangle(glint_scene *s, glint_vec3 a, glint_vec3 b,
       {a, b, c}, (uint32_t)(s->object_count - 1), GLI_NO_NORMALS};
   if (normals) {
     for (int i = 0; i < 3; i++)
-      if (!gli_vec3_finite(normals[i]))
+      if (!gli_vec3_in_range(normals[i]))
         return gli_fail(error, GLINT_E_ARGUMENT,
-                        "triangle: normals must be finite numbers");
+                        "triangle: normals must be " GLI_RANGE_TEXT);
     if (s->tri_normal_count >= UINT32_MAX - 3)
       return gli_fail(error, GLINT_E_ARGUMENT, "too many normals");
     if (gli_grow((void **)&s->tri_normals, &s->tri_normal_cap,
@@ -294,9 +301,9 @@ glint_status gli_scene_push_triangle(glint_scene *s, glint_vec3 a, glint_vec3 b,
 glint_status glint_scene_add_triangle(glint_scene *s, glint_vec3 a,
                                       glint_vec3 b, glint_vec3 c,
                                       uint32_t material, glint_error *error) {
-  if (!gli_vec3_finite(a) || !gli_vec3_finite(b) || !gli_vec3_finite(c))
+  if (!gli_vec3_in_range(a) || !gli_vec3_in_range(b) || !gli_vec3_in_range(c))
     return gli_fail(error, GLINT_E_ARGUMENT,
-                    "triangle: coordinates must be finite numbers");
+                    "triangle: coordinates must be " GLI_RANGE_TEXT);
   glint_status st =
       gli_scene_begin_object(s, GLI_SHAPE_TRIANGLE, material, error);
   if (st)
@@ -310,10 +317,10 @@ glint_status glint_scene_add_triangle(glint_scene *s, glint_vec3 a,
 glint_status glint_scene_add_cone(glint_scene *s, glint_vec3 base, double rb,
                                   glint_vec3 apex, double ra, uint32_t material,
                                   glint_error *error) {
-  if (!gli_vec3_finite(base) || !gli_vec3_finite(apex) || !isfinite(rb) ||
-      !isfinite(ra))
+  if (!gli_vec3_in_range(base) || !gli_vec3_in_range(apex) ||
+      !gli_in_range(rb) || !gli_in_range(ra))
     return gli_fail(error, GLINT_E_ARGUMENT,
-                    "cone: coordinates must be finite numbers");
+                    "cone: coordinates and radii must be " GLI_RANGE_TEXT);
   if (rb < 0 || ra < 0 || (rb == 0 && ra == 0))
     return gli_fail(error, GLINT_E_ARGUMENT,
                     "cone: radii %g and %g must be >= 0 and not both 0", rb,

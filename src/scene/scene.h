@@ -93,8 +93,8 @@ typedef struct gli_animation {
 int gli_animation_copy(gli_animation *dst, const gli_animation *src);
 void gli_animation_free(gli_animation *animation);
 /* Applies `t` to object `object`'s primitives (scene/transform.c); -1 when
- * a moved coordinate or radius is no longer finite (the scene is then not
- * to be used). */
+ * a moved coordinate or radius leaves GLINT_MAX_COORDINATE's range (the
+ * scene is then not to be used). */
 int gli_object_transform(glint_scene *scene, uint32_t object,
                          const glint_transform *t);
 
@@ -125,6 +125,11 @@ struct glint_scene {
 
 /* Validation shared by the API and the file loaders. */
 int gli_vec3_finite(glint_vec3 v);
+/* Finite and of magnitude at most GLINT_MAX_COORDINATE (a scene's
+ * coordinates and sizes); GLI_RANGE_TEXT says so in messages. */
+int gli_in_range(double x);
+int gli_vec3_in_range(glint_vec3 v);
+#define GLI_RANGE_TEXT "finite numbers of magnitude at most 1e15"
 
 /* Appends a triangle to the object being built (the last one added by
  * gli_scene_begin_object). `normals` may be NULL. */
@@ -140,9 +145,9 @@ glint_status gli_scene_push_triangle(glint_scene *scene, glint_vec3 a,
  * places the files it refers to (a JSON scene's meshes), which come from
  * `files` (NULL: the file system). */
 struct gli_file_source;
-glint_status gli_nff_read(const struct gli_file_source *files,
-                          const char *path, const char *data, size_t size,
-                          glint_scene **out, glint_error *error);
+glint_status gli_nff_read(const struct gli_file_source *files, const char *path,
+                          const char *data, size_t size, glint_scene **out,
+                          glint_error *error);
 glint_status gli_json_read(const struct gli_file_source *files,
                            const char *path, const char *data, size_t size,
                            glint_scene **out, glint_error *error);

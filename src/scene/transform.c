@@ -44,7 +44,7 @@ static glint_vec3 move(const rigid *m, glint_vec3 p) {
 
 int gli_object_transform(glint_scene *s, uint32_t object,
                          const glint_transform *t) {
-  int finite = 1;
+  int finite = 1; /* and within GLINT_MAX_COORDINATE */
   rigid m = rigid_of(t);
   gli_object *o = &s->objects[object];
   o->origin = move(&m, o->origin);
@@ -53,8 +53,8 @@ int gli_object_transform(glint_scene *s, uint32_t object,
     case GLI_SHAPE_SPHERE:
       s->spheres[i].center = move(&m, s->spheres[i].center);
       s->spheres[i].radius *= m.scale;
-      finite &= gli_vec3_finite(s->spheres[i].center) &
-                isfinite(s->spheres[i].radius);
+      finite &= gli_vec3_in_range(s->spheres[i].center) &
+                gli_in_range(s->spheres[i].radius);
       break;
     case GLI_SHAPE_PLANE: {
       /* n.X + d = 0: move the point -d n and turn the normal. */
@@ -65,14 +65,14 @@ int gli_object_transform(glint_scene *s, uint32_t object,
       p->normal = turn(&m, p->normal);
       p->d = -(p->normal.x * point.x + p->normal.y * point.y +
                p->normal.z * point.z);
-      finite &= gli_vec3_finite(p->normal) & isfinite(p->d);
+      finite &= gli_vec3_finite(p->normal) & gli_in_range(p->d);
       break;
     }
     case GLI_SHAPE_TRIANGLE: {
       gli_triangle_prim *tr = &s->triangles[i];
       for (int k = 0; k < 3; k++) {
         tr->v[k] = move(&m, tr->v[k]);
-        finite &= gli_vec3_finite(tr->v[k]);
+        finite &= gli_vec3_in_range(tr->v[k]);
       }
       if (tr->normals != GLI_NO_NORMALS)
         for (int k = 0; k < 3; k++)
@@ -85,9 +85,10 @@ int gli_object_transform(glint_scene *s, uint32_t object,
       s->cones[i].apex = move(&m, s->cones[i].apex);
       s->cones[i].base_radius *= m.scale;
       s->cones[i].apex_radius *= m.scale;
-      finite &= gli_vec3_finite(s->cones[i].base) &
-                gli_vec3_finite(s->cones[i].apex) &
-                isfinite(s->cones[i].base_radius);
+      finite &= gli_vec3_in_range(s->cones[i].base) &
+                gli_vec3_in_range(s->cones[i].apex) &
+                gli_in_range(s->cones[i].base_radius) &
+                gli_in_range(s->cones[i].apex_radius);
       break;
     }
   }

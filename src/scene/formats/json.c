@@ -680,7 +680,8 @@ static glint_status read_transform(json_reader *r, const cJSON *v) {
       return st;
     if (gli_object_transform(r->scene, object, &k.transform))
       return fail(r, GLINT_E_PARSE,
-                  "the transform moves the object beyond finite numbers");
+                  "the transform moves the object beyond "
+                  "coordinates of magnitude 1e15");
     return GLINT_OK;
   }
   static const char *const fields[] = {"keys", "interpolation", NULL};
