@@ -42,6 +42,15 @@ static ALWAYS_INLINE void lane_ray(const lane_rays *r, int k, vec3 *o,
   *d = v3(r->d[0][k], r->d[1][k], r->d[2][k]);
 }
 
+/* The lanes' moments for the triangle tests, only where there are
+ * triangles (render/scalar_rays.h's ray_moment). */
+static ALWAYS_INLINE vvec3 packet_ray_moment(const packet_scene *ps, vvec3 o,
+                                             vvec3 d) {
+  if (!ps->s->triangle_count)
+    return (vvec3){vf_zero(), vf_zero(), vf_zero()};
+  return packet_triangle_moment(ps->tri_origin, o, d);
+}
+
 /* One referenced primitive against the lanes of m. */
 static ALWAYS_INLINE void packet_prim(const packet_scene *ps, uint32_t ref,
                                       vvec3 o, vvec3 d, vvec3 l, vmask m,
@@ -139,7 +148,7 @@ static ALWAYS_INLINE void packet_nearest(const packet_scene *ps, vvec3 o,
   const scene_r *s = ps->s;
   packet_hit_init(h);
   vfloat eps = vs_get(&ps->eps);
-  vvec3 l = packet_triangle_moment(ps->tri_origin, o, d);
+  vvec3 l = packet_ray_moment(ps, o, d);
   int lanes = vm_count(active);
   count_tests(st, s->plane_count, lanes);
   for (size_t i = 0; i < s->plane_count; i++)
@@ -337,7 +346,7 @@ static ALWAYS_INLINE vvec3 packet_transmission(const packet_scene *ps, vvec3 o,
                      active,
                      0};
   vfloat eps = vs_get(&ps->eps);
-  vvec3 l = packet_triangle_moment(ps->tri_origin, o, d);
+  vvec3 l = packet_ray_moment(ps, o, d);
   int lanes = vm_count(active);
   count_tests(st, s->plane_count, lanes);
   for (size_t i = 0; i < s->plane_count && vm_any(sh.alive); i++) {

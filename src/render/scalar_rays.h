@@ -13,6 +13,14 @@
 #include "render/scalar_scene.h"
 #include "scene/scene.h"
 
+/* The ray's moment for the triangle tests, only where there are triangles:
+ * a cross product every query would make on scenes of spheres and planes
+ * (the scalar tracer 3% slower on Whitted). */
+static inline vec3 ray_moment(const scene_r *s, vec3 o, vec3 d) {
+  return s->triangle_count ? triangle_ray_moment(s->tri_origin, o, d)
+                           : v3(0, 0, 0);
+}
+
 /* ---- nearest hit ------------------------------------------------------- */
 
 /* One primitive of the BVH's (or the brute-force loop's) against the ray;
@@ -105,7 +113,7 @@ ray_nearest_wide(const scene_r *s, const vec3 ray[3], real *tmax, hit_r *hit) {
  * or every primitive (--accel none, the thesis's brute force, §4.3). */
 static inline __attribute__((always_inline)) int
 ray_nearest(const scene_r *s, vec3 o, vec3 d, real tmax, hit_r *hit) {
-  vec3 l = triangle_ray_moment(s->tri_origin, o, d);
+  vec3 l = ray_moment(s, o, d);
   int found = 0;
   real t;
   for (size_t i = 0; i < s->plane_count; i++)
@@ -249,7 +257,7 @@ static inline vec3 shadow_acc_result(const shadow_acc *acc) {
  * the planes, then the BVH as ray_nearest walks it. */
 static inline __attribute__((always_inline)) vec3
 ray_transmission(const scene_r *s, vec3 o, vec3 d, real dist) {
-  vec3 l = triangle_ray_moment(s->tri_origin, o, d);
+  vec3 l = ray_moment(s, o, d);
   shadow_acc acc = {v3(1, 1, 1), v3(0, 0, 0)};
   const vec3 black = v3(0, 0, 0);
   real t;
