@@ -138,7 +138,9 @@ int mpi_render_tiles(const mpi_world *w, const mpi_options *o,
   glint_error err = {0};
   glint_status st = GLINT_OK;
   if (w->rank == 0) {
-    if (film_output && rs->gamma != 1)
+    if (cli_check_output_format(output, &err))
+      st = GLINT_E_ARGUMENT;
+    else if (film_output && rs->gamma != 1)
       st = GLINT_E_ARGUMENT,
       snprintf(err.message, sizeof err.message,
                "%s: --gamma applies to 8-bit images; .pfm and .exr are "

@@ -311,6 +311,22 @@ int cli_is_film_path(const char *path) {
   return dot && (strcasecmp(dot, ".pfm") == 0 || strcasecmp(dot, ".exr") == 0);
 }
 
+glint_status cli_check_output_format(const char *path, glint_error *err) {
+  if (cli_is_film_path(path) ||
+      glint_image_format_from_path(path) != GLINT_FORMAT_UNKNOWN)
+    return GLINT_OK;
+  err->status = GLINT_E_ARGUMENT;
+  if (!*path)
+    snprintf(err->message, sizeof err->message,
+             "the output file name is empty");
+  else
+    snprintf(err->message, sizeof err->message,
+             "%s: unknown output format (use .png, .bmp or .ppm, or .pfm or "
+             ".exr for the linear film)",
+             path);
+  return GLINT_E_ARGUMENT;
+}
+
 /* The size of the image or film a render produces: the region's, else the
  * settings', else the scene's. */
 static void output_size(const glint_scene *scene,
@@ -547,6 +563,11 @@ int cmd_render(int argc, char **argv) {
   }
   /* Refuse a bad output path before a long render, not after. */
   int film_output = !to_stdout && cli_is_film_path(output);
+  if (!to_stdout && cli_check_output_format(output, &err)) {
+    cli_error("%s", err.message);
+    glint_scene_destroy(scene);
+    return EXIT_USAGE;
+  }
   if (film_output && rs.gamma != 1) {
     cli_error("%s: --gamma applies to 8-bit images; .pfm and .exr are "
               "linear",

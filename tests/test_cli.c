@@ -155,10 +155,13 @@ static void size_errors(void **state) {
 
 static void output_errors(void **state) {
   (void)state;
-  EXPECT_USAGE_ERROR("unknown image format", "render", "-W", "8", "-H", "8",
-                     "-o", "out.jpg");
-  EXPECT_USAGE_ERROR("unknown image format", "render", "-W", "8", "-H", "8",
+  EXPECT_USAGE_ERROR("out.jpg: unknown output format (use .png, .bmp or .ppm, "
+                     "or .pfm or .exr for the linear film)",
+                     "render", "-W", "8", "-H", "8", "-o", "out.jpg");
+  EXPECT_USAGE_ERROR("unknown output format", "render", "-W", "8", "-H", "8",
                      "-o", "out");
+  EXPECT_USAGE_ERROR("the output file name is empty", "render", "-W", "8", "-H",
+                     "8", "-o", "");
   EXPECT_USAGE_ERROR("/no/such/folder/out.png: cannot write here", "render",
                      "-W", "8", "-H", "8", "-o", "/no/such/folder/out.png");
   char sub[128];
