@@ -93,6 +93,19 @@ int parse_double(const char *option, const char *text, double min,
   return 0;
 }
 
+int parse_gamma(const char *option, const char *text, double *out) {
+  double v;
+  if (parse_double(option, text, -INFINITY, &v))
+    return -1;
+  if (v < GLINT_MIN_GAMMA || v > GLINT_MAX_GAMMA) {
+    cli_error("%s: %g is outside %g..%g", option, v, GLINT_MIN_GAMMA,
+              GLINT_MAX_GAMMA);
+    return -1;
+  }
+  *out = v;
+  return 0;
+}
+
 int split_list(char *text, char **items, int max) {
   int n = 0;
   for (char *p = text; *p;) {

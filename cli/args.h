@@ -30,6 +30,8 @@ char *arg_value(arg_cursor *c, const char *option);
 int parse_int(const char *option, const char *text, long min, long max,
               int *out);
 int parse_double(const char *option, const char *text, double min, double *out);
+/* A gamma within GLINT_MIN_GAMMA..GLINT_MAX_GAMMA. */
+int parse_gamma(const char *option, const char *text, double *out);
 
 /* The settings options that render and bench share: -W/--width,
  * -H/--height, -s/--spp, --math, --no-newton and --accel. Returns

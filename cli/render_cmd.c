@@ -52,8 +52,9 @@ static void render_usage(FILE *f) {
       "                       walk alone through the 8-wide BVH; bvh2:\n"
       "                       never; bvh8: every ray alone, but in the\n"
       "                       stream backends; none: no BVH)\n"
-      "      --gamma G        encode with gamma G (default: 1, linear);\n"
-      "                       8-bit outputs only; PNGs record it (gAMA)\n"
+      "      --gamma G        encode with gamma G, 0.01..100 (default: 1,\n"
+      "                       linear); 8-bit outputs only; PNGs record it\n"
+      "                       (gAMA)\n"
       "      --png-compression fast|smallest\n"
       "                       fast (default): several times faster to\n"
       "                       write, files 10-90% larger; smallest: zlib's\n"
@@ -488,7 +489,7 @@ int render_parse(int argc, char **argv, render_options *o) {
         return EXIT_USAGE;
       }
     } else if (arg_is(&c, NULL, "--gamma")) {
-      if (parse_double("--gamma", arg_value(&c, "--gamma"), 0, &rs->gamma))
+      if (parse_gamma("--gamma", arg_value(&c, "--gamma"), &rs->gamma))
         return EXIT_USAGE;
     } else if (arg_scene_operand(&c, "render", &o->scene) == ARG_BAD) {
       return EXIT_USAGE;

@@ -44,7 +44,8 @@ static void view_usage(FILE *f) {
       "minimax)\n"
       "      --no-newton      skip the Newton step after rcp\n"
       "      --accel NAME     bvh, bvh2, bvh8, none (default: bvh)\n"
-      "      --gamma G        display and screenshot gamma (default: 1)\n"
+      "      --gamma G        display and screenshot gamma, 0.01..100\n"
+      "                       (default: 1)\n"
       "      --budget MS      frame time while moving before the resolution\n"
       "                       is lowered (default: 40)\n"
       "      --benchmark N    fly the benchmark path for N frames without\n"
@@ -125,7 +126,7 @@ int view_parse(int argc, char **argv, view_options *o) {
       continue;
     }
     if (arg_is(&c, NULL, "--gamma")) {
-      if (parse_double("--gamma", arg_value(&c, "--gamma"), 0, &rs->gamma))
+      if (parse_gamma("--gamma", arg_value(&c, "--gamma"), &rs->gamma))
         return EXIT_USAGE;
     } else if (arg_is(&c, NULL, "--script")) {
       if (!(o->script_path = arg_value(&c, "--script")))

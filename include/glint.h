@@ -431,6 +431,10 @@ glint_status glint_accel_parse(const char *name, glint_accel *accel,
  * inside its range (3.4e38). A scene beyond it is refused, not rendered
  * black. */
 #define GLINT_MAX_COORDINATE 1e15
+/* The gammas an 8-bit image may be encoded with (1: linear; PNG records
+ * 1/gamma in 1/100000ths, which needs at least 1e-5). */
+#define GLINT_MIN_GAMMA 0.01
+#define GLINT_MAX_GAMMA 100.0
 
 /* Called after each finished tile with the fraction done; may be called from
  * any worker thread, but never by two at once. Return non-zero to cancel. */

@@ -133,7 +133,12 @@ static void usage_errors(void **state) {
   EXPECT_USAGE_ERROR("--output needs a value", "render", "-o");
   EXPECT_USAGE_ERROR("--math", "render", "--math", "sloppy");
   EXPECT_USAGE_ERROR("--accel", "render", "--accel", "kdtree");
-  EXPECT_USAGE_ERROR("--gamma", "render", "--gamma", "0");
+  EXPECT_USAGE_ERROR("--gamma: 0 is outside 0.01..100", "render", "--gamma",
+                     "0");
+  EXPECT_USAGE_ERROR("--gamma: 1e+308 is outside 0.01..100", "render",
+                     "--gamma", "1e308");
+  EXPECT_USAGE_ERROR("--gamma: 1e-308 is outside 0.01..100", "view", "--gamma",
+                     "1e-308");
 }
 
 static void size_errors(void **state) {

@@ -408,6 +408,11 @@ static void refuses_bad_opens(void **state) {
                     "outside 1..16384");
   expect_open_error(in_folder("x.png"), W, H, 0, 0, "gamma");
   expect_open_error(in_folder("x.png"), W, H, NAN, 0, "gamma");
+  /* libpng cannot record 1/1e-308, and 1e308 made every byte 0 or 255 */
+  expect_open_error(in_folder("x.png"), W, H, 1e-308, 0,
+                    "gamma 1e-308 is outside 0.01..100");
+  expect_open_error(in_folder("x.ppm"), W, H, 1e308, 0,
+                    "gamma 1e+308 is outside 0.01..100");
   expect_open_error(in_folder("x.png"), W, H, 1, 7, "unknown PNG compression");
   assert_int_equal(leftovers(), 0);
 }

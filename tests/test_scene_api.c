@@ -194,6 +194,8 @@ static void render_refuses_bad_settings(void **state) {
   CASE(threads, -1, "threads")
   CASE(gamma, 0, "gamma")
   CASE(gamma, NAN, "gamma")
+  CASE(gamma, GLINT_MAX_GAMMA * 1.01, "gamma")
+  CASE(gamma, GLINT_MIN_GAMMA * 0.99, "gamma")
   CASE(backend, (glint_backend)99, "backend")
 #undef CASE
   glint_scene_destroy(s);

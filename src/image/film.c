@@ -66,11 +66,17 @@ void gli_film_span_to_bytes(const float *src, uint8_t *dst, size_t n,
   }
 }
 
+glint_status gli_gamma_check(double gamma, glint_error *error) {
+  if (!(gamma >= GLINT_MIN_GAMMA && gamma <= GLINT_MAX_GAMMA))
+    return gli_fail(error, GLINT_E_ARGUMENT, "gamma %g is outside %g..%g",
+                    gamma, GLINT_MIN_GAMMA, GLINT_MAX_GAMMA);
+  return GLINT_OK;
+}
+
 glint_status glint_film_to_image(const glint_film *film, double gamma,
                                  glint_image *image, glint_error *error) {
-  if (!(isfinite(gamma) && gamma > 0))
-    return gli_fail(error, GLINT_E_ARGUMENT, "gamma %g must be a number > 0",
-                    gamma);
+  if (gli_gamma_check(gamma, error))
+    return GLINT_E_ARGUMENT;
   if (image->width != film->width || image->height != film->height)
     return gli_fail(error, GLINT_E_ARGUMENT,
                     "a %dx%d film does not fit a %dx%d image", film->width,

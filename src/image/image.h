@@ -46,6 +46,10 @@ glint_status gli_atomic_commit(gli_atomic_file *file, int failed,
                                int failed_errno, glint_error *error);
 void gli_atomic_discard(gli_atomic_file *file);
 
+/* GLINT_E_ARGUMENT unless GLINT_MIN_GAMMA <= gamma <= GLINT_MAX_GAMMA: the
+ * one check of every call that takes a gamma. */
+glint_status gli_gamma_check(double gamma, glint_error *error);
+
 /* Film encoders: 0 on success. EXR returns -1 with errno 0 on a library
  * error, and is absent (GLINT_HAVE_EXR undefined) in builds without
  * OpenEXR. */

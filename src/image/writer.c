@@ -113,8 +113,8 @@ static glint_status writer_create(const char *label, glint_image_format format,
     return gli_fail(error, GLINT_E_ARGUMENT,
                     "image size %dx%d is outside 1..%d", width, height,
                     GLINT_MAX_DIMENSION);
-  if (!(gamma > 0) || gamma > 1e6)
-    return gli_fail(error, GLINT_E_ARGUMENT, "gamma %g is not positive", gamma);
+  if (gli_gamma_check(gamma, error))
+    return GLINT_E_ARGUMENT;
   if ((unsigned)compression > GLINT_PNG_SMALLEST)
     return gli_fail(error, GLINT_E_ARGUMENT, "unknown PNG compression %d",
                     (int)compression);

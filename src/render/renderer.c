@@ -107,9 +107,8 @@ glint_status gli_render_settings_check(const glint_render_settings *s,
   if (s->threads < 0 || s->threads > GLINT_MAX_THREADS)
     return gli_fail(e, GLINT_E_ARGUMENT, "threads %d is outside 0..%d",
                     s->threads, GLINT_MAX_THREADS);
-  if (!(isfinite(s->gamma) && s->gamma > 0))
-    return gli_fail(e, GLINT_E_ARGUMENT, "gamma %g must be a number > 0",
-                    s->gamma);
+  if (gli_gamma_check(s->gamma, e))
+    return GLINT_E_ARGUMENT;
   if ((unsigned)s->math >= GLINT_MATH_COUNT)
     return gli_fail(e, GLINT_E_ARGUMENT, "unknown math variant %d",
                     (int)s->math);
