@@ -431,6 +431,11 @@ glint_status glint_accel_parse(const char *name, glint_accel *accel,
  * inside its range (3.4e38). A scene beyond it is refused, not rendered
  * black. */
 #define GLINT_MAX_COORDINATE 1e15
+/* The largest colour component (lights, materials, background, ambient,
+ * absorbance) and material coefficient (ka, kd, ks, kr, kt) and index of
+ * refraction: 1e39 is infinite in single precision, and an infinite light
+ * times a zero weight is NaN, which backends met in different places. */
+#define GLINT_MAX_COLOR 1e6
 /* The gammas an 8-bit image may be encoded with (1: linear; PNG records
  * 1/gamma in 1/100000ths, which needs at least 1e-5). */
 #define GLINT_MIN_GAMMA 0.01

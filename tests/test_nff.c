@@ -123,6 +123,8 @@ static void malformed_files(void **state) {
               GLINT_E_PARSE,
               "huge.nff:9: sphere: centre and radius must be finite numbers of "
               "magnitude at most 1e15");
+  EXPECT_FAIL("bright.nff", VIEW "l 0 5 0 1e39 1 1\n", GLINT_E_PARSE,
+              "bright.nff:8: light colour must not exceed 1e+06");
   EXPECT_FAIL("inf.nff", VIEW "b 1 inf 0\n", GLINT_E_PARSE,
               "inf.nff:8: the background colour is 'inf', not a finite number");
   EXPECT_FAIL("unknown.nff", VIEW "torus 0 0 0 1 2\n", GLINT_E_PARSE,

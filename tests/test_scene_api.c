@@ -148,6 +148,29 @@ static void materials_refuse_bad_values(void **state) {
   mat.checker_size = 0;
   EXPECT_ERR(glint_scene_add_material(s, &mat, NULL, &e_), GLINT_E_ARGUMENT,
              "checker size");
+  /* GLINT_MAX_COLOR: a light of 1e39 is infinite in float, and times a zero
+   * weight NaN (the beams and the scalar tracer drew different images). */
+  glint_material_default(&mat);
+  mat.kr = GLINT_MAX_COLOR * 10;
+  EXPECT_ERR(glint_scene_add_material(s, &mat, NULL, &e_), GLINT_E_ARGUMENT,
+             "material kr = 1e+07 must not exceed 1e+06");
+  glint_material_default(&mat);
+  mat.ior = 1e-30;
+  EXPECT_ERR(glint_scene_add_material(s, &mat, NULL, &e_), GLINT_E_ARGUMENT,
+             "ior = 1e-30 is outside 1e-06..1e+06");
+  glint_material_default(&mat);
+  mat.color.y = 1e39;
+  EXPECT_ERR(glint_scene_add_material(s, &mat, NULL, &e_), GLINT_E_ARGUMENT,
+             "material colour must not exceed 1e+06");
+  EXPECT_ERR(glint_scene_add_light(s, (V){0, 5, 0}, (V){1e39, 1, 1}, &e_),
+             GLINT_E_ARGUMENT, "light colour must not exceed 1e+06");
+  glint_material_default(&mat);
+  mat.kr = mat.ks = GLINT_MAX_COLOR; /* the limits themselves are accepted */
+  mat.h = 1e30;                      /* (the exponent has none) */
+  mat.ior = 1 / GLINT_MAX_COLOR;
+  ASSERT_OK(glint_scene_add_material(s, &mat, NULL, &e_));
+  ASSERT_OK(
+      glint_scene_add_light(s, (V){0, 5, 0}, (V){GLINT_MAX_COLOR, 1, 1}, &e_));
   glint_scene_destroy(s);
 }
 

@@ -123,6 +123,9 @@ static glint_status check_color(glint_vec3 c, const char *what,
     return gli_fail(error, GLINT_E_ARGUMENT, "%s must be finite", what);
   if (c.x < 0 || c.y < 0 || c.z < 0)
     return gli_fail(error, GLINT_E_ARGUMENT, "%s must not be negative", what);
+  if (c.x > GLINT_MAX_COLOR || c.y > GLINT_MAX_COLOR || c.z > GLINT_MAX_COLOR)
+    return gli_fail(error, GLINT_E_ARGUMENT, "%s must not exceed %g", what,
+                    GLINT_MAX_COLOR);
   return GLINT_OK;
 }
 
@@ -172,9 +175,17 @@ glint_status glint_scene_add_material(glint_scene *s, const glint_material *m,
       return gli_fail(error, GLINT_E_ARGUMENT,
                       "material %s = %g must be a finite number >= 0", names[i],
                       k[i]);
+    else if (k[i] > GLINT_MAX_COLOR && i != 3) /* the exponent h aside */
+      return gli_fail(error, GLINT_E_ARGUMENT,
+                      "material %s = %g must not exceed %g", names[i], k[i],
+                      GLINT_MAX_COLOR);
   if (!isfinite(m->ior) || m->ior <= 0)
     return gli_fail(error, GLINT_E_ARGUMENT,
                     "material ior = %g must be a finite number > 0", m->ior);
+  if (m->ior < 1 / GLINT_MAX_COLOR || m->ior > GLINT_MAX_COLOR)
+    return gli_fail(error, GLINT_E_ARGUMENT,
+                    "material ior = %g is outside %g..%g", m->ior,
+                    1 / GLINT_MAX_COLOR, GLINT_MAX_COLOR);
   if (m->texture != GLINT_TEXTURE_NONE &&
       m->texture != GLINT_TEXTURE_CHECKER_PLANAR &&
       m->texture != GLINT_TEXTURE_CHECKER_SOLID)
