@@ -67,6 +67,17 @@ static void primitives_refuse_bad_numbers(void **state) {
   glint_scene_destroy(s);
 }
 
+/* Default settings at a size, on one backend. */
+static glint_render_settings settings_for(glint_backend backend, int width,
+                                          int height) {
+  glint_render_settings rs;
+  glint_render_settings_default(&rs);
+  rs.width = width;
+  rs.height = height;
+  rs.backend = backend;
+  return rs;
+}
+
 /* GLINT_MAX_COORDINATE: 1e15 and -1e15 are accepted everywhere a scene
  * takes a coordinate or a size, anything beyond is refused with the
  * limit named; and at the limit every backend still draws the image double
@@ -109,11 +120,7 @@ static void coordinates_stay_within_the_limit(void **state) {
   for (int be = GLINT_BACKEND_SCALAR_FLOAT; be < GLINT_BACKEND_COUNT; be++) {
     if (backend_missing((glint_backend)be))
       continue;
-    glint_render_settings rs;
-    glint_render_settings_default(&rs);
-    rs.width = 16;
-    rs.height = 12;
-    rs.backend = (glint_backend)be;
+    glint_render_settings rs = settings_for((glint_backend)be, 16, 12);
     glint_image *im;
     ASSERT_OK(glint_render(s, &rs, &im, NULL, &e_));
     const uint8_t *p = glint_image_pixels_const(im);
@@ -299,11 +306,7 @@ static void region_is_a_window_of_the_frame(void **state) {
   for (int be = GLINT_BACKEND_SCALAR_FLOAT; be <= GLINT_BACKEND_AVX512; be++) {
     if (backend_missing((glint_backend)be))
       continue;
-    glint_render_settings rs;
-    glint_render_settings_default(&rs);
-    rs.width = 96;
-    rs.height = 72;
-    rs.backend = (glint_backend)be;
+    glint_render_settings rs = settings_for((glint_backend)be, 96, 72);
     glint_image *full, *part;
     ASSERT_OK(glint_render(s, &rs, &full, NULL, &e_));
     rs.region_x = 13;
