@@ -25,6 +25,7 @@ if ! command -v clang >/dev/null 2>&1; then
   exit 1
 fi
 mkdir -p "$build"
+build=$(cd "$build" && pwd) # the fuzzers run in their own directories
 CC=clang cmake -S . -B "$build" -DCMAKE_BUILD_TYPE=RelWithDebInfo \
   -DCMAKE_C_FLAGS_RELWITHDEBINFO="-O1 -gline-tables-only" -DGLINT_FUZZ=ON \
   >"$build/configure.log" 2>&1 || { cat "$build/configure.log"; exit 1; }
@@ -35,7 +36,11 @@ cmake --build "$build" -j "$(nproc)" \
 status=0
 for t in "${targets[@]}"; do
   corpus=$build/corpus/$t findings=$build/findings/$t
-  mkdir -p "$corpus" "$findings"
+  # libFuzzer's workers write fuzz-N.log into the working directory: give
+  # each target its own, so that two runs in one checkout never share one.
+  workdir=$build/work/$t
+  mkdir -p "$corpus" "$findings" "$workdir"
+  rm -f "$workdir"/fuzz-*.log
   cp -n fuzz/corpus/"$t"/* "$corpus"/ 2>/dev/null || true
   [ "$t" = json ] && cp -n scenes/*.json "$corpus"/
   log=$build/fuzz_$t.log
@@ -43,19 +48,19 @@ for t in "${targets[@]}"; do
   # (sanitizer reports still reach it).
   quiet=0
   [ "$t" = cli ] && quiet=3
-  if "$build/fuzz_$t" -max_total_time="$seconds" -timeout=1 \
-      -close_fd_mask=$quiet \
+  if (cd "$workdir" && "$build/fuzz_$t" -max_total_time="$seconds" \
+      -timeout=1 -close_fd_mask=$quiet \
       -rss_limit_mb=2048 -max_len=65536 -jobs="$jobs" -workers="$jobs" \
-      -print_final_stats=1 -artifact_prefix="$findings/" "$corpus" \
-      >"$log" 2>&1; then
-    runs=$(grep -h "stat::number_of_executed_units" "$log" fuzz-*.log 2>/dev/null |
-           awk '{s += $2} END {print s + 0}')
+      -print_final_stats=1 -artifact_prefix="$findings/" \
+      "$corpus") >"$log" 2>&1; then
+    runs=$(cat "$log" "$workdir"/fuzz-*.log 2>/dev/null |
+           awk '/stat::number_of_executed_units/ {s += $2} END {print s + 0}')
     echo "fuzz_$t: ${seconds}s x $jobs, $runs inputs, $(ls "$corpus" | wc -l) in the corpus, no findings"
   else
-    echo "fuzz_$t: FINDING (see $log and $findings/):"
-    grep -E "ERROR|SUMMARY|runtime error|Test unit written" "$log" | head -5
+    echo "fuzz_$t: FINDING (see $log, $workdir/fuzz-*.log and $findings/):"
+    cat "$log" "$workdir"/fuzz-*.log 2>/dev/null |
+      grep -E "ERROR|SUMMARY|runtime error|Test unit written" | head -5
     status=1
   fi
-  rm -f fuzz-*.log
 done
 exit $status
