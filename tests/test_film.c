@@ -60,6 +60,50 @@ static void converts_to_bytes(void **state) {
   glint_film_destroy(film);
 }
 
+/* The bytes of the conversion's definition, in float as glint computes
+ * them: round(255 c) of c clamped to [0, 1], and 0 for a NaN. */
+static int byte_of(float c) {
+  if (!(c > 0))
+    return 0;
+  if (c >= 1)
+    return 255;
+  return (int)(255.0f * c + 0.5f);
+}
+
+/* Values where a conversion can go wrong (NaN, infinities, signed zeros,
+ * denormals, the rounding boundaries of the first and last steps, floats
+ * too large for an int), 23 of them cycled through 105 pixels' channels:
+ * each lands in every lane of the 16-wide SIMD loop and in the scalar
+ * tail, so the two paths must agree with the definition everywhere. */
+static void converts_special_values(void **state) {
+  (void)state;
+  const float b0 = 0.5f / 255, b1 = 254.5f / 255;
+  const float special[23] = {
+      NAN,  -NAN,  -INFINITY, INFINITY, -0.0f, 0.0f, 1e-45f, 1e-30f,
+      nextafterf(b0, 0), b0, nextafterf(b0, 1), nextafterf(b1, 0), b1,
+      nextafterf(b1, 1), nextafterf(1, 0), 1.0f, nextafterf(1, 2), 3e9f,
+      1e30f, 3.4e38f, -1e30f, 0.25f, 0.75f};
+  glint_film *film;
+  glint_image *image;
+  ASSERT_OK(glint_film_create(7, 5, &film, &e_));
+  ASSERT_OK(glint_image_create(7, 5, &image, &e_));
+  float *p = glint_film_pixels(film);
+  for (int i = 0; i < 7 * 5 * 3; i++)
+    p[i] = special[i % 23];
+  ASSERT_OK(glint_film_to_image(film, 1, image, &e_));
+  for (int i = 0; i < 7 * 5 * 3; i++)
+    assert_int_equal(glint_image_pixels(image)[i], byte_of(special[i % 23]));
+  /* The definition against hand-computed bytes: 255 x 0.25 + 0.5 = 64.25,
+   * 255 x 0.75 + 0.5 = 191.75, and 255 b1 + 0.5 = 255 (b1 is the last
+   * step's lower edge, 254.5/255). */
+  assert_int_equal(byte_of(0.25f), 64);
+  assert_int_equal(byte_of(0.75f), 191);
+  assert_int_equal(byte_of(b1), 255);
+  assert_int_equal(byte_of(NAN), 0);
+  glint_image_destroy(image);
+  glint_film_destroy(film);
+}
+
 static void writes_pfm(void **state) {
   (void)state;
   glint_film *film = ramp();
@@ -178,6 +222,7 @@ static void refuses_bad_paths(void **state) {
 int main(void) {
   const struct CMUnitTest tests[] = {
       cmocka_unit_test(converts_to_bytes),
+      cmocka_unit_test(converts_special_values),
       cmocka_unit_test(writes_pfm),
       cmocka_unit_test(writes_exr),
       cmocka_unit_test(refuses_bad_paths),
