@@ -78,11 +78,29 @@ static int byte_of(float c) {
 static void converts_special_values(void **state) {
   (void)state;
   const float b0 = 0.5f / 255, b1 = 254.5f / 255;
-  const float special[23] = {
-      NAN,  -NAN,  -INFINITY, INFINITY, -0.0f, 0.0f, 1e-45f, 1e-30f,
-      nextafterf(b0, 0), b0, nextafterf(b0, 1), nextafterf(b1, 0), b1,
-      nextafterf(b1, 1), nextafterf(1, 0), 1.0f, nextafterf(1, 2), 3e9f,
-      1e30f, 3.4e38f, -1e30f, 0.25f, 0.75f};
+  const float special[23] = {NAN,
+                             -NAN,
+                             -INFINITY,
+                             INFINITY,
+                             -0.0f,
+                             0.0f,
+                             1e-45f,
+                             1e-30f,
+                             nextafterf(b0, 0),
+                             b0,
+                             nextafterf(b0, 1),
+                             nextafterf(b1, 0),
+                             b1,
+                             nextafterf(b1, 1),
+                             nextafterf(1, 0),
+                             1.0f,
+                             nextafterf(1, 2),
+                             3e9f,
+                             1e30f,
+                             3.4e38f,
+                             -1e30f,
+                             0.25f,
+                             0.75f};
   glint_film *film;
   glint_image *image;
   ASSERT_OK(glint_film_create(7, 5, &film, &e_));

@@ -67,8 +67,8 @@ static size_t to_bytes_sse2(const float *src, uint8_t *dst, size_t n) {
   for (; i + 16 <= n; i += 16) {
     __m128i q[4];
     for (int k = 0; k < 4; k++) {
-      __m128 t = _mm_add_ps(_mm_mul_ps(_mm_loadu_ps(src + i + 4 * k), scale),
-                            half);
+      __m128 t =
+          _mm_add_ps(_mm_mul_ps(_mm_loadu_ps(src + i + 4 * k), scale), half);
       q[k] = _mm_cvttps_epi32(_mm_min_ps(_mm_max_ps(t, zero), top));
     }
     __m128i lo = _mm_packs_epi32(q[0], q[1]), hi = _mm_packs_epi32(q[2], q[3]);
