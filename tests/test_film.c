@@ -4,6 +4,8 @@
  * builds without OpenEXR); every error a user can meet. */
 #include "test_util.h"
 
+#include "image/image.h"
+
 #include <math.h>
 #include <stdio.h>
 #include <stdlib.h>
@@ -120,6 +122,47 @@ static void converts_special_values(void **state) {
   assert_int_equal(byte_of(NAN), 0);
   glint_image_destroy(image);
   glint_film_destroy(film);
+}
+
+/* gli_byte_encode against the formula (powf for every value) for gammas
+ * from 0.01 to 100: every float within 2048 steps of each threshold, where
+ * a wrong table shows first, and every 4096th float in [0, 1]. */
+static void encoding_matches_the_formula(void **state) {
+  (void)state;
+  static const double gammas[] = {2.2, 1 / 2.2, 1.8, 3.7, 0.37, 0.01, 100};
+  static gli_byte_encoding enc;
+  enum { SPAN = 4096 };
+  static float values[SPAN + 1];
+  static uint8_t bytes[SPAN + 1];
+  for (size_t g = 0; g < sizeof gammas / sizeof *gammas; g++) {
+    gli_byte_encoding_init(&enc, gammas[g]);
+    for (int k = 0; k <= 256; k++) {
+      uint32_t from = 0;
+      if (k >= 1 && k <= 255) {
+        float t = enc.threshold[k];
+        memcpy(&from, &t, sizeof from);
+        from = from > SPAN / 2 ? from - SPAN / 2 : 0;
+      }
+      for (int i = 0; i <= SPAN; i++) {
+        /* k 0 and 256: the sparse sweep of [0, 1] instead. */
+        uint32_t bits = k == 0     ? (uint32_t)i * 0x3F800u
+                        : k == 256 ? (uint32_t)i * 0x3F800u + 0x1234u
+                                   : from + (uint32_t)i;
+        memcpy(&values[i], &bits, sizeof bits);
+      }
+      gli_byte_encode(&enc, values, bytes, SPAN + 1);
+      for (int i = 0; i <= SPAN; i++)
+        if (bytes[i] != gli_byte_encode_one(values[i], gammas[g]))
+          fail_msg("gamma %g: %a encodes as %d, the formula says %d", gammas[g],
+                   (double)values[i], bytes[i],
+                   gli_byte_encode_one(values[i], gammas[g]));
+    }
+    const float edge[] = {NAN, -INFINITY, -1, -0.0f, 0, 1, 2, INFINITY};
+    uint8_t out[8];
+    gli_byte_encode(&enc, edge, out, 8);
+    const uint8_t want[] = {0, 0, 0, 0, 0, 255, 255, 255};
+    assert_memory_equal(out, want, 8);
+  }
 }
 
 static void writes_pfm(void **state) {
@@ -241,6 +284,7 @@ int main(void) {
   const struct CMUnitTest tests[] = {
       cmocka_unit_test(converts_to_bytes),
       cmocka_unit_test(converts_special_values),
+      cmocka_unit_test(encoding_matches_the_formula),
       cmocka_unit_test(writes_pfm),
       cmocka_unit_test(writes_exr),
       cmocka_unit_test(refuses_bad_paths),

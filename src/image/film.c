@@ -1,11 +1,11 @@
-/* Linear floating-point films and their 8-bit conversion (docs/specification.md
- * §4: only the average is clamped, then written as round(255 c)). */
+/* Linear floating-point films: their pixels, their 8-bit image
+ * (docs/specification.md §4: only the average is clamped, then encoded by
+ * image/byte_encoding.c) and their linear files (.pfm, .exr). */
 #include "image/image.h"
 
 #include "core/error.h"
 #include "core/memory.h"
 
-#include <emmintrin.h>
 #include <math.h>
 #include <stdlib.h>
 #include <string.h>
@@ -45,52 +45,6 @@ const float *glint_film_pixels_const(const glint_film *film) {
   return film->rgb;
 }
 
-/* round(255 c) of c clamped to [0, 1], as 255 c + 1/2 clamped to
- * [0, 255.5] and truncated: the same bytes, in the order that max/min
- * instructions take (a NaN fails t > 0 and becomes 0). */
-static inline uint8_t to_byte(float c) {
-  float t = 255.0f * c + 0.5f;
-  t = t > 0.0f ? t : 0.0f;
-  t = t < 255.5f ? t : 255.5f;
-  return (uint8_t)(int)t;
-}
-
-/* to_byte for 16 values at a time. Every frame of every backend passes
- * through here, and compilers vectorise the scalar loop poorly (gcc 12
- * spends about 10 instructions a value on it; these take under 2). SSE2 is
- * part of x86-64, so this needs no CPUID dispatch. maxps returns its second
- * operand when the first is NaN, as to_byte does. */
-static size_t to_bytes_sse2(const float *src, uint8_t *dst, size_t n) {
-  const __m128 scale = _mm_set1_ps(255.0f), half = _mm_set1_ps(0.5f);
-  const __m128 zero = _mm_setzero_ps(), top = _mm_set1_ps(255.5f);
-  size_t i = 0;
-  for (; i + 16 <= n; i += 16) {
-    __m128i q[4];
-    for (int k = 0; k < 4; k++) {
-      __m128 t =
-          _mm_add_ps(_mm_mul_ps(_mm_loadu_ps(src + i + 4 * k), scale), half);
-      q[k] = _mm_cvttps_epi32(_mm_min_ps(_mm_max_ps(t, zero), top));
-    }
-    __m128i lo = _mm_packs_epi32(q[0], q[1]), hi = _mm_packs_epi32(q[2], q[3]);
-    _mm_storeu_si128((__m128i *)(dst + i), _mm_packus_epi16(lo, hi));
-  }
-  return i;
-}
-
-void gli_film_span_to_bytes(const float *src, uint8_t *dst, size_t n,
-                            double gamma) {
-  if (gamma == 1) {
-    for (size_t i = to_bytes_sse2(src, dst, n); i < n; i++)
-      dst[i] = to_byte(src[i]);
-  } else {
-    float inv = (float)(1.0 / gamma);
-    for (size_t i = 0; i < n; i++) {
-      float c = src[i] > 0 ? src[i] : 0.0f;
-      dst[i] = to_byte(c > 0 ? powf(c < 1 ? c : 1.0f, inv) : 0.0f);
-    }
-  }
-}
-
 glint_status gli_gamma_check(double gamma, glint_error *error) {
   if (!(gamma >= GLINT_MIN_GAMMA && gamma <= GLINT_MAX_GAMMA))
     return gli_fail(error, GLINT_E_ARGUMENT, "gamma %g is outside %g..%g",
@@ -106,9 +60,14 @@ glint_status glint_film_to_image(const glint_film *film, double gamma,
     return gli_fail(error, GLINT_E_ARGUMENT,
                     "a %dx%d film does not fit a %dx%d image", film->width,
                     film->height, image->width, image->height);
+  gli_byte_encoding *encoding = malloc(sizeof *encoding);
+  if (!encoding)
+    return gli_fail(error, GLINT_E_MEMORY, "out of memory");
+  gli_byte_encoding_init(encoding, gamma);
   image->gamma = gamma;
-  gli_film_span_to_bytes(film->rgb, image->rgb,
-                         (size_t)film->width * (size_t)film->height * 3, gamma);
+  gli_byte_encode(encoding, film->rgb, image->rgb,
+                  (size_t)film->width * (size_t)film->height * 3);
+  free(encoding);
   return GLINT_OK;
 }
 

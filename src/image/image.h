@@ -16,11 +16,22 @@ struct glint_film {
   float *rgb; /* width*height*3, top row first, aligned */
 };
 
-/* docs/specification.md §4's 8-bit conversion of n linear values: clamp to [0,
- * 1], then c^(1/gamma), then round(255 c). Used for whole films and, while a
- * frame renders, for each finished tile. */
-void gli_film_span_to_bytes(const float *src, uint8_t *dst, size_t n,
-                            double gamma);
+/* docs/specification.md §4's 8-bit conversion of linear values: clamp to
+ * [0, 1], then c^(1/gamma), then round(255 c) (image/byte_encoding.c). An
+ * encoding is prepared once per gamma (about 8000 powf for a gamma other
+ * than 1) and then used for whole films and, while a frame renders, for
+ * each finished tile, from any number of threads. */
+#define GLI_BYTE_BINS (0x3F800000u >> 16) /* floats in [0, 1) by top bits */
+typedef struct gli_byte_encoding {
+  double gamma;
+  float threshold[257];         /* [k]: the least value encoded as k or more */
+  uint8_t start[GLI_BYTE_BINS]; /* the byte at each bin's lower end */
+} gli_byte_encoding;
+void gli_byte_encoding_init(gli_byte_encoding *encoding, double gamma);
+void gli_byte_encode(const gli_byte_encoding *encoding, const float *src,
+                     uint8_t *dst, size_t n);
+/* One value by the formula itself, as the tests check the tables. */
+uint8_t gli_byte_encode_one(float c, double gamma);
 
 /* Writes `path` atomically: write(data, f) fills a temporary file beside
  * it (returning 0 on success), which is flushed, synced and renamed over

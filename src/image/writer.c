@@ -16,6 +16,7 @@
 struct glint_image_writer {
   int width, height;
   double gamma;
+  gli_byte_encoding encoding; /* gamma's */
   glint_image_format format;
   glint_png_compression compression;
   gli_atomic_file file; /* the file, or (memory) a stream into `memory` */
@@ -124,6 +125,7 @@ static glint_status writer_create(const char *label, glint_image_format format,
   w->width = width;
   w->height = height;
   w->gamma = gamma;
+  gli_byte_encoding_init(&w->encoding, gamma);
   w->format = format;
   w->compression = compression;
   w->batch_rows = height / 16 > 16 ? height / 16 : 16;
@@ -230,10 +232,10 @@ glint_status glint_image_writer_put(glint_image_writer *w,
   }
   /* Tiles are disjoint: the conversion needs no lock. */
   for (int y = 0; y < tile->height; y++)
-    gli_film_span_to_bytes(tile->pixels + (size_t)y * tile->stride,
-                           w->image.rgb +
-                               ((size_t)(tile->y + y) * w->width + tile->x) * 3,
-                           (size_t)tile->width * 3, w->gamma);
+    gli_byte_encode(&w->encoding, tile->pixels + (size_t)y * tile->stride,
+                    w->image.rgb +
+                        ((size_t)(tile->y + y) * w->width + tile->x) * 3,
+                    (size_t)tile->width * 3);
   pthread_mutex_lock(&w->lock);
   for (int y = tile->y; y < tile->y + tile->height; y++) {
     w->row_pixels[y] += tile->width;

@@ -41,6 +41,7 @@ typedef struct frame_job {
   int x0, y0, x1, y1; /* the region rendered, in frame pixels */
   int tiles_x, tile_count;
   frame_output *out;
+  const gli_byte_encoding *encoding; /* of out->image */
   glint_progress_fn progress;
   void *progress_user;
   glint_tile_fn tile;
@@ -65,6 +66,9 @@ struct glint_renderer {
   int scratch_depth; /* the deepest frame the scratch holds */
   float (*samples)[2];
   int samples_spp; /* the count `samples` holds offsets for */
+  /* The 8-bit encoding of the last frame with an image (gamma 0, none,
+   * after calloc), kept while frames keep their gamma. */
+  gli_byte_encoding encoding;
   frame_job job;
 };
 
@@ -301,8 +305,8 @@ static void store_tile(const frame_job *job, const tile_rect *t,
     }
     if (job->out->image) {
       glint_image *im = job->out->image;
-      gli_film_span_to_bytes(src, im->rgb + (row * (size_t)im->width + col) * 3,
-                             tw * 3, job->out->gamma);
+      gli_byte_encode(job->encoding, src,
+                      im->rgb + (row * (size_t)im->width + col) * 3, tw * 3);
     }
   }
 }
@@ -454,6 +458,9 @@ glint_status gli_renderer_render(glint_renderer *r,
   job->tiles_x = (rw + GLI_TILE_SIZE - 1) / GLI_TILE_SIZE;
   job->tile_count = job->tiles_x * ((rh + GLI_TILE_SIZE - 1) / GLI_TILE_SIZE);
   job->out = out;
+  if (out->image && r->encoding.gamma != out->gamma)
+    gli_byte_encoding_init(&r->encoding, out->gamma);
+  job->encoding = &r->encoding;
   job->progress = frame->progress ? frame->progress : s->progress;
   job->progress_user =
       frame->progress ? frame->progress_user : s->progress_user;
