@@ -14,7 +14,8 @@
 
 /* Checks an -o pattern: exactly one %d conversion (flags 0 and a width
  * allowed) and %% for a literal %. Returns 1 when it is one, 0 when the
- * name has no % at all, -1 (after a message) when it is malformed. */
+ * name has no number (nor any % but %%), -1 (after a message) when it is
+ * malformed. */
 static int check_pattern(const char *p) {
   int conversions = 0;
   for (const char *c = strchr(p, '%'); c; c = strchr(c + 1, '%')) {
@@ -58,12 +59,24 @@ static int frame_path(char *out, size_t size, const char *name, int pattern,
 #pragma GCC diagnostic pop
 #endif
   } else {
-    const char *slash = strrchr(name, '/');
-    const char *dot = strrchr(slash ? slash : name, '.');
+    /* No number in the name, so any % in it came as %% (check_pattern):
+     * the number goes before the extension of the name with %% as %. */
+    char plain[4096];
+    size_t len = 0;
+    for (const char *c = name; *c && len + 1 < sizeof plain; c++) {
+      plain[len++] = *c;
+      if (c[0] == '%' && c[1] == '%')
+        c++;
+    }
+    plain[len] = '\0';
+    const char *slash = strrchr(plain, '/');
+    const char *dot = strrchr(slash ? slash : plain, '.');
     if (!dot)
-      dot = name + strlen(name);
-    n = snprintf(out, size, "%.*s%0*d%s", (int)(dot - name), name, digits,
-                 frame, dot);
+      dot = plain + len;
+    n = len + 1 < sizeof plain
+            ? snprintf(out, size, "%.*s%0*d%s", (int)(dot - plain), plain,
+                       digits, frame, dot)
+            : -1;
   }
   if (n < 0 || (size_t)n >= size) {
     cli_error("-o %s: the file name of frame %d is too long", name, frame);

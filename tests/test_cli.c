@@ -625,6 +625,15 @@ static void frames_of_an_animation(void **state) {
   assert_true(exists("out0048.png"));
   assert_int_equal(run("render", "anim.json", "--frames", "7", "-q", NULL), 0);
   assert_true(exists("anim0007.png"));
+  /* %% is a % with or without a number in the name. */
+  assert_int_equal(run("render", "anim.json", "--frames", "3", "-o",
+                       "100%%.png", "-q", NULL),
+                   0);
+  assert_true(exists("100%0003.png"));
+  assert_int_equal(run("render", "anim.json", "--frames", "3", "-o",
+                       "p%%%d.png", "-q", NULL),
+                   0);
+  assert_true(exists("p%3.png"));
 
   /* --resume keeps what is there (here a stand-in) and renders the rest. */
   put_text("f02.png", "kept");
@@ -644,7 +653,8 @@ static void frames_of_an_animation(void **state) {
   snprintf(scene_path, sizeof scene_path, "%s-anim.json", dir);
   snprintf(cmd, sizeof cmd,
            "cd '%s' && mv anim.json '%s' && rm -rf f0*.png "
-           "out0048.png anim0007.png still.png still.json sub",
+           "out0048.png anim0007.png still.png still.json sub 100%%0003.png "
+           "p%%3.png",
            dir, scene_path);
   assert_int_equal(system(cmd), 0);
   EXPECT_USAGE_ERROR("-anim.json's animation has frames 1-48", "render",
