@@ -106,6 +106,12 @@ int cmd_compare(int argc, char **argv) {
   double min_psnr = o.min_psnr;
   glint_image *a = NULL, *b = NULL;
   glint_error err;
+  /* As glint render does with -o: a --diff that cannot be written fails
+   * before any work, not after the result. */
+  if (diff_path && glint_image_check_writable(diff_path, &err)) {
+    cli_error("%s", err.message);
+    return EXIT_USAGE;
+  }
   if (glint_image_read(files[0], &a, &err) ||
       glint_image_read(files[1], &b, &err)) {
     cli_error("%s", err.message);

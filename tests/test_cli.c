@@ -830,6 +830,11 @@ static void compare_threshold_and_difference(void **state) {
   assert_non_null(strstr(err, "--min-psnr: 'x' is not a number"));
   assert_int_equal(run("compare", "a.png", "b.png", "a.png", NULL), 2);
   assert_non_null(strstr(err, "compare takes two images"));
+  /* A --diff that cannot be written fails before the comparison. */
+  assert_int_equal(
+      run("compare", "a.png", "b.png", "--diff", "no/such/d.png", NULL), 2);
+  assert_non_null(strstr(err, "no/such/d.png: cannot write here"));
+  assert_string_equal(out, "");
   char cmd[256];
   snprintf(cmd, sizeof cmd, "rm -f '%s'/*.png '%s'/*.ppm", dir, dir);
   assert_int_equal(system(cmd), 0);
