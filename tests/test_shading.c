@@ -220,6 +220,52 @@ static void total_internal_reflection_weight(void **state) {
   expect_pixel(s, 5, 0, 1, 0);
 }
 
+/* Faint rays end (docs/specification.md §4, Depth): between two parallel
+ * mirrors of kr 1/2 (or 1/4) the centre ray bounces forever, the ray of
+ * level L weighing kr^(L-1); it is traced while that is at least 2^-24, so
+ * up to level 25 (13), whatever the depth limit beyond: 24 (12) secondary
+ * rays. Below that the limit decides: depth 10 traces 9. */
+static void faint_rays_end(void **state) {
+  (void)state;
+  static const struct {
+    double kr;
+    int depth, secondary;
+  } cases[] = {{0.5, 64, 24}, {0.5, 26, 24},  {0.5, 25, 24},
+               {0.5, 10, 9},  {0.25, 64, 12}, {0.25, 13, 12}};
+  for (size_t i = 0; i < sizeof cases / sizeof *cases; i++) {
+    glint_material m;
+    glint_material_default(&m);
+    m.ka = m.kd = 0;
+    m.kr = cases[i].kr;
+    glint_scene *s =
+        new_scene((V){0, 0, 0.5}, (V){0, 0, 0}, (V){0, 1, 0}, (V){1, 1, 1});
+    uint32_t id = material(s, &m);
+    ASSERT_OK(glint_scene_add_plane(s, (V){0, 0, 1}, (V){0, 0, 0}, id, &e_));
+    ASSERT_OK(glint_scene_add_plane(s, (V){0, 0, -1}, (V){0, 0, 1}, id, &e_));
+    for (int be = GLINT_BACKEND_SCALAR_FLOAT; be < GLINT_BACKEND_COUNT; be++) {
+      if (be == GLINT_BACKEND_STREAM || backend_missing((glint_backend)be))
+        continue;
+      glint_render_settings rs;
+      glint_render_settings_default(&rs);
+      rs.width = rs.height = 1;
+      rs.spp = 1;
+      rs.max_depth = cases[i].depth;
+      rs.threads = 1;
+      rs.backend = (glint_backend)be;
+      glint_image *im;
+      glint_stats st;
+      ASSERT_OK(glint_render(s, &rs, &im, &st, &e_));
+      if (st.secondary_rays != (uint64_t)cases[i].secondary)
+        fail_msg("%s, kr %g, depth %d: %llu secondary rays, want %d",
+                 glint_backend_name((glint_backend)be), cases[i].kr,
+                 cases[i].depth, (unsigned long long)st.secondary_rays,
+                 cases[i].secondary);
+      glint_image_destroy(im);
+    }
+    glint_scene_destroy(s);
+  }
+}
+
 /* Planar checker (docs/specification.md §8): floor(x) + floor(z) even at (0.5,
  * 0, 0.5), odd at (1.5, 0, 0.5); ambient light only, so I = C exactly. */
 static void planar_checker(void **state) {
@@ -295,6 +341,7 @@ int main(void) {
       cmocka_unit_test(beer_through_glass),
       cmocka_unit_test(depth_limit_blacks_out),
       cmocka_unit_test(total_internal_reflection_weight),
+      cmocka_unit_test(faint_rays_end),
       cmocka_unit_test(planar_checker),
       cmocka_unit_test(solid_checker),
   };

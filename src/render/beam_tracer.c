@@ -36,20 +36,30 @@ typedef struct beam_ctx {
 } beam_ctx;
 
 /* Rays are passed by pointer: by value, each call would copy six vectors
- * through the stack. */
+ * through the stack. `weight`: the product of the coefficients that scale
+ * what each lane brings to its pixel (GLI_MIN_RAY_WEIGHT). */
 typedef void (*trace_fn)(const beam_ctx *c, const vvec3 *o, const vvec3 *d,
-                         vmask active, int level, vvec3 *color);
+                         vmask active, int level, const vvec3 *weight,
+                         vvec3 *color);
 
 /* The thesis's sub-beam after shading: below the depth limit it traces at
- * most one reflected and one refracted beam (docs/specification.md §6), then
- * Beer's law. */
+ * most one reflected and one refracted beam (docs/specification.md §6) of
+ * the lanes whose weight is worth it, then Beer's law. */
 static ALWAYS_INLINE void
 finish_sub_beam(const beam_ctx *c, vvec3 d, const packet_hit *h,
                 const packet_surface *f, int object, vmask sub, int level,
-                vvec3 color, vvec3 *out, glint_math math, trace_fn trace) {
+                const vvec3 *weight, vvec3 color, vvec3 *out, glint_math math,
+                trace_fn trace) {
   const packet_scene *ps = c->ps;
   const scene_r *s = ps->s;
   lane_material lm = lane_material_uniform(ps, s->objects[object].material);
+  /* Beer's law (eq. 2.11) scales what this surface brings, children
+   * included: its factor (1 where nothing is absorbed) once for both. */
+  vvec3 w = *weight, beer = {vf_set1(1), vf_set1(1), vf_set1(1)};
+  if (lm.m->absorbs) {
+    beer = packet_beer(&lm, f, h->t, sub, beer, math);
+    w = vv_mul(w, beer);
+  }
   if (level < c->max_depth && (lm.m->kr > 0 || lm.m->kt > 0)) {
     vvec3 reflected, refracted;
     vfloat kr;
@@ -57,24 +67,29 @@ finish_sub_beam(const beam_ctx *c, vvec3 d, const packet_hit *h,
     packet_secondary(&lm, f, d, sub, &reflected, &kr, &refracted, &refract,
                      &tir);
     c->st->total_internal_reflections += (uint64_t)vm_count(tir);
+    vvec3 wt = vv_scale(w, LANE_SCALAR(&lm, kt));
+    refract = vm_and(refract, packet_worth_tracing(wt));
     if (vm_any(refract)) {
       vvec3 ct;
       c->st->secondary_rays += (uint64_t)vm_count(refract);
       c->st->refracted_rays += (uint64_t)vm_count(refract);
-      trace(c, &f->p, &refracted, refract, level + 1, &ct);
+      trace(c, &f->p, &refracted, refract, level + 1, &wt, &ct);
       vfloat kt = vf_keep(refract, LANE_SCALAR(&lm, kt));
       color = vv_madd(color, kt, ct);
     }
-    vmask reflect = vm_and(sub, vf_gt(kr, vf_zero()));
+    vvec3 wr = vv_scale(w, kr);
+    vmask reflect =
+        vm_and(vm_and(sub, vf_gt(kr, vf_zero())), packet_worth_tracing(wr));
     if (vm_any(reflect)) {
       vvec3 cr;
       c->st->secondary_rays += (uint64_t)vm_count(reflect);
       c->st->reflected_rays += (uint64_t)vm_count(reflect);
-      trace(c, &f->p, &reflected, reflect, level + 1, &cr);
+      trace(c, &f->p, &reflected, reflect, level + 1, &wr, &cr);
       color = vv_madd(color, vf_keep(reflect, kr), cr);
     }
   }
-  color = packet_beer(&lm, f, h->t, sub, color, math);
+  if (lm.m->absorbs)
+    color = vv_mul(color, beer);
   *out = vv_select(sub, color, *out);
 }
 
@@ -89,7 +104,8 @@ finish_sub_beam(const beam_ctx *c, vvec3 d, const packet_hit *h,
  * otherwise cast nearly empty shadow packets. Each lane's material
  * coefficients are gathered from its sub-beam so the light loop runs once. */
 static ALWAYS_INLINE void trace_beam_body(const beam_ctx *c, vvec3 o, vvec3 d,
-                                          vmask active, int level, vvec3 *color,
+                                          vmask active, int level,
+                                          const vvec3 *weight, vvec3 *color,
                                           glint_math math, int newton,
                                           trace_fn trace) {
   const packet_scene *ps = c->ps;
@@ -142,19 +158,21 @@ static ALWAYS_INLINE void trace_beam_body(const beam_ctx *c, vvec3 o, vvec3 d,
                               any_highlight, math, newton, c->st, NULL);
 
   for (int k = 0; k < nsub; k++)
-    finish_sub_beam(c, d, &h, &f, sub_object[k], sub_mask[k], level, local,
-                    color, math, trace);
+    finish_sub_beam(c, d, &h, &f, sub_object[k], sub_mask[k], level, weight,
+                    local, color, math, trace);
 }
 
 static void trace_default(const beam_ctx *c, const vvec3 *o, const vvec3 *d,
-                          vmask active, int level, vvec3 *color) {
-  trace_beam_body(c, *o, *d, active, level, color, GLINT_MATH_MINIMAX, 1,
-                  trace_default);
+                          vmask active, int level, const vvec3 *weight,
+                          vvec3 *color) {
+  trace_beam_body(c, *o, *d, active, level, weight, color, GLINT_MATH_MINIMAX,
+                  1, trace_default);
 }
 
 static void trace_generic(const beam_ctx *c, const vvec3 *o, const vvec3 *d,
-                          vmask active, int level, vvec3 *color) {
-  trace_beam_body(c, *o, *d, active, level, color, c->math, c->newton,
+                          vmask active, int level, const vvec3 *weight,
+                          vvec3 *color) {
+  trace_beam_body(c, *o, *d, active, level, weight, color, c->math, c->newton,
                   trace_generic);
 }
 
@@ -168,6 +186,7 @@ static ALWAYS_INLINE void render_tile_body(const packet_scene *ps,
   camera_from_basis(&cam, &frame->camera);
   primary_beams pb = primary_beams_init(&cam);
   vfloat inv_spp = vf_set1(1.0f / (float)frame->spp);
+  const vvec3 unit = {vf_set1(1), vf_set1(1), vf_set1(1)};
   int tw = tile->x1 - tile->x0;
   for (int by = tile->y0; by < tile->y1; by += BLOCK_H)
     for (int bx = tile->x0; bx < tile->x1; bx += BLOCK_W) {
@@ -177,7 +196,7 @@ static ALWAYS_INLINE void render_tile_body(const packet_scene *ps,
       for (int k = 0; k < frame->spp; k++) {
         vvec3 dir = primary_dir(&pb, px, py, frame->samples[k], newton);
         vvec3 color;
-        trace(&c, &pb.from, &dir, valid, 1, &color);
+        trace(&c, &pb.from, &dir, valid, 1, &unit, &color);
         sum = vv_add(sum, color);
       }
       st->primary_rays += (uint64_t)vm_count(valid) * (uint64_t)frame->spp;

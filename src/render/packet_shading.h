@@ -7,6 +7,7 @@
 #define GLINT_RENDER_PACKET_SHADING_H
 
 #include "geometry/packet_intersect.h"
+#include "render/frame.h"
 #include "render/packet_rays.h"
 #include "simd/vmath.h"
 
@@ -409,8 +410,10 @@ static ALWAYS_INLINE void packet_secondary(const lane_material *lm,
   *tir = vm_false();
   vmask transparent = lm->uniform ? (lm->m->kt > 0 ? m : vm_false())
                                   : vm_and(m, vf_gt(lm->kt, vf_zero()));
-  if (vm_none(transparent))
+  if (vm_none(transparent)) {
+    *refracted = d; /* defined, for the callers' masked stores */
     return;
+  }
   vfloat eta =
       vf_select(f->front, LANE_SCALAR(lm, eta_in), LANE_SCALAR(lm, eta_out));
   vfloat k = vf_fnmadd(vf_mul(eta, eta), vf_fnmadd(cosi, cosi, vf_set1(1)),
@@ -420,6 +423,12 @@ static ALWAYS_INLINE void packet_secondary(const lane_material *lm,
   vfloat coef = vf_sub(vf_mul(eta, cosi), vf_sqrt(vf_max(k, vf_zero())));
   *refracted = vv_madd(vv_scale(d, eta), coef, f->n);
   *kr = vf_select(*tir, LANE_SCALAR(lm, kr_tir), *kr);
+}
+
+/* The lanes whose ray weight is worth tracing (GLI_MIN_RAY_WEIGHT in
+ * render/frame.h): its largest channel at least 2^-24. */
+static ALWAYS_INLINE vmask packet_worth_tracing(vvec3 w) {
+  return vf_ge(vf_max(vf_max(w.x, w.y), w.z), vf_set1(GLI_MIN_RAY_WEIGHT));
 }
 
 /* Beer's law (eq. 2.11) on the lanes of m that travelled inside their

@@ -95,8 +95,16 @@ static inline surface surface_at(const scene_r *s, const hit_r *h, vec3 o,
   return f;
 }
 
+/* Whether a ray of this weight is traced (GLI_MIN_RAY_WEIGHT). */
+static int worth_tracing(vec3 weight) {
+  real largest = weight.x > weight.y ? weight.x : weight.y;
+  return (largest > weight.z ? largest : weight.z) >= (real)GLI_MIN_RAY_WEIGHT;
+}
+
+/* What the ray o + t d sees, for a ray of the given weight (the product of
+ * the coefficients that scale what it brings to its pixel). */
 static vec3 trace(const scene_r *s, int max_depth, vec3 o, vec3 d, int level,
-                  glint_stats *st) {
+                  vec3 weight, glint_stats *st) {
   hit_r h;
   if (!scalar_nearest_hit(s, o, d, REAL_MAX, &h))
     return s->background;
@@ -133,36 +141,40 @@ static vec3 trace(const scene_r *s, int max_depth, vec3 o, vec3 d, int level,
   }
   vec3 color = v3_add(v3_mul(c, diffuse), highlight);
 
-  /* Secondary rays, one level deeper; beyond the limit they are black. */
+  /* Beer's law (eq. 2.11) on a stretch travelled inside an object: it
+   * scales what this surface brings, children included. */
+  int absorbed = !f.front && m->absorbs;
+  vec3 beer_factor = absorbed ? beer(m->absorb, h.t) : v3(1, 1, 1);
+  weight = v3_mul(weight, beer_factor);
+
+  /* Secondary rays, one level deeper; beyond the limit, or too faint to
+   * matter (GLI_MIN_RAY_WEIGHT), they are black. */
   if (level < max_depth) {
     real kr = m->kr;
     if (m->kt > 0) {
       real eta = f.front ? 1 / m->ior : m->ior;
       vec3 t;
-      if (refract_dir(d, f.n, eta, &t)) {
-        st->secondary_rays++;
-        st->refracted_rays++;
-        color =
-            v3_madd(color, m->kt, trace(s, max_depth, f.p, t, level + 1, st));
-      } else {
+      if (!refract_dir(d, f.n, eta, &t)) {
         /* Total internal reflection: the reflected ray takes kt as well. */
         st->total_internal_reflections++;
         kr += m->kt;
+      } else if (worth_tracing(v3_scale(weight, m->kt))) {
+        st->secondary_rays++;
+        st->refracted_rays++;
+        color = v3_madd(color, m->kt,
+                        trace(s, max_depth, f.p, t, level + 1,
+                              v3_scale(weight, m->kt), st));
       }
     }
-    if (kr > 0) {
+    if (kr > 0 && worth_tracing(v3_scale(weight, kr))) {
       st->secondary_rays++;
       st->reflected_rays++;
-      color =
-          v3_madd(color, kr,
-                  trace(s, max_depth, f.p, reflect_dir(d, f.n), level + 1, st));
+      color = v3_madd(color, kr,
+                      trace(s, max_depth, f.p, reflect_dir(d, f.n), level + 1,
+                            v3_scale(weight, kr), st));
     }
   }
-
-  /* Beer's law (eq. 2.11) on a stretch travelled inside an object. */
-  if (!f.front && m->absorbs)
-    color = v3_mul(color, beer(m->absorb, h.t));
-  return color;
+  return absorbed ? v3_mul(color, beer_factor) : color;
 }
 
 static void render_tile(const void *view, const frame_params *frame,
@@ -180,7 +192,8 @@ static void render_tile(const void *view, const frame_params *frame,
         real px = (real)x + (real)0.5 + (real)frame->samples[k][0];
         real py = (real)y + (real)0.5 + (real)frame->samples[k][1];
         vec3 d = camera_dir(&cam, px, py);
-        sum = v3_add(sum, trace(s, frame->max_depth, cam.from, d, 1, st));
+        sum = v3_add(
+            sum, trace(s, frame->max_depth, cam.from, d, 1, v3(1, 1, 1), st));
       }
       float *out =
           rgb +

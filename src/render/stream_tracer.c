@@ -171,18 +171,21 @@ static ALWAYS_INLINE vvec3 shade_hits(
     packet_secondary(&lm, &f, d, hits, &reflected, &kr, &refracted, &refract,
                      &tir);
     t->st->total_internal_reflections += (uint64_t)vm_count(tir);
+    vvec3 wt = vv_scale(w, LANE_SCALAR(&lm, kt));
+    refract = vm_and(refract, packet_worth_tracing(wt));
     if (vm_any(refract)) {
       t->st->secondary_rays += (uint64_t)vm_count(refract);
       t->st->refracted_rays += (uint64_t)vm_count(refract);
-      emit_child(t, level, TRANSMITTED, refract, f.p, refracted,
-                 vv_scale(w, LANE_SCALAR(&lm, kt)), pixel, next);
+      emit_child(t, level, TRANSMITTED, refract, f.p, refracted, wt, pixel,
+                 next);
     }
-    vmask reflect = vm_and(hits, vf_gt(kr, vf_zero()));
+    vvec3 wr = vv_scale(w, kr);
+    vmask reflect =
+        vm_and(vm_and(hits, vf_gt(kr, vf_zero())), packet_worth_tracing(wr));
     if (vm_any(reflect)) {
       t->st->secondary_rays += (uint64_t)vm_count(reflect);
       t->st->reflected_rays += (uint64_t)vm_count(reflect);
-      emit_child(t, level, REFLECTED, reflect, f.p, reflected, vv_scale(w, kr),
-                 pixel, next);
+      emit_child(t, level, REFLECTED, reflect, f.p, reflected, wr, pixel, next);
     }
   }
   t->stage_ticks[STAGE_SHADE] += tick(t) - t1;
