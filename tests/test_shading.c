@@ -25,6 +25,19 @@ static uint32_t material(glint_scene *s, const glint_material *m) {
   return id;
 }
 
+/* The centre ray alone (a 1x1 image, one sample) through backend `be` at
+ * `depth`, on one thread. */
+static glint_render_settings centre_ray(int be, int depth) {
+  glint_render_settings rs;
+  glint_render_settings_default(&rs);
+  rs.width = rs.height = 1;
+  rs.spp = 1;
+  rs.max_depth = depth;
+  rs.threads = 1;
+  rs.backend = (glint_backend)be;
+  return rs;
+}
+
 /* Renders the centre ray with every supported backend and checks each
  * channel against round(255 c). */
 static void expect_pixel(glint_scene *s, int depth, double r, double g,
@@ -32,13 +45,7 @@ static void expect_pixel(glint_scene *s, int depth, double r, double g,
   for (int be = GLINT_BACKEND_SCALAR_FLOAT; be < GLINT_BACKEND_COUNT; be++) {
     if (be == GLINT_BACKEND_STREAM || backend_missing((glint_backend)be))
       continue;
-    glint_render_settings rs;
-    glint_render_settings_default(&rs);
-    rs.width = rs.height = 1;
-    rs.spp = 1;
-    rs.max_depth = depth;
-    rs.threads = 1;
-    rs.backend = (glint_backend)be;
+    glint_render_settings rs = centre_ray(be, depth);
     /* The SIMD backends with libm's pow/exp and with the default minimax. */
     for (int m = 0; m < 2; m++) {
       rs.math = m ? GLINT_MATH_MINIMAX : GLINT_MATH_EXACT;
@@ -245,13 +252,7 @@ static void faint_rays_end(void **state) {
     for (int be = GLINT_BACKEND_SCALAR_FLOAT; be < GLINT_BACKEND_COUNT; be++) {
       if (be == GLINT_BACKEND_STREAM || backend_missing((glint_backend)be))
         continue;
-      glint_render_settings rs;
-      glint_render_settings_default(&rs);
-      rs.width = rs.height = 1;
-      rs.spp = 1;
-      rs.max_depth = cases[i].depth;
-      rs.threads = 1;
-      rs.backend = (glint_backend)be;
+      glint_render_settings rs = centre_ray(be, cases[i].depth);
       glint_image *im;
       glint_stats st;
       ASSERT_OK(glint_render(s, &rs, &im, &st, &e_));
