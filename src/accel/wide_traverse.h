@@ -109,12 +109,14 @@ wide_closest(const gli_bvh *bvh, uint32_t start, vec3 o, vec3 d, real tmin,
   wide_item stack[GLI_WIDE_STACK];
   int sp = 0;
   wide_item cur = {start, 0, tmin};
+  /* counted in a local: the leaf function may write *tests' statistics */
+  uint64_t tested = 0;
   for (;;) {
     if (cur.count == 0) {
       const gli_wide_node *n = &nodes[cur.child];
       real entry[GLI_WIDE];
       unsigned hits = wide_hits(n, &r, tmin, *tmax, entry);
-      ++*tests;
+      ++tested;
       if (hits) {
         int k = __builtin_ctz(hits);
         hits &= hits - 1;
@@ -156,12 +158,14 @@ wide_closest(const gli_bvh *bvh, uint32_t start, vec3 o, vec3 d, real tmin,
         continue;
       }
     } else {
-      ++*tests;
+      ++tested;
       leaf(ctx, cur.child, cur.count, tmax);
     }
     do {
-      if (sp == 0)
+      if (sp == 0) {
+        *tests += tested;
         return;
+      }
       --sp;
     } while (stack[sp].entry > *tmax);
     cur = stack[sp];
@@ -176,16 +180,19 @@ wide_segment(const gli_bvh *bvh, uint32_t start, vec3 o, vec3 d, real tmin,
   wide_ray r = wide_ray_make(o, d);
   /* Any order will do: no entry distances are kept or compared. */
   wide_item cur = {start, 0, tmin}, stack[GLI_WIDE_STACK];
+  uint64_t tested = 0;
   for (int sp = 0;;) {
     if (cur.count) {
-      ++*tests;
-      if (!leaf(ctx, cur.child, cur.count))
+      ++tested;
+      if (!leaf(ctx, cur.child, cur.count)) {
+        *tests += tested;
         return 0;
+      }
     } else {
       const gli_wide_node *n = &bvh->wide.nodes[cur.child];
       real entry[GLI_WIDE];
       unsigned hits = wide_hits(n, &r, tmin, tmax, entry);
-      ++*tests;
+      ++tested;
       if (hits) { /* on to the first child hit; the others wait */
         int k = __builtin_ctz(hits);
         cur = (wide_item){n->child[k], n->count[k], entry[k]};
@@ -196,8 +203,10 @@ wide_segment(const gli_bvh *bvh, uint32_t start, vec3 o, vec3 d, real tmin,
         continue;
       }
     }
-    if (sp == 0)
+    if (sp == 0) {
+      *tests += tested;
       return 1;
+    }
     cur = stack[--sp];
   }
 }
