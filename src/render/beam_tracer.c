@@ -200,19 +200,8 @@ static ALWAYS_INLINE void render_tile_body(const packet_scene *ps,
         sum = vv_add(sum, color);
       }
       st->primary_rays += (uint64_t)vm_count(valid) * (uint64_t)frame->spp;
-      SIMD_ALIGN float r[LANES], g[LANES], bl[LANES];
-      vf_store(r, vf_mul(sum.x, inv_spp));
-      vf_store(g, vf_mul(sum.y, inv_spp));
-      vf_store(bl, vf_mul(sum.z, inv_spp));
-      int bits = vm_bits(valid);
-      for (int i = 0; i < LANES; i++)
-        if (bits >> i & 1) {
-          int x = bx + i % BLOCK_W - tile->x0, y = by + i / BLOCK_W - tile->y0;
-          float *out = rgb + ((size_t)y * tw + x) * 3;
-          out[0] = r[i];
-          out[1] = g[i];
-          out[2] = bl[i];
-        }
+      primary_block_store(rgb, tw, bx - tile->x0, by - tile->y0, valid,
+                          vv_scale(sum, inv_spp));
     }
 }
 

@@ -203,8 +203,7 @@ static ALWAYS_INLINE void shadow_cross(const packet_scene *ps, int object,
     vfloat signed_t = vf_select(entering, t, vf_neg(t));
     vfloat st = vf_keep(crossing, signed_t);
     sh->exponent = vv_madd(sh->exponent, st, vv_get(pm->absorb));
-    sh->absorbed |=
-        (m->absorb.x != 0) | (m->absorb.y != 0) << 1 | (m->absorb.z != 0) << 2;
+    sh->absorbed |= m->absorbs;
   }
 }
 

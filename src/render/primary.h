@@ -67,4 +67,36 @@ static ALWAYS_INLINE vvec3 primary_dir(const primary_beams *pb, vfloat px,
   return vv_normalize(vv_madd(vv_madd(pb->d, x, pb->r), y, pb->u), newton);
 }
 
+/* Stores a block's colours into a tile's film (RGB rows of `tw` pixels),
+ * the block's corner at (x, y) in the tile: a whole block row by row, a
+ * block cut by the tile's edge lane by lane. */
+static ALWAYS_INLINE void primary_block_store(float *rgb, int tw, int x, int y,
+                                              vmask valid, vvec3 color) {
+  SIMD_ALIGN float r[LANES], g[LANES], b[LANES];
+  vf_store(r, color.x);
+  vf_store(g, color.y);
+  vf_store(b, color.z);
+  unsigned bits = (unsigned)vm_bits(valid);
+  if (bits == (1u << LANES) - 1) {
+    for (int j = 0; j < BLOCK_H; j++) {
+      float *out = rgb + ((size_t)(y + j) * (size_t)tw + (size_t)x) * 3;
+      for (int i = 0; i < BLOCK_W; i++) {
+        out[3 * i] = r[j * BLOCK_W + i];
+        out[3 * i + 1] = g[j * BLOCK_W + i];
+        out[3 * i + 2] = b[j * BLOCK_W + i];
+      }
+    }
+    return;
+  }
+  for (int i = 0; i < LANES; i++)
+    if (bits >> i & 1) {
+      float *out = rgb + ((size_t)(y + i / BLOCK_W) * (size_t)tw +
+                          (size_t)(x + i % BLOCK_W)) *
+                             3;
+      out[0] = r[i];
+      out[1] = g[i];
+      out[2] = b[i];
+    }
+}
+
 #endif

@@ -141,7 +141,8 @@ glint_status scalar_scene_prepare(const glint_scene *g, double eps,
     r->ior = (real)m->ior;
     r->absorb = from_d(m->absorb);
     r->texture = (int)m->texture;
-    r->absorbs = m->absorb.x != 0 || m->absorb.y != 0 || m->absorb.z != 0;
+    r->absorbs =
+        (m->absorb.x != 0) | (m->absorb.y != 0) << 1 | (m->absorb.z != 0) << 2;
   }
   for (size_t i = 0; i < g->object_count; i++) {
     const gli_object *o = &g->objects[i];

@@ -45,7 +45,7 @@ typedef struct material_r {
   real ka, kd, ks, h, kr, kt, ior;
   vec3 absorb;
   int texture;
-  int absorbs; /* absorb != 0 */
+  int absorbs; /* bit c: absorb's channel c is not 0 */
 } material_r;
 
 typedef struct object_r {
