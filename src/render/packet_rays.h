@@ -139,6 +139,14 @@ nearest_hybrid(nearest_query *q, const gli_bvh *bvh, vmask active) {
                        q->st, nearest_leaf, ps->alone_lanes, nearest_alone, q);
 }
 
+/* The primitives a query tests besides the planes when the scene has no
+ * BVH (all of them), counted with the planes' tests in one update. */
+static ALWAYS_INLINE size_t brute_force_tests(const scene_r *s) {
+  return s->bvh->node_count == 0
+             ? s->sphere_count + s->triangle_count + s->cone_count
+             : 0;
+}
+
 /* The lanes' nearest hits: the planes (unbounded, outside the BVH), then
  * the BVH's primitives, or every primitive when there is no BVH (the
  * thesis's brute force, §4.3). */
@@ -149,13 +157,11 @@ static ALWAYS_INLINE void packet_nearest(const packet_scene *ps, vvec3 o,
   packet_hit_init(h);
   vfloat eps = vs_get(&ps->eps);
   vvec3 l = packet_ray_moment(ps, o, d);
-  int lanes = vm_count(active);
-  count_tests(st, s->plane_count, lanes);
+  const gli_bvh *bvh = s->bvh;
+  count_tests(st, s->plane_count + brute_force_tests(s), vm_count(active));
   for (size_t i = 0; i < s->plane_count; i++)
     packet_plane(&ps->planes[i], o, d, active, eps, newton, h);
-  const gli_bvh *bvh = s->bvh;
   if (bvh->node_count == 0) {
-    count_tests(st, s->sphere_count + s->triangle_count + s->cone_count, lanes);
     for (size_t i = 0; i < s->sphere_count; i++)
       packet_sphere(&ps->spheres[i], o, d, active, eps, h);
     for (size_t i = 0; i < s->triangle_count; i++)
@@ -346,8 +352,8 @@ static ALWAYS_INLINE vvec3 packet_transmission(const packet_scene *ps, vvec3 o,
                      0};
   vfloat eps = vs_get(&ps->eps);
   vvec3 l = packet_ray_moment(ps, o, d);
-  int lanes = vm_count(active);
-  count_tests(st, s->plane_count, lanes);
+  const gli_bvh *bvh = s->bvh;
+  count_tests(st, s->plane_count + brute_force_tests(s), vm_count(active));
   for (size_t i = 0; i < s->plane_count && vm_any(sh.alive); i++) {
     const pplane *pl = &ps->planes[i];
     vvec3 n = vv_get(pl->n);
@@ -358,9 +364,7 @@ static ALWAYS_INLINE vvec3 packet_transmission(const packet_scene *ps, vvec3 o,
                      vm_and(vf_gt(t, eps), vf_lt(t, dist)));
     shadow_cross(ps, pl->object, c, t, vf_lt(denom, vf_zero()), &sh);
   }
-  const gli_bvh *bvh = s->bvh;
   if (bvh->node_count == 0) {
-    count_tests(st, s->sphere_count + s->triangle_count + s->cone_count, lanes);
     for (size_t i = 0; i < s->sphere_count && vm_any(sh.alive); i++)
       packet_cross_prim(ps, GLI_SHAPE_SPHERE, (uint32_t)i, o, d, l, dist, eps,
                         newton, &sh);
