@@ -138,6 +138,47 @@ static void wide_tree_is_sound(void **state) {
   }
 }
 
+/* Hand-over points (accel/wide_bvh.c, mark_hand_overs) where at least half
+ * of a large subtree's references are spheres or cones: a field of 400
+ * triangles with 4 spheres among them has none (mount-s6's shape, where
+ * they cost 6%), the same with 400 spheres and 4 triangles has some. */
+static glint_scene *field(int triangles, int spheres) {
+  glint_scene *g;
+  ASSERT_OK(glint_scene_create(&g, &e_));
+  glint_material mat;
+  glint_material_default(&mat);
+  uint32_t m;
+  ASSERT_OK(glint_scene_add_material(g, &mat, &m, &e_));
+  for (int k = 0; k < triangles; k++) {
+    double x = k % 20, z = k / 20;
+    ASSERT_OK(glint_scene_add_triangle(g, (glint_vec3){x, 0, z},
+                                       (glint_vec3){x + 1, 0, z},
+                                       (glint_vec3){x, 0.5, z + 1}, m, &e_));
+  }
+  for (int k = 0; k < spheres; k++) {
+    double x = k % 20 + 0.5, z = k / 20 + 0.5;
+    ASSERT_OK(glint_scene_add_sphere(g, (glint_vec3){x, 1, z}, 0.4, m, &e_));
+  }
+  return g;
+}
+
+static uint32_t hand_over_points(glint_scene *g) {
+  gli_bvh b;
+  ASSERT_OK(gli_bvh_build(g, &b, &e_));
+  uint32_t marked = b.wide.hand_overs;
+  gli_bvh_free(&b);
+  glint_scene_destroy(g);
+  return marked;
+}
+
+static void hand_overs_where_spheres_and_cones_are_most(void **state) {
+  (void)state;
+  assert_int_equal(hand_over_points(field(400, 4)), 0);
+  assert_true(hand_over_points(field(4, 400)) > 0);
+  assert_true(hand_over_points(field(200, 200)) > 0);
+  assert_int_equal(hand_over_points(field(0, 100)), 0); /* too small */
+}
+
 /* ---- hand-computed hits ------------------------------------------------- */
 
 /* Forty spheres of radius 0.5 at x = 0, 2, ..., 78 (y = z = 0): enough for
@@ -245,6 +286,8 @@ static void wide_hits_equal_binary_and_brute_force(void **state) {
 int main(int argc, char **argv) {
   const struct CMUnitTest tests[] = {
       {"wide_tree_is_sound", wide_tree_is_sound, NULL, NULL, (void *)&own},
+      {"hand_overs_where_spheres_and_cones_are_most",
+       hand_overs_where_spheres_and_cones_are_most, NULL, NULL, NULL},
       {"row_of_spheres_hits_as_computed", row_of_spheres_hits_as_computed, NULL,
        NULL, NULL},
       {"wide_hits_equal_binary_and_brute_force",

@@ -206,36 +206,40 @@ static uint32_t collapse(collapser *c, const slot *from, int depth) {
 
 /* Marks the binary nodes where a packet may hand its few remaining lanes a
  * subtree: the roots of wide nodes (the others have no wide counterpart)
- * whose subtrees hold a sphere or a cone among at least HAND_OVER_REFS
- * references. Where only triangles lie, single rays do not pay: a packet's
- * triangle test is cheap, a few products per lane, while its sphere and
- * cone tests take square roots and divisions for every lane (gears-s4, all
- * triangles, was 8% slower with hand-overs; balls-s4 and rings-s4 11-15%
- * faster). Nor in small subtrees, where a packet's few box tests cost less
- * than its lanes' set-up (the stress scenes mirror-room and glass-in-glass,
- * 52 and 108 primitives, were 11-16% slower with hand-overs everywhere;
- * from 128 references none lost and sticks gained most: README,
- * "Performance"). */
+ * whose subtrees hold at least HAND_OVER_REFS references, at least half of
+ * them spheres or cones. Where triangles lie, single rays do not pay: a
+ * packet's triangle test is cheap, a few products per lane, while its
+ * sphere and cone tests take square roots and divisions for every lane
+ * (gears-s4, all triangles, was 8% slower with hand-overs; balls-s4 and
+ * rings-s4 11-15% faster); mount-s6, 8192 triangles and 4 spheres, took 6%
+ * more instructions while a single sphere anywhere in a subtree marked it.
+ * Nor in small subtrees, where a packet's few box tests cost less than its
+ * lanes' set-up (the stress scenes mirror-room and glass-in-glass, 52 and
+ * 108 primitives, were 11-16% slower with hand-overs everywhere; from 128
+ * references none lost and sticks gained most: README, "Performance"). */
 #define HAND_OVER_REFS 128
 
 static void mark_hand_overs(gli_bvh *binary, gli_wide_bvh *wide) {
   /* children come after their parents: one backward pass, counting each
-   * subtree's references (top bit: a sphere or cone among them) */
-  uint32_t *below = malloc(binary->node_count * sizeof *below);
-  const uint32_t round = 0x80000000u;
+   * subtree's references and its spheres and cones among them */
+  typedef struct subtree {
+    uint32_t refs, round;
+  } subtree;
+  subtree *below = malloc(binary->node_count * sizeof *below);
   for (uint32_t i = binary->node_count; i-- > 0 && below;) {
     gli_bvh_node *n = &binary->nodes[i];
+    subtree *b = &below[i];
     if (n->count) {
-      below[i] = n->count;
+      b->refs = n->count;
+      b->round = 0;
       for (uint32_t k = n->offset; k < n->offset + n->count; k++)
-        if (GLI_REF_SHAPE(binary->refs[k]) != GLI_SHAPE_TRIANGLE)
-          below[i] |= round;
+        b->round += GLI_REF_SHAPE(binary->refs[k]) != GLI_SHAPE_TRIANGLE;
     } else {
-      uint32_t a = below[n->offset], b = below[n->offset + 1];
-      below[i] = ((a & ~round) + (b & ~round)) | ((a | b) & round);
+      b->refs = below[n->offset].refs + below[n->offset + 1].refs;
+      b->round = below[n->offset].round + below[n->offset + 1].round;
     }
-    n->flags = (uint8_t)(n->count == 0 && (below[i] & round) &&
-                                 (below[i] & ~round) >= HAND_OVER_REFS &&
+    n->flags = (uint8_t)(n->count == 0 && b->refs >= HAND_OVER_REFS &&
+                                 2 * (uint64_t)b->round >= b->refs &&
                                  wide->of_binary[i] != GLI_WIDE_NONE
                              ? GLI_NODE_HAND_OVER
                              : 0);
