@@ -87,19 +87,10 @@ static const char *write_gz(fixture *f, const char *name, const char *text) {
   return path;
 }
 
-static glint_scene *new_scene(uint32_t *material) {
-  glint_scene *s;
-  ASSERT_OK(glint_scene_create(&s, &e_));
-  glint_material m;
-  glint_material_default(&m);
-  ASSERT_OK(glint_scene_add_material(s, &m, material, &e_));
-  return s;
-}
-
 /* Loads `path` into a new scene at scale 1, failing the test on error. */
 static glint_scene *load(const char *path, double scale, V translate) {
   uint32_t m;
-  glint_scene *s = new_scene(&m);
+  glint_scene *s = scene_with_default_material(&m);
   ASSERT_OK(glint_scene_add_mesh_file(s, path, scale, translate, m, &e_));
   return s;
 }
@@ -131,7 +122,7 @@ static V normal_of(const glint_scene *s, size_t i, int k) {
 static void expect_fail_path(const char *path, glint_status status,
                              const char *frag1, const char *frag2) {
   uint32_t m;
-  glint_scene *s = new_scene(&m);
+  glint_scene *s = scene_with_default_material(&m);
   ASSERT_OK(glint_scene_add_triangle(s, (V){0, 0, 0}, (V){1, 0, 0},
                                      (V){0, 1, 0}, m, &e_));
   ASSERT_OK(gli_scene_begin_object(s, GLI_SHAPE_TRIANGLE, m, &e_));
@@ -331,7 +322,7 @@ static void obj_gzip_and_two_meshes(void **state) {
   const char *gz_plain_name = write_gz(f, "quad2.obj", text);
   const char *plain_gz_name = write_text(f, "quad3.obj.gz", text);
   uint32_t m;
-  glint_scene *s = new_scene(&m);
+  glint_scene *s = scene_with_default_material(&m);
   ASSERT_OK(glint_scene_add_mesh_file(s, gz, 1, (V){0, 0, 0}, m, &e_));
   ASSERT_OK(
       glint_scene_add_mesh_file(s, gz_plain_name, 1, (V){0, 0, 5}, m, &e_));
@@ -1047,7 +1038,7 @@ static void bad_arguments(void **state) {
                              "v 0 0 0\nv 1 0 0\nv 0 1 0\n"
                              "v 1e14 0 0\nf 1 2 3\nf 1 2 4\n");
   uint32_t m;
-  glint_scene *s = new_scene(&m);
+  glint_scene *s = scene_with_default_material(&m);
   glint_error e;
   assert_int_equal(glint_scene_add_mesh_file(s, p, 0, (V){0, 0, 0}, m, &e),
                    GLINT_E_ARGUMENT);

@@ -215,12 +215,8 @@ static void meshes_are_watertight(void **state) {
   (void)state;
   static mesh_build m;
   icosphere(&m);
-  glint_scene *s;
-  ASSERT_OK(glint_scene_create(&s, &e_));
-  glint_material mat;
-  glint_material_default(&mat);
   uint32_t id;
-  ASSERT_OK(glint_scene_add_material(s, &mat, &id, &e_));
+  glint_scene *s = scene_with_default_material(&id);
   glint_mesh mesh = {m.positions, NULL, m.vertices, m.indices, m.triangles};
   ASSERT_OK(glint_scene_add_mesh(s, &mesh, id, &e_));
   static const struct {

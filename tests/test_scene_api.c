@@ -19,19 +19,10 @@ typedef glint_vec3 V;
       fail_msg("message '%s' lacks '%s'", e_.message, text);                   \
   } while (0)
 
-static glint_scene *scene_with_material(uint32_t *id) {
-  glint_scene *s;
-  ASSERT_OK(glint_scene_create(&s, &e_));
-  glint_material m;
-  glint_material_default(&m);
-  ASSERT_OK(glint_scene_add_material(s, &m, id, &e_));
-  return s;
-}
-
 static void primitives_refuse_bad_numbers(void **state) {
   (void)state;
   uint32_t m;
-  glint_scene *s = scene_with_material(&m);
+  glint_scene *s = scene_with_default_material(&m);
   V ok = {0, 0, 0}, nan3 = {NAN, 0, 0}, inf3 = {0, INFINITY, 0};
   EXPECT_ERR(glint_scene_add_sphere(s, nan3, 1, m, &e_), GLINT_E_ARGUMENT,
              "finite");
@@ -88,7 +79,7 @@ static glint_render_settings settings_for(glint_backend backend, int width,
 static void coordinates_stay_within_the_limit(void **state) {
   (void)state;
   uint32_t m;
-  glint_scene *s = scene_with_material(&m);
+  glint_scene *s = scene_with_default_material(&m);
   V ok = {0, 0, 0}, far = {0, 0, 1.0000001e15}, edge = {-1e15, 0, 0};
   const char *limit = "magnitude at most 1e15";
   EXPECT_ERR(glint_scene_add_sphere(s, far, 1, m, &e_), GLINT_E_ARGUMENT,
@@ -136,7 +127,7 @@ static void coordinates_stay_within_the_limit(void **state) {
 static void materials_refuse_bad_values(void **state) {
   (void)state;
   uint32_t m;
-  glint_scene *s = scene_with_material(&m);
+  glint_scene *s = scene_with_default_material(&m);
   glint_material mat;
   glint_material_default(&mat);
   mat.kd = -0.5;
@@ -184,7 +175,7 @@ static void materials_refuse_bad_values(void **state) {
 static void camera_refuses_degenerate_views(void **state) {
   (void)state;
   uint32_t m;
-  glint_scene *s = scene_with_material(&m);
+  glint_scene *s = scene_with_default_material(&m);
   glint_camera c = {{0, 0, 0}, {0, 0, 0}, {0, 1, 0}, 60};
   EXPECT_ERR(glint_scene_set_camera(s, &c, &e_), GLINT_E_ARGUMENT,
              "same point");
@@ -282,7 +273,7 @@ static void builtin_scenes_match_the_spec(void **state) {
 static void mesh_indices_checked(void **state) {
   (void)state;
   uint32_t m;
-  glint_scene *s = scene_with_material(&m);
+  glint_scene *s = scene_with_default_material(&m);
   V p[3] = {{0, 0, 0}, {1, 0, 0}, {0, 1, 0}};
   uint32_t bad[3] = {0, 1, 3};
   glint_mesh mesh = {p, NULL, 3, bad, 1};

@@ -21,6 +21,17 @@
       fail_msg("%s failed: %s", #call, e_.message);                            \
   } while (0)
 
+/* A new scene holding one material, glint_material_default's; its id in
+ * *material. */
+static inline glint_scene *scene_with_default_material(uint32_t *material) {
+  glint_scene *g;
+  ASSERT_OK(glint_scene_create(&g, &e_));
+  glint_material mat;
+  glint_material_default(&mat);
+  ASSERT_OK(glint_scene_add_material(g, &mat, material, &e_));
+  return g;
+}
+
 /* Expected 8-bit value of a linear colour channel: round(255 c)
  * (docs/specification.md §4). */
 static inline int expected_byte(double c) {

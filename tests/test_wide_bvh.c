@@ -143,12 +143,8 @@ static void wide_tree_is_sound(void **state) {
  * triangles with 4 spheres among them has none (mount-s6's shape, where
  * they cost 6%), the same with 400 spheres and 4 triangles has some. */
 static glint_scene *field(int triangles, int spheres) {
-  glint_scene *g;
-  ASSERT_OK(glint_scene_create(&g, &e_));
-  glint_material mat;
-  glint_material_default(&mat);
   uint32_t m;
-  ASSERT_OK(glint_scene_add_material(g, &mat, &m, &e_));
+  glint_scene *g = scene_with_default_material(&m);
   for (int k = 0; k < triangles; k++) {
     double x = k % 20, z = k / 20;
     ASSERT_OK(glint_scene_add_triangle(g, (glint_vec3){x, 0, z},
@@ -188,12 +184,8 @@ static void hand_overs_where_spheres_and_cones_are_most(void **state) {
  * ray along the row is blocked, one beside it is not. */
 static void row_of_spheres_hits_as_computed(void **state) {
   (void)state;
-  glint_scene *g;
-  ASSERT_OK(glint_scene_create(&g, &e_));
-  glint_material mat;
-  glint_material_default(&mat);
   uint32_t m;
-  ASSERT_OK(glint_scene_add_material(g, &mat, &m, &e_));
+  glint_scene *g = scene_with_default_material(&m);
   for (int k = 0; k < 40; k++)
     ASSERT_OK(
         glint_scene_add_sphere(g, (glint_vec3){2.0 * k, 0, 0}, 0.5, m, &e_));
