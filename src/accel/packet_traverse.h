@@ -154,7 +154,7 @@ packet_bvh_closest(const gli_bvh *bvh, vvec3 o, vvec3 d, vmask active,
     uint32_t node = stack[--sp];
     const gli_bvh_node *n = &bvh->nodes[node];
     vmask m = packet_box(n, &r, tmin, *tmax, active);
-    boxes.tests++;
+    add_tests(&boxes, 1, lanes);
     if (vm_none(m))
       continue;
     if (n->count == 0) {
@@ -172,7 +172,6 @@ packet_bvh_closest(const gli_bvh *bvh, vvec3 o, vvec3 d, vmask active,
         leaf(ctx, bvh->refs[n->offset + k], m);
     }
   }
-  boxes.lanes = boxes.tests * (uint64_t)lanes;
   flush_tests(st, boxes, prims);
 }
 
