@@ -5,7 +5,9 @@
  *    to the axis to cancellation: 23.6 dB for scalar-float, 24.2 dB and
  *    about 6000 wrong pixels for the SIMD backends; now 78.6-80.7 dB);
  *  - closed meshes are watertight: rays aimed exactly at the edges and
- *    vertices that triangles share never pass between them.
+ *    vertices that triangles share never pass between them;
+ *  - rays that cross a bounding box for a few 1e-6, far from the
+ *    coordinates' zero, are not culled by the slab tests' rounding.
  * A backend this CPU lacks is reported as skipped. */
 #define GLINT_REAL_FLOAT
 #include "test_util.h"
@@ -207,6 +209,37 @@ static void icosphere(mesh_build *m) {
   }
 }
 
+/* The packet kernels' nearest-hit entry points, for a view of a scene
+ * (tests/test_views.h). */
+static const struct {
+  glint_backend backend;
+  int width;
+  void (*nearest)(const void *, const float *, const float *, int, float *,
+                  int *);
+} packets[] = {{GLINT_BACKEND_SSE, 4, gli_beam_nearest_hit_sse},
+               {GLINT_BACKEND_AVX2, 8, gli_beam_nearest_hit_avx2},
+               {GLINT_BACKEND_AVX512, 16, gli_beam_nearest_hit_avx512}};
+
+/* How many of `lanes` rays (o, d: lanes x, then y, then z) packet kernel p
+ * finds no hit for, traced as packets of its width. */
+static int packet_misses(const void *view, int p, const float *o,
+                         const float *d, int lanes) {
+  int w = packets[p].width, misses = 0;
+  for (int base = 0; base < lanes; base += w) {
+    float po[48], pd[48], t[16];
+    int obj[16];
+    for (int i = 0; i < w; i++)
+      for (int c = 0; c < 3; c++) {
+        po[c * w + i] = o[c * lanes + base + i];
+        pd[c * w + i] = d[c * lanes + base + i];
+      }
+    packets[p].nearest(view, po, pd, (1 << w) - 1, t, obj);
+    for (int i = 0; i < w; i++)
+      misses += obj[i] < 0;
+  }
+  return misses;
+}
+
 #define EDGE_RAYS 200000
 
 /* Rays from outside aimed exactly at an edge two triangles share (or at a
@@ -219,14 +252,6 @@ static void meshes_are_watertight(void **state) {
   glint_scene *s = scene_with_default_material(&id);
   glint_mesh mesh = {m.positions, NULL, m.vertices, m.indices, m.triangles};
   ASSERT_OK(glint_scene_add_mesh(s, &mesh, id, &e_));
-  static const struct {
-    glint_backend backend;
-    int width;
-    void (*nearest)(const void *, const float *, const float *, int, float *,
-                    int *);
-  } packets[] = {{GLINT_BACKEND_SSE, 4, gli_beam_nearest_hit_sse},
-                 {GLINT_BACKEND_AVX2, 8, gli_beam_nearest_hit_avx2},
-                 {GLINT_BACKEND_AVX512, 16, gli_beam_nearest_hit_avx512}};
   /* Every walk: brute force, the hybrid, the binary tree alone and every ray
    * alone through the wide tree. */
   static const glint_accel accels[4] = {GLINT_ACCEL_NONE, GLINT_ACCEL_BVH,
@@ -279,24 +304,9 @@ static void meshes_are_watertight(void **state) {
             ref, v3(o[i], o[lanes + i], o[2 * lanes + i]),
             v3(d[i], d[lanes + i], d[2 * lanes + i]), REAL_MAX, &h);
       }
-      for (int p = 0; p < 3; p++) {
-        if (!views[p])
-          continue;
-        void *view = views[p];
-        int w = packets[p].width;
-        for (int base = 0; base < lanes; base += w) {
-          float po[48], pd[48], t[16];
-          int obj[16];
-          for (int i = 0; i < w; i++)
-            for (int c = 0; c < 3; c++) {
-              po[c * w + i] = o[c * lanes + base + i];
-              pd[c * w + i] = d[c * lanes + base + i];
-            }
-          packets[p].nearest(view, po, pd, (1 << w) - 1, t, obj);
-          for (int i = 0; i < w; i++)
-            misses[1 + p] += obj[i] < 0;
-        }
-      }
+      for (int p = 0; p < 3; p++)
+        if (views[p])
+          misses[1 + p] += packet_misses(views[p], p, o, d, lanes);
     }
     test_view_close(&scalar);
     for (int p = 0; p < 3; p++)
@@ -312,6 +322,113 @@ static void meshes_are_watertight(void **state) {
       }
       printf("%-12s %s: %d of %d edge and vertex rays missed\n", names[p],
              glint_accel_name(accel), misses[p], EDGE_RAYS);
+    }
+    for (int p = 0; p < 4; p++)
+      assert_int_equal(misses[p], 0);
+  }
+  glint_scene_destroy(s);
+}
+
+#define CORNER_RAYS 20000
+
+/* Rays through a triangle next to its vertex A, the corner of its bounding
+ * box (A is the lowest in x and in y), entering the box through the face x
+ * = A.x and leaving through y = A.y a few 1e-6 later: far from the
+ * coordinates' zero (1000), so that O/D carries an ulp (6e-5/|D|) far
+ * larger than that stretch. A slab test computing B/D - O/D in one fma
+ * without moving O outwards culls about half of them (the box is missed,
+ * the triangle with it); every walk must hit. */
+static void rays_grazing_a_box_corner_hit(void **state) {
+  (void)state;
+  const glint_vec3 a = {1000.25, 1000.5, 1000.75};
+  const glint_vec3 tri[3] = {a,
+                             {a.x + 0.5, a.y + 0.25, a.z - 0.25},
+                             {a.x + 0.125, a.y + 0.5, a.z + 0.375}};
+  /* 63 copies 2 and more away in +x and +y, out of the rays' reach, so
+   * that the scene has a tree whose boxes all have their corner at A */
+  static glint_vec3 positions[3 * 64];
+  static uint32_t indices[3 * 64];
+  for (int k = 0; k < 64; k++)
+    for (int c = 0; c < 3; c++) {
+      double shift_x = k ? 2 + 0.75 * (k % 8) : 0,
+             shift_y = k ? 2 + 0.75 * (k / 8) : 0;
+      positions[3 * k + c] =
+          (glint_vec3){tri[c].x + shift_x, tri[c].y + shift_y, tri[c].z};
+      indices[3 * k + c] = (uint32_t)(3 * k + c);
+    }
+  uint32_t id;
+  glint_scene *s = scene_with_default_material(&id);
+  glint_mesh mesh = {positions, NULL, 3 * 64, indices, 64};
+  ASSERT_OK(glint_scene_add_mesh(s, &mesh, id, &e_));
+  static const glint_accel accels[3] = {GLINT_ACCEL_BVH, GLINT_ACCEL_BVH2,
+                                        GLINT_ACCEL_BVH8};
+  for (int ai = 0; ai < 3; ai++) {
+    test_view pv[3], scalar;
+    void *views[3] = {NULL, NULL, NULL};
+    for (int p = 0; p < 3; p++)
+      if (glint_backend_supported(packets[p].backend))
+        views[p] =
+            test_view_open(s, gli_backend_ops_of(packets[p].backend)->data,
+                           accels[ai], &pv[p]);
+    const scene_r *ref =
+        test_view_open(s, DATA_SCALAR_FLOAT, accels[ai], &scalar);
+    unsigned long long seed = 11;
+    int misses[4] = {0}, lanes = 16;
+    for (int r = 0; r < CORNER_RAYS; r += lanes) {
+      float o[3 * 16], d[3 * 16];
+      for (int i = 0; i < lanes; i++) {
+        /* P = A + f1 (B - A) + f2 (C - A), 1e-6 to 1e-5 from each edge
+         * at A, inside the triangle */
+        double f1 = 2e-6 + 2e-5 * uniform(&seed),
+               f2 = 2e-6 + 2e-5 * uniform(&seed);
+        double target[3] = {a.x + f1 * (tri[1].x - a.x) + f2 * (tri[2].x - a.x),
+                            a.y + f1 * (tri[1].y - a.y) + f2 * (tri[2].y - a.y),
+                            a.z + f1 * (tri[1].z - a.z) +
+                                f2 * (tri[2].z - a.z)};
+        /* +x and -y, and +z: at least 30 degrees from the triangle's
+         * plane (normal (1, -1, 1)); from 0.2 to 1.2 away, beyond the
+         * scene's epsilon (1e-4 of its coordinates: 0.1) */
+        double dir[3] = {0.2 + uniform(&seed), -0.2 - uniform(&seed),
+                         0.5 + uniform(&seed)};
+        double l = sqrt(dir[0] * dir[0] + dir[1] * dir[1] + dir[2] * dir[2]);
+        double dist = 0.2 + uniform(&seed);
+        float from[3];
+        for (int c = 0; c < 3; c++)
+          from[c] = (float)(target[c] - dist * dir[c] / l);
+        /* aimed from the rounded origin, so the ray passes within 1e-7 */
+        double aim[3], al = 0;
+        for (int c = 0; c < 3; c++)
+          aim[c] = target[c] - from[c], al += aim[c] * aim[c];
+        for (int c = 0; c < 3; c++) {
+          o[c * lanes + i] = from[c];
+          d[c * lanes + i] = (float)(aim[c] / sqrt(al));
+        }
+      }
+      for (int i = 0; i < lanes; i++) {
+        hit_r h;
+        misses[0] += !gli_scalar_nearest_hit_float(
+            ref, v3(o[i], o[lanes + i], o[2 * lanes + i]),
+            v3(d[i], d[lanes + i], d[2 * lanes + i]), REAL_MAX, &h);
+      }
+      for (int p = 0; p < 3; p++)
+        if (views[p])
+          misses[1 + p] += packet_misses(views[p], p, o, d, lanes);
+    }
+    test_view_close(&scalar);
+    for (int p = 0; p < 3; p++)
+      if (views[p])
+        test_view_close(&pv[p]);
+    for (int p = 0; p < 4; p++) {
+      if (p > 0 && !views[p - 1]) {
+        printf("%-12s SKIPPED (not on this CPU)\n", p == 1   ? "sse"
+                                                    : p == 2 ? "avx2"
+                                                             : "avx512");
+        continue;
+      }
+      printf("%-12s %s: %d of %d corner rays missed\n",
+             p == 0 ? "scalar-float"
+                    : glint_backend_name(packets[p - 1].backend),
+             glint_accel_name(accels[ai]), misses[p], CORNER_RAYS);
     }
     for (int p = 0; p < 4; p++)
       assert_int_equal(misses[p], 0);
@@ -436,6 +553,7 @@ int main(void) {
   const struct CMUnitTest tests[] = {
       cmocka_unit_test(thin_cylinder),
       cmocka_unit_test(meshes_are_watertight),
+      cmocka_unit_test(rays_grazing_a_box_corner_hit),
       cmocka_unit_test(long_numbers_are_read_whole),
       cmocka_unit_test(unusual_text_files_load),
       cmocka_unit_test(bad_input_is_named),

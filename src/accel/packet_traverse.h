@@ -57,27 +57,75 @@ static ALWAYS_INLINE void flush_tests(glint_stats *st, test_count boxes,
   st->active_lanes += boxes.lanes + prims.lanes;
 }
 
+/* The lanes' origins as the slab tests read them (plane_distance, for
+ * the lower and the upper planes). With fmas, B/D - O/D is off by up to an
+ * ulp of O/D, which the widening of packet_box does not cover: -O moved 8
+ * ulps (of O) towards each side's planes, -(O + 8u|O|) for the lower and
+ * -(O - 8u|O|) for the upper (u = 2^-24), moves each plane farther out than
+ * that (see packet_box). Without fmas, (B - O)/D is a few ulps of itself
+ * off, which the widening covers: -O for both. A shading point's shadow
+ * packets, one per light, share it. */
+typedef struct packet_origin {
+  vvec3 lo, hi;
+} packet_origin;
+
+static ALWAYS_INLINE packet_origin packet_origin_of(vvec3 o) {
+  vvec3 neg_o = vv_neg(o);
+#if GLI_SIMD_FUSED
+  vfloat spread = vf_set1(0x1p-21f);
+  vvec3 mag = {vf_abs(o.x), vf_abs(o.y), vf_abs(o.z)};
+  packet_origin r = {vv_madd(neg_o, vf_neg(spread), mag),
+                     vv_madd(neg_o, spread, mag)};
+#else
+  packet_origin r = {neg_o, neg_o};
+#endif
+  return r;
+}
+
 /* What the slab tests of a packet need: 1/D (a zero component made tiny,
- * so 0 * inf never makes a NaN) and O. */
+ * so 0 * inf never makes a NaN) and, per axis, the lower and the upper
+ * planes' terms of plane_distance. */
 typedef struct packet_inv {
-  vvec3 inv, o;
+  vvec3 inv, lo_off, hi_off;
   int neg[3]; /* the packet's direction sign per axis (first active lane) */
 } packet_inv;
 
-static ALWAYS_INLINE vfloat vf_nonzero(vfloat a) {
-  vfloat tiny = vf_set1(1e-30f);
-  vfloat signed_tiny = vi_as_vf(
-      vi_or(vf_bits(tiny), vi_and(vf_bits(a), vi_set1((int)0x80000000u))));
-  return vf_select(vf_lt(vf_abs(a), tiny), signed_tiny, a);
+/* A plane's distance (B - O)/D along the lanes, `off` being the plane
+ * side's term: -O/D with one fma where the ISA fuses, a multiply-add; -O
+ * without (SSE), where B/D - O/D would be two roundings and as many
+ * instructions as (B - O) * (1/D). */
+static ALWAYS_INLINE vfloat plane_distance(vfloat b, vfloat inv, vfloat off) {
+#if GLI_SIMD_FUSED
+  return vf_fmadd(b, inv, off);
+#else
+  return vf_mul(vf_add(b, off), inv);
+#endif
 }
 
-static ALWAYS_INLINE packet_inv packet_inverse(vvec3 o, vvec3 d, vmask active,
-                                               int newton) {
+/* |m| (m >= 0) with the sign of s. */
+static ALWAYS_INLINE vfloat vf_signed_as(vfloat m, vfloat s) {
+  return vi_as_vf(
+      vi_or(vf_bits(m), vi_and(vf_bits(s), vi_set1((int)0x80000000u))));
+}
+
+static ALWAYS_INLINE vfloat vf_nonzero(vfloat a) {
+  vfloat tiny = vf_set1(1e-30f);
+  return vf_select(vf_lt(vf_abs(a), tiny), vf_signed_as(tiny, a), a);
+}
+
+static ALWAYS_INLINE packet_inv packet_inverse(const packet_origin *po, vvec3 d,
+                                               vmask active, int newton) {
   packet_inv r;
   r.inv.x = vf_rcp(vf_nonzero(d.x), newton);
   r.inv.y = vf_rcp(vf_nonzero(d.y), newton);
   r.inv.z = vf_rcp(vf_nonzero(d.z), newton);
-  r.o = o;
+#if GLI_SIMD_FUSED
+  r.lo_off = vv_mul(po->lo, r.inv);
+  r.hi_off = vv_mul(po->hi, r.inv);
+#else
+  r.lo_off = po->lo;
+  r.hi_off = po->hi;
+#endif
   SIMD_ALIGN float dx[LANES], dy[LANES], dz[LANES];
   vf_store(dx, d.x);
   vf_store(dy, d.y);
@@ -90,24 +138,29 @@ static ALWAYS_INLINE packet_inv packet_inverse(vvec3 o, vvec3 d, vmask active,
 }
 
 /* The slab test for all lanes of `active` against a node's box within
- * (tmin, tmax). The far distance is widened by a few ulps so rounding in
- * the reciprocal cannot cull a hit on the box's surface. The distances are
- * (B - O) / D, each a few ulps off; B / D - O / D in one fma is off by an
- * ulp of O / D instead, far more than a few ulps of the distance for a ray
- * nearly parallel to a slab, and culled hits on box faces (rays through a
- * mesh's vertices missed it). */
+ * (tmin, tmax), conservative: a ray that touches the box is never culled.
+ * Each distance is plane_distance's: B/D - O/D in one fma where the ISA
+ * has fmas, six instructions a box where (B - O)/D takes twelve. The
+ * fma's error, dominated by the rounding of O/D, is an ulp of O/D: far
+ * more than an ulp of the distance when the origin lies farther from the
+ * coordinates' zero than from the box, and such errors culled hits on box
+ * faces (rays through a mesh's vertices missed it). Moving O 8 ulps
+ * outwards (packet_origin) moves each plane at least 7u|O/D| farther out,
+ * more than that error. The far distance is widened by a few ulps of
+ * itself, for the rounding of the distance and of the reciprocal. (Ize
+ * 2013, "Robust BVH ray traversal", bounds the slab test's errors so.) */
 static ALWAYS_INLINE vmask packet_box(const gli_bvh_node *n,
                                       const packet_inv *r, vfloat tmin,
                                       vfloat tmax, vmask active) {
   vfloat lx, ly, lz, hx, hy, hz, unused0, unused1;
   vf_splat4(&n->lo[0], &lx, &ly, &lz, &hx);
   vf_splat4(&n->hi[1], &hy, &hz, &unused0, &unused1);
-  vfloat t0x = vf_mul(vf_sub(lx, r->o.x), r->inv.x);
-  vfloat t1x = vf_mul(vf_sub(hx, r->o.x), r->inv.x);
-  vfloat t0y = vf_mul(vf_sub(ly, r->o.y), r->inv.y);
-  vfloat t1y = vf_mul(vf_sub(hy, r->o.y), r->inv.y);
-  vfloat t0z = vf_mul(vf_sub(lz, r->o.z), r->inv.z);
-  vfloat t1z = vf_mul(vf_sub(hz, r->o.z), r->inv.z);
+  vfloat t0x = plane_distance(lx, r->inv.x, r->lo_off.x);
+  vfloat t1x = plane_distance(hx, r->inv.x, r->hi_off.x);
+  vfloat t0y = plane_distance(ly, r->inv.y, r->lo_off.y);
+  vfloat t1y = plane_distance(hy, r->inv.y, r->hi_off.y);
+  vfloat t0z = plane_distance(lz, r->inv.z, r->lo_off.z);
+  vfloat t1z = plane_distance(hz, r->inv.z, r->hi_off.z);
   vfloat near = vf_max(vf_max(vf_min(t0x, t1x), vf_min(t0y, t1y)),
                        vf_max(vf_min(t0z, t1z), tmin));
   vfloat far = vf_min(vf_min(vf_max(t0x, t1x), vf_max(t0y, t1y)),
@@ -140,12 +193,12 @@ static ALWAYS_INLINE uint32_t hand_over(const gli_bvh *bvh,
  * the lanes' nearest hits so far (*tmax, which the leaf function narrows),
  * so boxes behind a hit are skipped. */
 static ALWAYS_INLINE void
-packet_bvh_closest(const gli_bvh *bvh, vvec3 o, vvec3 d, vmask active,
-                   vfloat tmin, const vfloat *tmax, int newton, glint_stats *st,
-                   packet_leaf_fn leaf, int alone, packet_alone_fn walk_alone,
-                   void *ctx) {
+packet_bvh_closest(const gli_bvh *bvh, const packet_origin *po, vvec3 d,
+                   vmask active, vfloat tmin, const vfloat *tmax, int newton,
+                   glint_stats *st, packet_leaf_fn leaf, int alone,
+                   packet_alone_fn walk_alone, void *ctx) {
   int lanes = vm_count(active);
-  packet_inv r = packet_inverse(o, d, active, newton);
+  packet_inv r = packet_inverse(po, d, active, newton);
   uint32_t stack[GLI_BVH_MAX_DEPTH];
   int sp = 0;
   stack[sp++] = 0;
@@ -180,11 +233,11 @@ packet_bvh_closest(const gli_bvh *bvh, vvec3 o, vvec3 d, vmask active,
  * primitives are tested, *alive holds only the lanes inside its box; the
  * leaf function clears the lanes it blocks. */
 static ALWAYS_INLINE void
-packet_bvh_segment(const gli_bvh *bvh, vvec3 o, vvec3 d, vfloat tmin,
-                   vfloat tmax, vmask *alive, int newton, glint_stats *st,
-                   packet_leaf_fn leaf, int alone, packet_alone_fn walk_alone,
-                   void *ctx) {
-  packet_inv r = packet_inverse(o, d, *alive, newton);
+packet_bvh_segment(const gli_bvh *bvh, const packet_origin *po, vvec3 d,
+                   vfloat tmin, vfloat tmax, vmask *alive, int newton,
+                   glint_stats *st, packet_leaf_fn leaf, int alone,
+                   packet_alone_fn walk_alone, void *ctx) {
+  packet_inv r = packet_inverse(po, d, *alive, newton);
   uint32_t stack[GLI_BVH_MAX_DEPTH];
   int sp = 0;
   stack[sp++] = 0;

@@ -26,7 +26,39 @@
 typedef struct wide_ray {
   vec3 o, inv;
   int near[3]; /* per axis, the bounds[] index of the plane met first */
+#ifdef WIDE_SIMD
+  real near_off[3], far_off[3]; /* node_distance's terms, per axis */
+#endif
 } wide_ray;
+
+#ifdef WIDE_SIMD
+/* A plane's distance (B - O)/D to the ray, `off` being the plane's term
+ * of wide_ray: plane_distance's form (accel/packet_traverse.h), one fma
+ * where the ISA fuses. */
+static inline vnode node_distance(vnode b, vnode inv, vnode off) {
+#if GLI_SIMD_FUSED
+  return vn_fmadd(b, inv, off);
+#else
+  return vn_mul(vn_add(b, off), inv);
+#endif
+}
+
+/* The terms of node_distance for the planes of one axis, as
+ * packet_origin's (accel/packet_traverse.h, where the argument is): with
+ * fmas, -O/D for the origin moved 8 ulps towards the side that moves the
+ * near planes nearer and the far planes farther; without, -O. */
+static inline void wide_ray_axis(real o, real inv, real *near_off,
+                                 real *far_off) {
+#if GLI_SIMD_FUSED
+  real shift = r_fabs(o) * (real)0x1p-21;
+  real toward = inv < 0 ? -shift : shift;
+  *near_off = -(o + toward) * inv, *far_off = -(o - toward) * inv;
+#else
+  (void)inv;
+  *near_off = *far_off = -o;
+#endif
+}
+#endif
 
 static inline wide_ray wide_ray_make(vec3 o, vec3 d) {
   wide_ray r;
@@ -35,6 +67,11 @@ static inline wide_ray wide_ray_make(vec3 o, vec3 d) {
   r.near[0] = r.inv.x < 0;
   r.near[1] = r.inv.y < 0;
   r.near[2] = r.inv.z < 0;
+#ifdef WIDE_SIMD
+  wide_ray_axis(o.x, r.inv.x, &r.near_off[0], &r.far_off[0]);
+  wide_ray_axis(o.y, r.inv.y, &r.near_off[1], &r.far_off[1]);
+  wide_ray_axis(o.z, r.inv.z, &r.near_off[2], &r.far_off[2]);
+#endif
   return r;
 }
 
@@ -43,24 +80,30 @@ static inline wide_ray wide_ray_make(vec3 o, vec3 d) {
  * its entry distance. With the direction's signs known, each axis's nearer
  * and farther planes are picked rather than sorted (Williams et al. 2005,
  * "An efficient and robust ray-box intersection algorithm"); the far
- * distance is widened as box_entry's is. */
+ * distance is widened as box_entry's is. In SIMD the distances are
+ * node_distance's, conservative as packet_box's are. */
 static inline __attribute__((always_inline)) unsigned
 wide_hits(const gli_wide_node *n, const wide_ray *r, real tmin, real tmax,
           real entry[GLI_WIDE]) {
   const int nx = r->near[0], ny = r->near[1], nz = r->near[2];
 #ifdef WIDE_SIMD
   /* real is float here: the packet kernels' precision */
-  vnode ox = vn_set1(r->o.x), oy = vn_set1(r->o.y), oz = vn_set1(r->o.z);
   vnode ix = vn_set1(r->inv.x), iy = vn_set1(r->inv.y), iz = vn_set1(r->inv.z);
+  vnode nox = vn_set1(r->near_off[0]), noy = vn_set1(r->near_off[1]),
+        noz = vn_set1(r->near_off[2]);
+  /* without fmas the near and far terms are the same, -O */
+  vnode fox = GLI_SIMD_FUSED ? vn_set1(r->far_off[0]) : nox;
+  vnode foy = GLI_SIMD_FUSED ? vn_set1(r->far_off[1]) : noy;
+  vnode foz = GLI_SIMD_FUSED ? vn_set1(r->far_off[2]) : noz;
   vnode lo = vn_set1(tmin), hi = vn_set1(tmax), widen = vn_set1(1.0000005f);
   unsigned bits = 0;
   for (int h = 0; h < GLI_WIDE; h += GLI_NODE_LANES) {
-    vnode tnx = vn_mul(vn_sub(vn_load(&n->bounds[nx][0][h]), ox), ix);
-    vnode tny = vn_mul(vn_sub(vn_load(&n->bounds[ny][1][h]), oy), iy);
-    vnode tnz = vn_mul(vn_sub(vn_load(&n->bounds[nz][2][h]), oz), iz);
-    vnode tfx = vn_mul(vn_sub(vn_load(&n->bounds[1 - nx][0][h]), ox), ix);
-    vnode tfy = vn_mul(vn_sub(vn_load(&n->bounds[1 - ny][1][h]), oy), iy);
-    vnode tfz = vn_mul(vn_sub(vn_load(&n->bounds[1 - nz][2][h]), oz), iz);
+    vnode tnx = node_distance(vn_load(&n->bounds[nx][0][h]), ix, nox);
+    vnode tny = node_distance(vn_load(&n->bounds[ny][1][h]), iy, noy);
+    vnode tnz = node_distance(vn_load(&n->bounds[nz][2][h]), iz, noz);
+    vnode tfx = node_distance(vn_load(&n->bounds[1 - nx][0][h]), ix, fox);
+    vnode tfy = node_distance(vn_load(&n->bounds[1 - ny][1][h]), iy, foy);
+    vnode tfz = node_distance(vn_load(&n->bounds[1 - nz][2][h]), iz, foz);
     vnode near = vn_max(vn_max(tnx, tny), vn_max(tnz, lo));
     vnode far = vn_min(vn_min(tfx, tfy), vn_min(tfz, hi));
     bits |= (unsigned)vn_le_bits(near, vn_mul(far, widen)) << h;

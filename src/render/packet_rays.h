@@ -69,6 +69,7 @@ static ALWAYS_INLINE void packet_prim(const packet_scene *ps, uint32_t ref,
 typedef struct nearest_query {
   const packet_scene *ps;
   vvec3 o, d, l;
+  const packet_origin *po;
   vfloat eps;
   int newton;
   packet_hit *h;
@@ -135,7 +136,7 @@ nearest_hybrid(nearest_query *q, const gli_bvh *bvh, vmask active) {
   if (ps->alone_lanes == LANES)
     nearest_alone(q, 0, active);
   else
-    packet_bvh_closest(bvh, q->o, q->d, active, q->eps, &q->h->t, q->newton,
+    packet_bvh_closest(bvh, q->po, q->d, active, q->eps, &q->h->t, q->newton,
                        q->st, nearest_leaf, ps->alone_lanes, nearest_alone, q);
 }
 
@@ -171,12 +172,13 @@ static ALWAYS_INLINE void packet_nearest(const packet_scene *ps, vvec3 o,
       packet_cone(&ps->cones[i], o, d, active, eps, h);
     return;
   }
-  nearest_query q = {ps, o, d, l, eps, newton, h, st};
+  packet_origin po = packet_origin_of(o);
+  nearest_query q = {ps, o, d, l, &po, eps, newton, h, st};
   if (PACKET_HAND_OVER && ps->alone_lanes)
     nearest_hybrid(&q, bvh, active);
   else
-    packet_bvh_closest(bvh, o, d, active, eps, &h->t, newton, st, nearest_leaf,
-                       0, nearest_alone, &q);
+    packet_bvh_closest(bvh, &po, d, active, eps, &h->t, newton, st,
+                       nearest_leaf, 0, nearest_alone, &q);
 }
 
 /* ---- shadow rays ------------------------------------------------------ */
@@ -272,6 +274,7 @@ static ALWAYS_INLINE void packet_cross_prim(const packet_scene *ps,
 typedef struct segment_query {
   const packet_scene *ps;
   vvec3 o, d, l;
+  const packet_origin *po;
   vfloat dist, eps;
   int newton;
   shadow_state *sh;
@@ -336,15 +339,18 @@ static __attribute__((noinline)) void segment_hybrid(segment_query *q,
   if (ps->alone_lanes == LANES)
     segment_alone(q, 0, q->sh->alive);
   else
-    packet_bvh_segment(bvh, q->o, q->d, q->eps, q->dist, &q->sh->alive,
+    packet_bvh_segment(bvh, q->po, q->d, q->eps, q->dist, &q->sh->alive,
                        q->newton, q->st, segment_leaf, ps->alone_lanes,
                        segment_alone, q);
 }
 
+/* The lanes' transmission along o + t d, t in (eps, dist); po is
+ * packet_origin_of(o), made once for all lights. */
 static ALWAYS_INLINE vvec3 packet_transmission(const packet_scene *ps, vvec3 o,
-                                               vvec3 d, vfloat dist,
-                                               vmask active, glint_math math,
-                                               int newton, glint_stats *st) {
+                                               const packet_origin *po, vvec3 d,
+                                               vfloat dist, vmask active,
+                                               glint_math math, int newton,
+                                               glint_stats *st) {
   const scene_r *s = ps->s;
   shadow_state sh = {{vf_set1(1), vf_set1(1), vf_set1(1)},
                      {vf_zero(), vf_zero(), vf_zero()},
@@ -375,11 +381,11 @@ static ALWAYS_INLINE vvec3 packet_transmission(const packet_scene *ps, vvec3 o,
       packet_cross_prim(ps, GLI_SHAPE_CONE, (uint32_t)i, o, d, l, dist, eps,
                         newton, &sh);
   } else if (vm_any(sh.alive)) {
-    segment_query q = {ps, o, d, l, dist, eps, newton, &sh, st};
+    segment_query q = {ps, o, d, l, po, dist, eps, newton, &sh, st};
     if (PACKET_HAND_OVER && ps->alone_lanes)
       segment_hybrid(&q, bvh);
     else
-      packet_bvh_segment(bvh, o, d, eps, dist, &sh.alive, newton, st,
+      packet_bvh_segment(bvh, po, d, eps, dist, &sh.alive, newton, st,
                          segment_leaf, 0, segment_alone, &q);
   }
   vvec3 z = {vf_zero(), vf_zero(), vf_zero()};

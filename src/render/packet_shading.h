@@ -364,6 +364,7 @@ static ALWAYS_INLINE vvec3 packet_lights(
   const scene_r *s = ps->s;
   vvec3 diffuse = ambient;
   vvec3 highlight = {vf_zero(), vf_zero(), vf_zero()};
+  packet_origin po = packet_origin_of(f->p);
   for (size_t j = 0; j < s->light_count; j++) {
     const plight *li = &ps->lights[j];
     vvec3 l;
@@ -373,7 +374,8 @@ static ALWAYS_INLINE vvec3 packet_lights(
       continue;
     st->shadow_rays += (uint64_t)vm_count(lit);
     uint64_t t0 = shadow_ticks ? __rdtsc() : 0;
-    vvec3 sj = packet_transmission(ps, f->p, l, dist, lit, math, newton, st);
+    vvec3 sj =
+        packet_transmission(ps, f->p, &po, l, dist, lit, math, newton, st);
     if (shadow_ticks)
       *shadow_ticks += __rdtsc() - t0;
     vvec3 il = vv_mul(sj, vv_get(li->color));

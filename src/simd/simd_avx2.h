@@ -6,6 +6,8 @@
 #include <stdint.h>
 
 #define GLI_SIMD_WIDTH 8
+/* vf_fmadd is one instruction, one rounding */
+#define GLI_SIMD_FUSED 1
 
 typedef __m256 vfloat;
 typedef __m256 vmask; /* all-ones or all-zeros per lane */
@@ -177,7 +179,11 @@ static inline int vf_compress_store(float *p, vmask m, vfloat a) {
 typedef __m256 vnode;
 static inline vnode vn_load(const float *p) { return _mm256_load_ps(p); }
 static inline vnode vn_set1(float a) { return _mm256_set1_ps(a); }
+static inline vnode vn_add(vnode a, vnode b) { return _mm256_add_ps(a, b); }
 static inline vnode vn_sub(vnode a, vnode b) { return _mm256_sub_ps(a, b); }
+static inline vnode vn_fmadd(vnode a, vnode b, vnode c) {
+  return _mm256_fmadd_ps(a, b, c);
+}
 static inline vnode vn_mul(vnode a, vnode b) { return _mm256_mul_ps(a, b); }
 static inline vnode vn_min(vnode a, vnode b) { return _mm256_min_ps(a, b); }
 static inline vnode vn_max(vnode a, vnode b) { return _mm256_max_ps(a, b); }
