@@ -240,6 +240,22 @@ static int packet_misses(const void *view, int p, const float *o,
   return misses;
 }
 
+/* Adds to misses[0] the rays scalar-float misses, to misses[1 + p] those
+ * packet kernel p misses (where views[p] is open). */
+static void count_misses(const scene_r *ref, void *const views[3],
+                         const float *o, const float *d, int lanes,
+                         int misses[4]) {
+  for (int i = 0; i < lanes; i++) {
+    hit_r h;
+    misses[0] += !gli_scalar_nearest_hit_float(
+        ref, v3(o[i], o[lanes + i], o[2 * lanes + i]),
+        v3(d[i], d[lanes + i], d[2 * lanes + i]), REAL_MAX, &h);
+  }
+  for (int p = 0; p < 3; p++)
+    if (views[p])
+      misses[1 + p] += packet_misses(views[p], p, o, d, lanes);
+}
+
 #define EDGE_RAYS 200000
 
 /* Rays from outside aimed exactly at an edge two triangles share (or at a
@@ -298,15 +314,7 @@ static void meshes_are_watertight(void **state) {
           d[c * lanes + i] = (float)(dir[c] / l);
         }
       }
-      for (int i = 0; i < lanes; i++) {
-        hit_r h;
-        misses[0] += !gli_scalar_nearest_hit_float(
-            ref, v3(o[i], o[lanes + i], o[2 * lanes + i]),
-            v3(d[i], d[lanes + i], d[2 * lanes + i]), REAL_MAX, &h);
-      }
-      for (int p = 0; p < 3; p++)
-        if (views[p])
-          misses[1 + p] += packet_misses(views[p], p, o, d, lanes);
+      count_misses(ref, views, o, d, lanes, misses);
     }
     test_view_close(&scalar);
     for (int p = 0; p < 3; p++)
@@ -404,15 +412,7 @@ static void rays_grazing_a_box_corner_hit(void **state) {
           d[c * lanes + i] = (float)(aim[c] / sqrt(al));
         }
       }
-      for (int i = 0; i < lanes; i++) {
-        hit_r h;
-        misses[0] += !gli_scalar_nearest_hit_float(
-            ref, v3(o[i], o[lanes + i], o[2 * lanes + i]),
-            v3(d[i], d[lanes + i], d[2 * lanes + i]), REAL_MAX, &h);
-      }
-      for (int p = 0; p < 3; p++)
-        if (views[p])
-          misses[1 + p] += packet_misses(views[p], p, o, d, lanes);
+      count_misses(ref, views, o, d, lanes, misses);
     }
     test_view_close(&scalar);
     for (int p = 0; p < 3; p++)
