@@ -121,27 +121,31 @@ static inline int cone_roots(vec3 base, vec3 axis, real height, real rb, real k,
    * size of a thin cylinder) would lose every digit. Every ray that meets
    * the cone passes within the cone's own size of its base, so from that
    * point w is as small as the cone and so are the terms that cancel. The
-   * roots are then t = s + r. No division: s needs only d to be unit. */
+   * roots are then t = s + r. No division: s needs only d to be unit.
+   * (There w.d is 0 but for d's rounding, which a float d's many ulps
+   * from unit make count on thin cylinders: it stays in b.) */
   vec3 w = v3_sub(o, base);
   real s = -v3_dot(w, d);
   w = v3_madd(w, s, d);
   real wa = v3_dot(w, axis), da = v3_dot(d, axis);
   real rw = rb + k * wa;
+  /* a r^2 + 2 hb r + c = 0 */
   real qa = 1 - (1 + k * k) * da * da;
-  real qb = 2 * (v3_dot(w, d) - wa * da - k * da * rw);
+  real hb = v3_dot(w, d) - wa * da - k * da * rw;
   real qc = v3_dot(w, w) - wa * wa - rw * rw;
   real r0, r1;
   if (r_fabs(qa) < (real)1e-12) { /* along a line of the surface */
-    if (qb == 0)
+    if (hb == 0)
       return 0;
-    r0 = r1 = -qc / qb;
+    r0 = r1 = -qc / (2 * hb);
   } else {
-    real disc = qb * qb - 4 * qa * qc;
+    real disc = hb * hb - qa * qc;
     if (disc < 0)
       return 0;
     real sq = r_sqrt(disc);
-    /* The stable form of the two roots (no cancellation). */
-    real q = qb < 0 ? (real)-0.5 * (qb - sq) : (real)-0.5 * (qb + sq);
+    /* The stable form of the two roots (no cancellation): q = -(hb +
+     * sign(hb) sq), roots q/a and c/q. */
+    real q = hb < 0 ? -(hb - sq) : -(hb + sq);
     r0 = q / qa;
     r1 = q != 0 ? qc / q : r0;
     if (r0 > r1) {

@@ -138,12 +138,13 @@ static ALWAYS_INLINE vmask triangle_cross_lanes(triangle_lanes tr, vvec3 o,
       vf_add(vv_dot(d, tri_moment(tr, 1)), vv_dot(tri_edge(tr, 1), l));
   vfloat side_ca =
       vf_add(vv_dot(d, tri_moment(tr, 2)), vv_dot(tri_edge(tr, 2), l));
+  /* A lane misses where some side is negative and some positive: its
+   * least below zero and its greatest above. */
   vfloat zero = vf_zero();
-  vmask some_neg = vm_or(vm_or(vf_lt(side_ab, zero), vf_lt(side_bc, zero)),
-                         vf_lt(side_ca, zero));
-  vmask some_pos = vm_or(vm_or(vf_gt(side_ab, zero), vf_gt(side_bc, zero)),
-                         vf_gt(side_ca, zero));
-  vmask m = vm_andnot(active, vm_and(some_neg, some_pos));
+  vfloat least = vf_min(vf_min(side_ab, side_bc), side_ca);
+  vfloat greatest = vf_max(vf_max(side_ab, side_bc), side_ca);
+  vmask m =
+      vm_andnot(active, vm_and(vf_lt(least, zero), vf_gt(greatest, zero)));
   if (vm_none(m))
     return m;
   vvec3 n = tri_normal(tr);
@@ -223,25 +224,25 @@ static ALWAYS_INLINE void cone_roots_lanes(const cone_lanes *c, vvec3 o,
   vfloat wa = vv_dot(w, axis), da = vv_dot(d, axis);
   vfloat rw = vf_fmadd(k, wa, rb);
   vfloat qa = vf_fnmadd(vf_fmadd(k, k, vf_set1(1)), vf_mul(da, da), vf_set1(1));
-  vfloat qb = vf_mul(vf_set1(2), vf_fnmadd(vf_mul(k, da), rw,
-                                           vf_fnmadd(wa, da, vv_dot(w, d))));
+  vfloat hb = /* half of b */
+      vf_fnmadd(vf_mul(k, da), rw, vf_fnmadd(wa, da, vv_dot(w, d)));
   vfloat qc = vf_fnmadd(rw, rw, vf_fnmadd(wa, wa, vv_dot(w, w)));
   *m0 = *m1 = vm_false();
-  vfloat disc = vf_fnmadd(vf_mul(vf_set1(4), qa), qc, vf_mul(qb, qb));
+  vfloat disc = vf_fnmadd(qa, qc, vf_mul(hb, hb));
   vmask m = vm_and(active, vf_ge(disc, vf_zero()));
   if (vm_none(m))
     return;
   vfloat sq = vf_sqrt(vf_max(disc, vf_zero()));
-  /* The stable pair: q = -(b + sign(b) sq) / 2, roots q/a and c/q, the
+  /* The stable pair: q = -(hb + sign(hb) sq), roots q/a and c/q, the
    * divisions by rcp (eq. 3.1). Along a line of the surface (a ~ 0) the
-   * one root is -c/b. */
-  vfloat q = vf_mul(vf_set1(-0.5f), vf_select(vf_lt(qb, vf_zero()),
-                                              vf_sub(qb, sq), vf_add(qb, sq)));
+   * one root is -c/(2 hb). */
+  vfloat q =
+      vf_neg(vf_select(vf_lt(hb, vf_zero()), vf_sub(hb, sq), vf_add(hb, sq)));
   vmask linear = vf_lt(vf_abs(qa), vf_set1(1e-12f));
   vfloat ra = vf_mul(q, vf_rcp(qa, 1)), rc = vf_mul(qc, vf_rcp(q, 1));
   vfloat a0 = vf_min(ra, rc), a1 = vf_max(ra, rc);
   if (vm_any(vm_and(m, linear))) {
-    vfloat lin = vf_div(vf_neg(qc), qb);
+    vfloat lin = vf_div(vf_neg(qc), vf_add(hb, hb));
     a0 = vf_select(linear, lin, a0);
     a1 = vf_select(linear, lin, a1);
   }
