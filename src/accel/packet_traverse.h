@@ -31,9 +31,13 @@
 
 #include "glint.h"
 
-/* Packet statistics: `tests` tests of `lanes` active lanes each. */
+/* Packet statistics: `tests` tests of `lanes` active lanes each (often
+ * none: the planes and brute-force tests of a scene with a BVH and no
+ * planes). */
 static ALWAYS_INLINE void count_tests(glint_stats *st, size_t tests,
                                       int lanes) {
+  if (tests == 0)
+    return;
   st->packet_tests += tests;
   st->active_lanes += (uint64_t)tests * (uint64_t)lanes;
 }
@@ -202,12 +206,13 @@ packet_bvh_closest(const gli_bvh *bvh, const packet_origin *po, vvec3 d,
   uint32_t stack[GLI_BVH_MAX_DEPTH];
   int sp = 0;
   stack[sp++] = 0;
-  test_count boxes = {0, 0}, prims = {0, 0};
+  uint64_t box_tests = 0; /* each of `lanes` lanes */
+  test_count prims = {0, 0};
   while (sp > 0) {
     uint32_t node = stack[--sp];
     const gli_bvh_node *n = &bvh->nodes[node];
     vmask m = packet_box(n, &r, tmin, *tmax, active);
-    add_tests(&boxes, 1, lanes);
+    box_tests++;
     if (vm_none(m))
       continue;
     if (n->count == 0) {
@@ -225,6 +230,7 @@ packet_bvh_closest(const gli_bvh *bvh, const packet_origin *po, vvec3 d,
         leaf(ctx, bvh->refs[n->offset + k], m);
     }
   }
+  test_count boxes = {box_tests, box_tests * (uint64_t)lanes};
   flush_tests(st, boxes, prims);
 }
 
