@@ -132,12 +132,9 @@ static ALWAYS_INLINE vmask triangle_cross_lanes(triangle_lanes tr, vvec3 o,
                                                 vfloat eps, vfloat tmax,
                                                 int newton, vfloat *t,
                                                 vfloat *u, vfloat *v) {
-  vfloat side_ab =
-      vf_add(vv_dot(d, tri_moment(tr, 0)), vv_dot(tri_edge(tr, 0), l));
-  vfloat side_bc =
-      vf_add(vv_dot(d, tri_moment(tr, 1)), vv_dot(tri_edge(tr, 1), l));
-  vfloat side_ca =
-      vf_add(vv_dot(d, tri_moment(tr, 2)), vv_dot(tri_edge(tr, 2), l));
+  vfloat side_ab = vv_dot_add(d, tri_moment(tr, 0), vv_dot(tri_edge(tr, 0), l));
+  vfloat side_bc = vv_dot_add(d, tri_moment(tr, 1), vv_dot(tri_edge(tr, 1), l));
+  vfloat side_ca = vv_dot_add(d, tri_moment(tr, 2), vv_dot(tri_edge(tr, 2), l));
   /* A lane misses where some side is negative and some positive: its
    * least below zero and its greatest above. */
   vfloat zero = vf_zero();

@@ -54,6 +54,10 @@ static ALWAYS_INLINE vvec3 vv_neg(vvec3 a) {
 static ALWAYS_INLINE vfloat vv_dot(vvec3 a, vvec3 b) {
   return vf_fmadd(a.x, b.x, vf_fmadd(a.y, b.y, vf_mul(a.z, b.z)));
 }
+/* a·b + c in three multiply-adds */
+static ALWAYS_INLINE vfloat vv_dot_add(vvec3 a, vvec3 b, vfloat c) {
+  return vf_fmadd(a.x, b.x, vf_fmadd(a.y, b.y, vf_fmadd(a.z, b.z, c)));
+}
 static ALWAYS_INLINE vvec3 vv_cross(vvec3 a, vvec3 b) {
   vvec3 r = {vf_sub(vf_mul(a.y, b.z), vf_mul(a.z, b.y)),
              vf_sub(vf_mul(a.z, b.x), vf_mul(a.x, b.z)),
