@@ -365,8 +365,9 @@ static ALWAYS_INLINE vvec3 packet_lights(
   vvec3 diffuse = ambient;
   vvec3 highlight = {vf_zero(), vf_zero(), vf_zero()};
   /* only the BVH's walks read it */
-  packet_origin po =
-      s->bvh->node_count ? packet_origin_of(f->p) : (packet_origin){f->p, f->p};
+  packet_origin po;
+  if (s->bvh->node_count)
+    po = packet_origin_of(f->p);
   for (size_t j = 0; j < s->light_count; j++) {
     const plight *li = &ps->lights[j];
     vvec3 l;
