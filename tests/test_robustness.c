@@ -8,6 +8,8 @@
  *    vertices that triangles share never pass between them;
  *  - rays that cross a bounding box for a few 1e-6, far from the
  *    coordinates' zero, are not culled by the slab tests' rounding.
+ *  - rays that skim a cone, passing its axis at 0.99 of its radius there,
+ *    are not culled by the test of the cone's reach (its widest radius).
  * A backend this CPU lacks is reported as skipped. */
 #define GLINT_REAL_FLOAT
 #include "test_util.h"
@@ -256,10 +258,88 @@ static void count_misses(const scene_r *ref, void *const views[3],
       misses[1 + p] += packet_misses(views[p], p, o, d, lanes);
 }
 
+/* Makes `lanes` rays (o, d: lanes x, then y, then z) for a test. */
+typedef void (*ray_maker)(void *ctx, unsigned long long *seed, float *o,
+                          float *d, int lanes);
+
+/* Traces `rays` rays that make aims at scene s through every walk of
+ * accels, with scalar-float and each packet kernel this CPU has (the
+ * others reported skipped): none may miss. */
+static void every_walk_hits(const glint_scene *s, const glint_accel *accels,
+                            int accel_count, int rays, ray_maker make,
+                            void *ctx, const char *what) {
+  for (int ai = 0; ai < accel_count; ai++) {
+    test_view pv[3], scalar;
+    void *views[3] = {NULL, NULL, NULL};
+    for (int p = 0; p < 3; p++)
+      if (glint_backend_supported(packets[p].backend))
+        views[p] =
+            test_view_open(s, gli_backend_ops_of(packets[p].backend)->data,
+                           accels[ai], &pv[p]);
+    const scene_r *ref =
+        test_view_open(s, DATA_SCALAR_FLOAT, accels[ai], &scalar);
+    unsigned long long seed = 7 + (unsigned long long)ai;
+    int misses[4] = {0}, lanes = 16;
+    for (int r = 0; r < rays; r += lanes) {
+      float o[3 * 16], d[3 * 16];
+      make(ctx, &seed, o, d, lanes);
+      count_misses(ref, views, o, d, lanes, misses);
+    }
+    test_view_close(&scalar);
+    for (int p = 0; p < 3; p++)
+      if (views[p])
+        test_view_close(&pv[p]);
+    for (int p = 0; p < 4; p++) {
+      const char *name =
+          p == 0 ? "scalar-float" : glint_backend_name(packets[p - 1].backend);
+      if (p > 0 && !views[p - 1])
+        printf("%-12s SKIPPED (not on this CPU)\n", name);
+      else
+        printf("%-12s %s: %d of %d %s missed\n", name,
+               glint_accel_name(accels[ai]), misses[p], rays, what);
+    }
+    for (int p = 0; p < 4; p++)
+      assert_int_equal(misses[p], 0);
+  }
+}
+
 #define EDGE_RAYS 200000
 
 /* Rays from outside aimed exactly at an edge two triangles share (or at a
  * vertex, one ray in five): they must hit the closed mesh. */
+static void edge_rays(void *ctx, unsigned long long *seed, float *o, float *d,
+                      int lanes) {
+  const mesh_build *m = ctx;
+  for (int i = 0; i < lanes; i++) {
+    size_t tri = (size_t)(uniform(seed) * (double)m->triangles);
+    int k = (int)(uniform(seed) * 3);
+    glint_vec3 a = m->positions[m->indices[3 * tri + (size_t)k]],
+               b = m->positions[m->indices[3 * tri + (size_t)(k + 1) % 3]];
+    double f = uniform(seed) < 0.2 ? 0 : uniform(seed);
+    double target[3] = {a.x + f * (b.x - a.x), a.y + f * (b.y - a.y),
+                        a.z + f * (b.z - a.z)};
+    /* From outside, facing the target's faces: not a grazing ray along
+     * the silhouette, which may rightly pass the solid by. */
+    double from[3], dir[3], l;
+    double out[3] = {target[0] - CX, target[1] - CY, target[2] - CZ};
+    do {
+      double z = 2 * uniform(seed) - 1, phi = 6.283185307 * uniform(seed);
+      double dist = 2 + 30 * uniform(seed);
+      from[0] = CX + dist * sqrt(1 - z * z) * cos(phi);
+      from[1] = CY + dist * sqrt(1 - z * z) * sin(phi);
+      from[2] = CZ + dist * z;
+      for (int c = 0; c < 3; c++)
+        dir[c] = target[c] - from[c];
+      l = sqrt(dir[0] * dir[0] + dir[1] * dir[1] + dir[2] * dir[2]);
+    } while ((dir[0] * out[0] + dir[1] * out[1] + dir[2] * out[2]) / l >
+             -0.3 * RADIUS);
+    for (int c = 0; c < 3; c++) {
+      o[c * lanes + i] = (float)from[c];
+      d[c * lanes + i] = (float)(dir[c] / l);
+    }
+  }
+}
+
 static void meshes_are_watertight(void **state) {
   (void)state;
   static mesh_build m;
@@ -272,72 +352,9 @@ static void meshes_are_watertight(void **state) {
    * alone through the wide tree. */
   static const glint_accel accels[4] = {GLINT_ACCEL_NONE, GLINT_ACCEL_BVH,
                                         GLINT_ACCEL_BVH2, GLINT_ACCEL_BVH8};
-  for (int ai = 0; ai < 4; ai++) {
-    glint_accel accel = accels[ai];
-    test_view pv[3];
-    void *views[3] = {NULL, NULL, NULL};
-    for (int p = 0; p < 3; p++)
-      if (glint_backend_supported(packets[p].backend))
-        views[p] = test_view_open(
-            s, gli_backend_ops_of(packets[p].backend)->data, accel, &pv[p]);
-    test_view scalar;
-    const scene_r *ref = test_view_open(s, DATA_SCALAR_FLOAT, accel, &scalar);
-    unsigned long long seed = 7 + (unsigned long long)ai;
-    int misses[4] = {0}, lanes = 16;
-    for (int r = 0; r < EDGE_RAYS; r += lanes) {
-      float o[3 * 16], d[3 * 16];
-      for (int i = 0; i < lanes; i++) {
-        size_t tri = (size_t)(uniform(&seed) * (double)m.triangles);
-        int k = (int)(uniform(&seed) * 3);
-        glint_vec3 a = m.positions[m.indices[3 * tri + (size_t)k]],
-                   b = m.positions[m.indices[3 * tri + (size_t)(k + 1) % 3]];
-        double f = uniform(&seed) < 0.2 ? 0 : uniform(&seed);
-        double target[3] = {a.x + f * (b.x - a.x), a.y + f * (b.y - a.y),
-                            a.z + f * (b.z - a.z)};
-        /* From outside, facing the target's faces: not a grazing ray along
-         * the silhouette, which may rightly pass the solid by. */
-        double from[3], dir[3], l;
-        double out[3] = {target[0] - CX, target[1] - CY, target[2] - CZ};
-        do {
-          double z = 2 * uniform(&seed) - 1, phi = 6.283185307 * uniform(&seed);
-          double dist = 2 + 30 * uniform(&seed);
-          from[0] = CX + dist * sqrt(1 - z * z) * cos(phi);
-          from[1] = CY + dist * sqrt(1 - z * z) * sin(phi);
-          from[2] = CZ + dist * z;
-          for (int c = 0; c < 3; c++)
-            dir[c] = target[c] - from[c];
-          l = sqrt(dir[0] * dir[0] + dir[1] * dir[1] + dir[2] * dir[2]);
-        } while ((dir[0] * out[0] + dir[1] * out[1] + dir[2] * out[2]) / l >
-                 -0.3 * RADIUS);
-        for (int c = 0; c < 3; c++) {
-          o[c * lanes + i] = (float)from[c];
-          d[c * lanes + i] = (float)(dir[c] / l);
-        }
-      }
-      count_misses(ref, views, o, d, lanes, misses);
-    }
-    test_view_close(&scalar);
-    for (int p = 0; p < 3; p++)
-      if (views[p])
-        test_view_close(&pv[p]);
-    static const char *const names[4] = {"scalar-float", "sse", "avx2",
-                                         "avx512"};
-    for (int p = 0; p < 4; p++) {
-      if (p > 0 && !glint_backend_supported(
-                       (glint_backend)(GLINT_BACKEND_SSE + p - 1))) {
-        printf("%-12s SKIPPED (not on this CPU)\n", names[p]);
-        continue;
-      }
-      printf("%-12s %s: %d of %d edge and vertex rays missed\n", names[p],
-             glint_accel_name(accel), misses[p], EDGE_RAYS);
-    }
-    for (int p = 0; p < 4; p++)
-      assert_int_equal(misses[p], 0);
-  }
+  every_walk_hits(s, accels, 4, 200000, edge_rays, &m, "edge and vertex rays");
   glint_scene_destroy(s);
 }
-
-#define CORNER_RAYS 20000
 
 /* Rays through a triangle next to its vertex A, the corner of its bounding
  * box (A is the lowest in x and in y), entering the box through the face x
@@ -346,6 +363,37 @@ static void meshes_are_watertight(void **state) {
  * larger than that stretch. A slab test computing B/D - O/D in one fma
  * without moving O outwards culls about half of them (the box is missed,
  * the triangle with it); every walk must hit. */
+static void corner_rays(void *ctx, unsigned long long *seed, float *o, float *d,
+                        int lanes) {
+  const glint_vec3 *tri = ctx, a = tri[0];
+  for (int i = 0; i < lanes; i++) {
+    /* P = A + f1 (B - A) + f2 (C - A), 1e-6 to 1e-5 from each edge
+     * at A, inside the triangle */
+    double f1 = 2e-6 + 2e-5 * uniform(seed), f2 = 2e-6 + 2e-5 * uniform(seed);
+    double target[3] = {a.x + f1 * (tri[1].x - a.x) + f2 * (tri[2].x - a.x),
+                        a.y + f1 * (tri[1].y - a.y) + f2 * (tri[2].y - a.y),
+                        a.z + f1 * (tri[1].z - a.z) + f2 * (tri[2].z - a.z)};
+    /* +x and -y, and +z: at least 30 degrees from the triangle's
+     * plane (normal (1, -1, 1)); from 0.2 to 1.2 away, beyond the
+     * scene's epsilon (1e-4 of its coordinates: 0.1) */
+    double dir[3] = {0.2 + uniform(seed), -0.2 - uniform(seed),
+                     0.5 + uniform(seed)};
+    double l = sqrt(dir[0] * dir[0] + dir[1] * dir[1] + dir[2] * dir[2]);
+    double dist = 0.2 + uniform(seed);
+    float from[3];
+    for (int c = 0; c < 3; c++)
+      from[c] = (float)(target[c] - dist * dir[c] / l);
+    /* aimed from the rounded origin, so the ray passes within 1e-7 */
+    double aim[3], al = 0;
+    for (int c = 0; c < 3; c++)
+      aim[c] = target[c] - from[c], al += aim[c] * aim[c];
+    for (int c = 0; c < 3; c++) {
+      o[c * lanes + i] = from[c];
+      d[c * lanes + i] = (float)(aim[c] / sqrt(al));
+    }
+  }
+}
+
 static void rays_grazing_a_box_corner_hit(void **state) {
   (void)state;
   const glint_vec3 a = {1000.25, 1000.5, 1000.75};
@@ -370,69 +418,77 @@ static void rays_grazing_a_box_corner_hit(void **state) {
   ASSERT_OK(glint_scene_add_mesh(s, &mesh, id, &e_));
   static const glint_accel accels[3] = {GLINT_ACCEL_BVH, GLINT_ACCEL_BVH2,
                                         GLINT_ACCEL_BVH8};
-  for (int ai = 0; ai < 3; ai++) {
-    test_view pv[3], scalar;
-    void *views[3] = {NULL, NULL, NULL};
-    for (int p = 0; p < 3; p++)
-      if (glint_backend_supported(packets[p].backend))
-        views[p] =
-            test_view_open(s, gli_backend_ops_of(packets[p].backend)->data,
-                           accels[ai], &pv[p]);
-    const scene_r *ref =
-        test_view_open(s, DATA_SCALAR_FLOAT, accels[ai], &scalar);
-    unsigned long long seed = 11;
-    int misses[4] = {0}, lanes = 16;
-    for (int r = 0; r < CORNER_RAYS; r += lanes) {
-      float o[3 * 16], d[3 * 16];
-      for (int i = 0; i < lanes; i++) {
-        /* P = A + f1 (B - A) + f2 (C - A), 1e-6 to 1e-5 from each edge
-         * at A, inside the triangle */
-        double f1 = 2e-6 + 2e-5 * uniform(&seed),
-               f2 = 2e-6 + 2e-5 * uniform(&seed);
-        double target[3] = {a.x + f1 * (tri[1].x - a.x) + f2 * (tri[2].x - a.x),
-                            a.y + f1 * (tri[1].y - a.y) + f2 * (tri[2].y - a.y),
-                            a.z + f1 * (tri[1].z - a.z) +
-                                f2 * (tri[2].z - a.z)};
-        /* +x and -y, and +z: at least 30 degrees from the triangle's
-         * plane (normal (1, -1, 1)); from 0.2 to 1.2 away, beyond the
-         * scene's epsilon (1e-4 of its coordinates: 0.1) */
-        double dir[3] = {0.2 + uniform(&seed), -0.2 - uniform(&seed),
-                         0.5 + uniform(&seed)};
-        double l = sqrt(dir[0] * dir[0] + dir[1] * dir[1] + dir[2] * dir[2]);
-        double dist = 0.2 + uniform(&seed);
-        float from[3];
-        for (int c = 0; c < 3; c++)
-          from[c] = (float)(target[c] - dist * dir[c] / l);
-        /* aimed from the rounded origin, so the ray passes within 1e-7 */
-        double aim[3], al = 0;
-        for (int c = 0; c < 3; c++)
-          aim[c] = target[c] - from[c], al += aim[c] * aim[c];
-        for (int c = 0; c < 3; c++) {
-          o[c * lanes + i] = from[c];
-          d[c * lanes + i] = (float)(aim[c] / sqrt(al));
-        }
-      }
-      count_misses(ref, views, o, d, lanes, misses);
+  every_walk_hits(s, accels, 3, 20000, corner_rays, (void *)tri, "corner rays");
+  glint_scene_destroy(s);
+}
+
+/* Cones of every shape the reach test (cone_reach_lanes) must keep: a thin
+ * cylinder, a cone widening towards its apex and one narrowing, their axes
+ * in all directions. */
+typedef struct skim_cone {
+  double base[3], axis[3], height, rb, rt;
+} skim_cone;
+
+static const skim_cone skim_cones[3] = {
+    {{3.1, -2.2, 5.3}, {0.36, 0.48, 0.8}, 1.5, 0.01, 0.01},
+    {{-4.7, 1.9, 6.1}, {-0.6, 0.0, 0.8}, 1.2, 0.02, 0.08},
+    {{0.4, 6.3, -3.9}, {0.0, -0.8, 0.6}, 2.0, 0.08, 0.02}};
+
+/* Rays skimming a cone: their line passes the axis at height h (a quarter to
+ * three quarters up) at 0.99 of the radius there, tilted up to 30 degrees
+ * along the axis, from 2 to 32 away. */
+static void skimming_rays(void *ctx, unsigned long long *seed, float *o,
+                          float *d, int lanes) {
+  (void)ctx;
+  for (int i = 0; i < lanes; i++) {
+    const skim_cone *c = &skim_cones[(int)(uniform(seed) * 3)];
+    const double *a = c->axis;
+    /* p: a unit vector across the axis, q = a x p */
+    double r[3] = {uniform(seed) - 0.5, uniform(seed) - 0.5,
+                   uniform(seed) - 0.5};
+    double ra = r[0] * a[0] + r[1] * a[1] + r[2] * a[2], p[3], pl = 0;
+    for (int k = 0; k < 3; k++)
+      p[k] = r[k] - ra * a[k], pl += p[k] * p[k];
+    for (int k = 0; k < 3; k++)
+      p[k] /= sqrt(pl);
+    double q[3] = {a[1] * p[2] - a[2] * p[1], a[2] * p[0] - a[0] * p[2],
+                   a[0] * p[1] - a[1] * p[0]};
+    double f = 0.25 + 0.5 * uniform(seed), h = f * c->height;
+    double rho = 0.99 * (c->rb + f * (c->rt - c->rb));
+    double tilt = (uniform(seed) - 0.5) * 1.0471975512,
+           dist = 2 + 30 * uniform(seed);
+    double target[3], from[3], aim[3], al = 0;
+    for (int k = 0; k < 3; k++) {
+      target[k] = c->base[k] + h * a[k] + rho * p[k];
+      double dk = cos(tilt) * q[k] + sin(tilt) * a[k];
+      from[k] = (double)(float)(target[k] - dist * dk);
     }
-    test_view_close(&scalar);
-    for (int p = 0; p < 3; p++)
-      if (views[p])
-        test_view_close(&pv[p]);
-    for (int p = 0; p < 4; p++) {
-      if (p > 0 && !views[p - 1]) {
-        printf("%-12s SKIPPED (not on this CPU)\n", p == 1   ? "sse"
-                                                    : p == 2 ? "avx2"
-                                                             : "avx512");
-        continue;
-      }
-      printf("%-12s %s: %d of %d corner rays missed\n",
-             p == 0 ? "scalar-float"
-                    : glint_backend_name(packets[p - 1].backend),
-             glint_accel_name(accels[ai]), misses[p], CORNER_RAYS);
+    /* aimed from the rounded origin: the line passes the axis no farther
+     * than at the target */
+    for (int k = 0; k < 3; k++)
+      aim[k] = target[k] - from[k], al += aim[k] * aim[k];
+    for (int k = 0; k < 3; k++) {
+      o[k * lanes + i] = (float)from[k];
+      d[k * lanes + i] = (float)(aim[k] / sqrt(al));
     }
-    for (int p = 0; p < 4; p++)
-      assert_int_equal(misses[p], 0);
   }
+}
+
+static void rays_skimming_cones_hit(void **state) {
+  (void)state;
+  uint32_t id;
+  glint_scene *s = scene_with_default_material(&id);
+  for (int i = 0; i < 3; i++) {
+    const skim_cone *c = &skim_cones[i];
+    glint_vec3 base = {c->base[0], c->base[1], c->base[2]};
+    glint_vec3 apex = {c->base[0] + c->height * c->axis[0],
+                       c->base[1] + c->height * c->axis[1],
+                       c->base[2] + c->height * c->axis[2]};
+    ASSERT_OK(glint_scene_add_cone(s, base, c->rb, apex, c->rt, id, &e_));
+  }
+  static const glint_accel accels[4] = {GLINT_ACCEL_NONE, GLINT_ACCEL_BVH,
+                                        GLINT_ACCEL_BVH2, GLINT_ACCEL_BVH8};
+  every_walk_hits(s, accels, 4, 30000, skimming_rays, NULL, "skimming rays");
   glint_scene_destroy(s);
 }
 
@@ -554,6 +610,7 @@ int main(void) {
       cmocka_unit_test(thin_cylinder),
       cmocka_unit_test(meshes_are_watertight),
       cmocka_unit_test(rays_grazing_a_box_corner_hit),
+      cmocka_unit_test(rays_skimming_cones_hit),
       cmocka_unit_test(long_numbers_are_read_whole),
       cmocka_unit_test(unusual_text_files_load),
       cmocka_unit_test(bad_input_is_named),

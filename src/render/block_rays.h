@@ -34,9 +34,9 @@ static ALWAYS_INLINE vmask block_lanes(uint32_t count) {
 }
 
 static ALWAYS_INLINE cone_lanes block_cone_lanes(const block_cone *b) {
-  cone_lanes c = {block_vec(b->base), block_vec(b->axis),
+  cone_lanes c = {block_vec(b->base),       block_vec(b->axis),
                   vf_load_block(b->height), vf_load_block(b->rb),
-                  vf_load_block(b->k)};
+                  vf_load_block(b->k),      vf_load_block(b->reach2)};
   return c;
 }
 

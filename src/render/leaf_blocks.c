@@ -62,6 +62,7 @@ static void put_cone(const scene_r *s, block_cone *bk, int lane, uint32_t i) {
   bk->height[lane] = p->height;
   bk->rb[lane] = p->rb;
   bk->k[lane] = p->k;
+  bk->reach2[lane] = p->reach2;
   bk->prim[lane] = i;
 }
 

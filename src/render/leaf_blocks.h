@@ -29,7 +29,7 @@ typedef struct block_triangle {
 
 typedef struct block_cone {
   SIMD_ALIGN float base[3][BL], axis[3][BL];
-  float height[BL], rb[BL], k[BL];
+  float height[BL], rb[BL], k[BL], reach2[BL];
   uint32_t prim[BL];
 } block_cone;
 

@@ -68,6 +68,7 @@ glint_status packet_scene_prepare(const glint_scene *scene, double eps,
     p->height = vs_make(c->height);
     p->rb = vs_make(c->rb);
     p->k = vs_make(c->k);
+    p->reach2 = vs_make(c->reach2);
     p->object = (int32_t)c->object;
   }
   for (size_t i = 0; i < materials; i++) {

@@ -36,6 +36,7 @@ typedef struct ptriangle {
 typedef struct pcone {
   vscalar base[3], axis[3];
   vscalar height, rb, k; /* see cone_roots in geometry/intersect.h */
+  vscalar reach2;        /* see cone_reach_lanes */
   int32_t object;
 } pcone;
 

@@ -9,6 +9,7 @@
 #include "render/scalar_rays.h"
 #include "scene/scene.h"
 
+#include <math.h>
 #include <stdlib.h>
 
 static vec3 from_d(glint_vec3 v) { return v3((real)v.x, (real)v.y, (real)v.z); }
@@ -125,6 +126,8 @@ glint_status scalar_scene_prepare(const glint_scene *g, double eps,
     r->height = (real)h;
     r->rb = (real)c->base_radius;
     r->k = (real)((c->apex_radius - c->base_radius) / h);
+    double widest = fmax(fabs(c->base_radius), fabs(c->apex_radius));
+    r->reach2 = (real)(1.07 * widest * widest);
     r->object = c->object;
   }
   for (size_t i = 0; i < g->tri_normal_count; i++)

@@ -36,6 +36,7 @@ typedef struct triangle_r {
 typedef struct cone_r {
   vec3 base, axis;    /* axis: unit, from base to apex */
   real height, rb, k; /* base radius and slope (apex - base radius) / height */
+  real reach2; /* the widest radius squared, widened: see cone_reach_lanes */
   uint32_t object;
 } cone_r;
 
