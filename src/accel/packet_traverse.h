@@ -127,8 +127,7 @@ static ALWAYS_INLINE packet_inv packet_inverse(const packet_origin *po, vvec3 d,
   r.lo_off = vv_mul(po->lo, r.inv);
   r.hi_off = vv_mul(po->hi, r.inv);
 #else
-  r.lo_off = po->lo;
-  r.hi_off = po->hi;
+  r.lo_off = r.hi_off = po->lo; /* -O for both sides */
 #endif
   SIMD_ALIGN float dx[LANES], dy[LANES], dz[LANES];
   vf_store(dx, d.x);
@@ -159,12 +158,14 @@ static ALWAYS_INLINE vmask packet_box(const gli_bvh_node *n,
   vfloat lx, ly, lz, hx, hy, hz, unused0, unused1;
   vf_splat4(&n->lo[0], &lx, &ly, &lz, &hx);
   vf_splat4(&n->hi[1], &hy, &hz, &unused0, &unused1);
+  /* Without fmas both sides' term is -O: one set of registers, not two. */
+  const vvec3 *hi_off = GLI_SIMD_FUSED ? &r->hi_off : &r->lo_off;
   vfloat t0x = plane_distance(lx, r->inv.x, r->lo_off.x);
-  vfloat t1x = plane_distance(hx, r->inv.x, r->hi_off.x);
+  vfloat t1x = plane_distance(hx, r->inv.x, hi_off->x);
   vfloat t0y = plane_distance(ly, r->inv.y, r->lo_off.y);
-  vfloat t1y = plane_distance(hy, r->inv.y, r->hi_off.y);
+  vfloat t1y = plane_distance(hy, r->inv.y, hi_off->y);
   vfloat t0z = plane_distance(lz, r->inv.z, r->lo_off.z);
-  vfloat t1z = plane_distance(hz, r->inv.z, r->hi_off.z);
+  vfloat t1z = plane_distance(hz, r->inv.z, hi_off->z);
   vfloat near = vf_max(vf_max(vf_min(t0x, t1x), vf_min(t0y, t1y)),
                        vf_max(vf_min(t0z, t1z), tmin));
   vfloat far = vf_min(vf_min(vf_max(t0x, t1x), vf_max(t0y, t1y)),

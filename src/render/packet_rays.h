@@ -25,6 +25,17 @@
 #define PACKET_HAND_OVER 1
 #endif
 
+/* Whether the segment walk of shadow rays is a function of its own rather
+ * than inlined into packet_transmission: 1 for the SSE streams
+ * (render/stream_tracer.c), whose shading leaves SSE's 16 registers too few
+ * for the slab test inlined there: 56 instructions a box test on gears-s2,
+ * 47 apart as in the beams; their render instructions fall 2-9% on the
+ * thesis's scenes and the SPD's (callgrind). The other builds lose up to
+ * 8% by the call, so keep it inlined. */
+#ifndef PACKET_WALKS_APART
+#define PACKET_WALKS_APART 0
+#endif
+
 /* A packet's rays as scalars, for its lanes that walk alone (stored at
  * each hand-over, which is rare, rather than for every packet). */
 typedef struct lane_rays {
@@ -344,6 +355,14 @@ static __attribute__((noinline)) void segment_hybrid(segment_query *q,
                        segment_alone, q);
 }
 
+/* The plain segment walk, apart from packet_transmission where
+ * PACKET_WALKS_APART. */
+static __attribute__((noinline)) void segment_apart(segment_query *q,
+                                                    const gli_bvh *bvh) {
+  packet_bvh_segment(bvh, q->po, q->d, q->eps, q->dist, &q->sh->alive,
+                     q->newton, q->st, segment_leaf, 0, segment_alone, q);
+}
+
 /* The lanes' transmission along o + t d, t in (eps, dist); po is
  * packet_origin_of(o), made once for all lights. */
 static ALWAYS_INLINE vvec3 packet_transmission(const packet_scene *ps, vvec3 o,
@@ -384,6 +403,8 @@ static ALWAYS_INLINE vvec3 packet_transmission(const packet_scene *ps, vvec3 o,
     segment_query q = {ps, o, d, l, po, dist, eps, newton, &sh, st};
     if (PACKET_HAND_OVER && ps->alone_lanes)
       segment_hybrid(&q, bvh);
+    else if (PACKET_WALKS_APART)
+      segment_apart(&q, bvh);
     else
       packet_bvh_segment(bvh, po, d, eps, dist, &sh.alive, newton, st,
                          segment_leaf, 0, segment_alone, &q);
