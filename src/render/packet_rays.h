@@ -151,14 +151,6 @@ nearest_hybrid(nearest_query *q, const gli_bvh *bvh, vmask active) {
                        q->st, nearest_leaf, ps->alone_lanes, nearest_alone, q);
 }
 
-/* The primitives a query tests besides the planes when the scene has no
- * BVH (all of them), counted with the planes' tests in one update. */
-static ALWAYS_INLINE size_t brute_force_tests(const scene_r *s) {
-  return s->bvh->node_count == 0
-             ? s->sphere_count + s->triangle_count + s->cone_count
-             : 0;
-}
-
 /* The lanes' nearest hits: the planes (unbounded, outside the BVH), then
  * the BVH's primitives, or every primitive when there is no BVH (the
  * thesis's brute force, §4.3). */
@@ -170,7 +162,7 @@ static ALWAYS_INLINE void packet_nearest(const packet_scene *ps, vvec3 o,
   vfloat eps = vs_get(&ps->eps);
   vvec3 l = packet_ray_moment(ps, o, d);
   const gli_bvh *bvh = s->bvh;
-  count_tests(st, s->plane_count + brute_force_tests(s), vm_count(active));
+  count_tests(st, ps->outside_tests, vm_count(active));
   for (size_t i = 0; i < s->plane_count; i++)
     packet_plane(&ps->planes[i], o, d, active, eps, newton, h);
   if (bvh->node_count == 0) {
@@ -378,7 +370,7 @@ static ALWAYS_INLINE vvec3 packet_transmission(const packet_scene *ps, vvec3 o,
   vfloat eps = vs_get(&ps->eps);
   vvec3 l = packet_ray_moment(ps, o, d);
   const gli_bvh *bvh = s->bvh;
-  count_tests(st, s->plane_count + brute_force_tests(s), vm_count(active));
+  count_tests(st, ps->outside_tests, vm_count(active));
   for (size_t i = 0; i < s->plane_count && vm_any(sh.alive); i++) {
     const pplane *pl = &ps->planes[i];
     vvec3 n = vv_get(pl->n);

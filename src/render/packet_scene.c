@@ -156,6 +156,11 @@ static glint_status bind(const void *data, const gli_bvh *bvh,
   v->s = *ps->s;
   v->s.bvh = bvh;
   v->ps.s = &v->s;
+  v->ps.outside_tests =
+      v->s.plane_count +
+      (bvh->node_count
+           ? 0
+           : v->s.sphere_count + v->s.triangle_count + v->s.cone_count);
   v->ps.alone_lanes = !bvh->wide.nodes ? 0
                       : accel == GLINT_ACCEL_BVH
                           ? (bvh->wide.hand_overs ? GLI_HYBRID_LANES : 0)

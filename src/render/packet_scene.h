@@ -68,6 +68,9 @@ typedef struct packet_scene {
    * BVH when at most this many of them enter it (0: never; LANES: from the
    * root on: accel/packet_traverse.h). */
   int alone_lanes;
+  /* The tests a query makes beside the BVH's walks: the planes, and every
+   * primitive when there is no BVH (the statistics' count). */
+  size_t outside_tests;
   const struct leaf_blocks *blocks; /* what they test (render/leaf_blocks.h) */
 } packet_scene;
 
