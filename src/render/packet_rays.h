@@ -53,24 +53,37 @@ static ALWAYS_INLINE void lane_ray(const lane_rays *r, int k, vec3 *o,
   *d = v3(r->d[0][k], r->d[1][k], r->d[2][k]);
 }
 
-/* The lanes' moments for the triangle tests, only where there are
- * triangles (render/scalar_rays.h's ray_moment). */
-static ALWAYS_INLINE vvec3 packet_ray_moment(const packet_scene *ps, vvec3 o,
-                                             vvec3 d) {
-  if (!ps->s->triangle_count)
-    return (vvec3){vf_zero(), vf_zero(), vf_zero()};
-  return packet_triangle_moment(ps->tri_origin, o, d);
+/* The lanes' moments for the triangle tests (render/scalar_rays.h's
+ * ray_moment), made when a query first tests a triangle: in scenes with a
+ * few triangles among other shapes (an SPD scene's ground polygon) most
+ * queries test none, and making it for every query cost tree-s4 3% of its
+ * render instructions. Meshes pay the test of `made` per triangle (up to 2%
+ * on teapot-s2 and tetra-s4); making it at once where most primitives are
+ * triangles cost more than it saved, through its branch per query. */
+typedef struct lazy_moment {
+  vvec3 l;
+  int made;
+} lazy_moment;
+
+static ALWAYS_INLINE vvec3 moment_of(const packet_scene *ps, lazy_moment *lm,
+                                     vvec3 o, vvec3 d) {
+  if (!lm->made) {
+    lm->l = packet_triangle_moment(ps->tri_origin, o, d);
+    lm->made = 1;
+  }
+  return lm->l;
 }
 
 /* One referenced primitive against the lanes of m. */
 static ALWAYS_INLINE void packet_prim(const packet_scene *ps, uint32_t ref,
-                                      vvec3 o, vvec3 d, vvec3 l, vmask m,
+                                      vvec3 o, vvec3 d, lazy_moment *l, vmask m,
                                       vfloat eps, int newton, packet_hit *h) {
   uint32_t i = GLI_REF_INDEX(ref);
   switch (GLI_REF_SHAPE(ref)) {
   case GLI_SHAPE_SPHERE: packet_sphere(&ps->spheres[i], o, d, m, eps, h); break;
   case GLI_SHAPE_TRIANGLE:
-    packet_triangle(&ps->triangles[i], i, o, d, l, m, eps, newton, h);
+    packet_triangle(&ps->triangles[i], i, o, d, moment_of(ps, l, o, d), m, eps,
+                    newton, h);
     break;
   default: packet_cone(&ps->cones[i], o, d, m, eps, h); break;
   }
@@ -79,7 +92,8 @@ static ALWAYS_INLINE void packet_prim(const packet_scene *ps, uint32_t ref,
 /* What a closest-hit walk's leaves need. */
 typedef struct nearest_query {
   const packet_scene *ps;
-  vvec3 o, d, l;
+  vvec3 o, d;
+  lazy_moment *l;
   const packet_origin *po;
   vfloat eps;
   int newton;
@@ -160,7 +174,6 @@ static ALWAYS_INLINE void packet_nearest(const packet_scene *ps, vvec3 o,
   const scene_r *s = ps->s;
   packet_hit_init(h);
   vfloat eps = vs_get(&ps->eps);
-  vvec3 l = packet_ray_moment(ps, o, d);
   const gli_bvh *bvh = s->bvh;
   count_tests(st, ps->outside_tests, vm_count(active));
   for (size_t i = 0; i < s->plane_count; i++)
@@ -168,15 +181,19 @@ static ALWAYS_INLINE void packet_nearest(const packet_scene *ps, vvec3 o,
   if (bvh->node_count == 0) {
     for (size_t i = 0; i < s->sphere_count; i++)
       packet_sphere(&ps->spheres[i], o, d, active, eps, h);
-    for (size_t i = 0; i < s->triangle_count; i++)
-      packet_triangle(&ps->triangles[i], (uint32_t)i, o, d, l, active, eps,
-                      newton, h);
+    if (s->triangle_count) {
+      vvec3 l = packet_triangle_moment(ps->tri_origin, o, d);
+      for (size_t i = 0; i < s->triangle_count; i++)
+        packet_triangle(&ps->triangles[i], (uint32_t)i, o, d, l, active, eps,
+                        newton, h);
+    }
     for (size_t i = 0; i < s->cone_count; i++)
       packet_cone(&ps->cones[i], o, d, active, eps, h);
     return;
   }
   packet_origin po = packet_origin_of(o);
-  nearest_query q = {ps, o, d, l, &po, eps, newton, h, st};
+  lazy_moment l = {{vf_zero(), vf_zero(), vf_zero()}, 0};
+  nearest_query q = {ps, o, d, &l, &po, eps, newton, h, st};
   if (PACKET_HAND_OVER && ps->alone_lanes)
     nearest_hybrid(&q, bvh, active);
   else
@@ -221,8 +238,8 @@ static ALWAYS_INLINE void shadow_cross(const packet_scene *ps, int object,
 /* Every crossing of one primitive by the shadow lanes within (eps, dist). */
 static ALWAYS_INLINE void packet_cross_prim(const packet_scene *ps,
                                             uint32_t shape, uint32_t i, vvec3 o,
-                                            vvec3 d, vvec3 l, vfloat dist,
-                                            vfloat eps, int newton,
+                                            vvec3 d, lazy_moment *l,
+                                            vfloat dist, vfloat eps, int newton,
                                             shadow_state *sh) {
   switch (shape) {
   case GLI_SHAPE_SPHERE: {
@@ -241,8 +258,8 @@ static ALWAYS_INLINE void packet_cross_prim(const packet_scene *ps,
   case GLI_SHAPE_TRIANGLE: {
     const ptriangle *tr = &ps->triangles[i];
     vfloat t, u, v;
-    vmask c = packet_triangle_cross(tr, o, d, l, sh->alive, eps, dist, newton,
-                                    &t, &u, &v);
+    vmask c = packet_triangle_cross(tr, o, d, moment_of(ps, l, o, d), sh->alive,
+                                    eps, dist, newton, &t, &u, &v);
     /* Entering: against the normal, which the unnormalised one shares. */
     shadow_cross(ps, tr->object, c, t,
                  vf_lt(vv_dot(vv_get(tr->n), d), vf_zero()), sh);
@@ -276,7 +293,8 @@ static ALWAYS_INLINE void packet_cross_prim(const packet_scene *ps,
 /* What a segment walk's leaves need. */
 typedef struct segment_query {
   const packet_scene *ps;
-  vvec3 o, d, l;
+  vvec3 o, d;
+  lazy_moment *l;
   const packet_origin *po;
   vfloat dist, eps;
   int newton;
@@ -368,7 +386,7 @@ static ALWAYS_INLINE vvec3 packet_transmission(const packet_scene *ps, vvec3 o,
                      active,
                      0};
   vfloat eps = vs_get(&ps->eps);
-  vvec3 l = packet_ray_moment(ps, o, d);
+  lazy_moment l = {{vf_zero(), vf_zero(), vf_zero()}, 0};
   const gli_bvh *bvh = s->bvh;
   count_tests(st, ps->outside_tests, vm_count(active));
   for (size_t i = 0; i < s->plane_count && vm_any(sh.alive); i++) {
@@ -383,16 +401,16 @@ static ALWAYS_INLINE vvec3 packet_transmission(const packet_scene *ps, vvec3 o,
   }
   if (bvh->node_count == 0) {
     for (size_t i = 0; i < s->sphere_count && vm_any(sh.alive); i++)
-      packet_cross_prim(ps, GLI_SHAPE_SPHERE, (uint32_t)i, o, d, l, dist, eps,
+      packet_cross_prim(ps, GLI_SHAPE_SPHERE, (uint32_t)i, o, d, &l, dist, eps,
                         newton, &sh);
     for (size_t i = 0; i < s->triangle_count && vm_any(sh.alive); i++)
-      packet_cross_prim(ps, GLI_SHAPE_TRIANGLE, (uint32_t)i, o, d, l, dist, eps,
-                        newton, &sh);
+      packet_cross_prim(ps, GLI_SHAPE_TRIANGLE, (uint32_t)i, o, d, &l, dist,
+                        eps, newton, &sh);
     for (size_t i = 0; i < s->cone_count && vm_any(sh.alive); i++)
-      packet_cross_prim(ps, GLI_SHAPE_CONE, (uint32_t)i, o, d, l, dist, eps,
+      packet_cross_prim(ps, GLI_SHAPE_CONE, (uint32_t)i, o, d, &l, dist, eps,
                         newton, &sh);
   } else if (vm_any(sh.alive)) {
-    segment_query q = {ps, o, d, l, po, dist, eps, newton, &sh, st};
+    segment_query q = {ps, o, d, &l, po, dist, eps, newton, &sh, st};
     if (PACKET_HAND_OVER && ps->alone_lanes)
       segment_hybrid(&q, bvh);
     else if (PACKET_WALKS_APART)
