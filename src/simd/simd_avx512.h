@@ -181,8 +181,6 @@ static inline int vf_compress_store(float *p, vmask m, vfloat a) {
 typedef __m256 vnode;
 static inline vnode vn_load(const float *p) { return _mm256_load_ps(p); }
 static inline vnode vn_set1(float a) { return _mm256_set1_ps(a); }
-static inline vnode vn_add(vnode a, vnode b) { return _mm256_add_ps(a, b); }
-static inline vnode vn_sub(vnode a, vnode b) { return _mm256_sub_ps(a, b); }
 static inline vnode vn_fmadd(vnode a, vnode b, vnode c) {
   return _mm256_fmadd_ps(a, b, c);
 }

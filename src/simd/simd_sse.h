@@ -172,11 +172,6 @@ typedef __m128 vnode;
 static inline vnode vn_load(const float *p) { return _mm_load_ps(p); }
 static inline vnode vn_set1(float a) { return _mm_set1_ps(a); }
 static inline vnode vn_add(vnode a, vnode b) { return _mm_add_ps(a, b); }
-static inline vnode vn_sub(vnode a, vnode b) { return _mm_sub_ps(a, b); }
-/* a*b + c, unfused as vf_fmadd */
-static inline vnode vn_fmadd(vnode a, vnode b, vnode c) {
-  return _mm_add_ps(_mm_mul_ps(a, b), c);
-}
 static inline vnode vn_mul(vnode a, vnode b) { return _mm_mul_ps(a, b); }
 static inline vnode vn_min(vnode a, vnode b) { return _mm_min_ps(a, b); }
 static inline vnode vn_max(vnode a, vnode b) { return _mm_max_ps(a, b); }
