@@ -17,6 +17,7 @@ packages=(
   libopenexr-dev    # linear film output as .exr (OpenEXRCore)
   gnuplot-nox       # glint bench --plot
   clang             # the fuzz targets (libFuzzer)
+  clang-format      # the format test (tests/format.sh)
   libclang-rt-14-dev # libFuzzer and clang's sanitizer runtimes
   libsdl2-dev       # glint view's window
   xvfb              # a display for the window test

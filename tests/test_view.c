@@ -154,8 +154,9 @@ static void options(void **state) {
   assert_int_equal(o.settings.spp, 5);
   assert_int_equal(o.benchmark_frames, 0);
   assert_true(o.budget_ms == 40);
-  char *args[] = {"giza.json", "-s", "9", "-d3", "--benchmark=12",
-                  "--budget", "16.5", "-W", "320", "--gamma", "2.2", NULL};
+  char *args[] = {"giza.json", "-s",   "9",  "-d3", "--benchmark=12",
+                  "--budget",  "16.5", "-W", "320", "--gamma",
+                  "2.2",       NULL};
   assert_int_equal(view_parse(11, args, &o), -1);
   assert_string_equal(o.scene, "giza.json");
   assert_int_equal(o.settings.spp, 9);

@@ -12,11 +12,12 @@ static double radical_inverse2(unsigned i) {
 }
 
 /* n points of the Hammersley set in the pixel, (i + 1/2)/n across and the
- * radical inverse of i down, shifted by `shift` (toroidally) down and across. */
+ * radical inverse of i down, shifted by `shift` (toroidally) down and across.
+ */
 static void hammersley(int n, double shift, float (*o)[2]) {
   for (int i = 0; i < n; i++) {
-    double x = (i + 0.5) / n + shift, y = radical_inverse2((unsigned)i) +
-                                          0.5 / n + shift;
+    double x = (i + 0.5) / n + shift,
+           y = radical_inverse2((unsigned)i) + 0.5 / n + shift;
     x -= floor(x);
     y -= floor(y);
     o[i][0] = (float)(x - 0.5);
@@ -36,9 +37,11 @@ void gli_sample_offsets(int spp, float (*o)[2]) {
   /* Thesis §4.4.2; beyond five, more points between them, so that a
    * pattern's first five samples are always the thesis's (the viewer
    * refines an image sample by sample in this order). */
-  static const float thesis[5][2] = {
-      {0, 0}, {-0.25f, -0.25f}, {0.25f, -0.25f}, {-0.25f, 0.25f},
-      {0.25f, 0.25f}};
+  static const float thesis[5][2] = {{0, 0},
+                                     {-0.25f, -0.25f},
+                                     {0.25f, -0.25f},
+                                     {-0.25f, 0.25f},
+                                     {0.25f, 0.25f}};
   for (int i = 0; i < 5; i++)
     o[i][0] = thesis[i][0], o[i][1] = thesis[i][1];
   hammersley(spp - 5, 0.5, o + 5);

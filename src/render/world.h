@@ -17,7 +17,7 @@ struct glint_world {
   atomic_int refs; /* the caller's reference and one per renderer */
   const glint_scene *scene;
   glint_scene *owned_scene; /* the copy, or NULL when the scene is borrowed */
-  double epsilon; /* docs/specification.md §3, fixed at commit */
+  double epsilon;           /* docs/specification.md §3, fixed at commit */
   pthread_mutex_t lock;
   int bvh_built;
   gli_bvh bvh;

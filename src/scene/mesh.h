@@ -62,8 +62,8 @@ struct gli_file_source;
 glint_status gli_scene_add_mesh_from(glint_scene *scene,
                                      const struct gli_file_source *files,
                                      const char *path, double scale,
-                                     glint_vec3 translate,
-                                     uint32_t material_id, glint_error *error);
+                                     glint_vec3 translate, uint32_t material_id,
+                                     glint_error *error);
 
 /* The readers: `data` is the whole file, NUL-terminated after `size`. */
 glint_status gli_obj_parse(const char *path, const char *data, size_t size,

@@ -71,9 +71,8 @@ glint_status glint_scene_load(const char *path, glint_scene **out,
   return gli_scene_load_from(NULL, path, out, error);
 }
 
-glint_status gli_scene_load_from(const gli_file_source *files,
-                                 const char *path, glint_scene **out,
-                                 glint_error *error) {
+glint_status gli_scene_load_from(const gli_file_source *files, const char *path,
+                                 glint_scene **out, glint_error *error) {
   if (!path || !out)
     return gli_fail(error, GLINT_E_ARGUMENT, "scene file: missing argument");
   const scene_format *f = scene_format_of(path);
