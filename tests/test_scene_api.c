@@ -58,6 +58,29 @@ static void primitives_refuse_bad_numbers(void **state) {
   glint_scene_destroy(s);
 }
 
+/* The scene's bounds (glint_scene_info): a sphere's centre +- its radius,
+ * triangles' vertices, a cone's two ends +- its larger radius; planes are
+ * unbounded and left out. */
+static void info_bounds_every_shape(void **state) {
+  (void)state;
+  uint32_t m;
+  glint_scene *s = scene_with_default_material(&m);
+  glint_scene_info info;
+  glint_scene_get_info(s, &info);
+  assert_true(info.bounds_min.x == INFINITY && info.bounds_max.z == -INFINITY);
+  ASSERT_OK(glint_scene_add_sphere(s, (V){1, 2, 3}, 0.5, m, NULL));
+  ASSERT_OK(glint_scene_add_triangle(s, (V){-4, 0, 0}, (V){0, 7, 0},
+                                     (V){0, 0, 2}, m, NULL));
+  ASSERT_OK(glint_scene_add_cone(s, (V){0, 0, -3}, 0.25, (V){0, 0, -1}, 1, m,
+                                 NULL));
+  ASSERT_OK(glint_scene_add_plane(s, (V){0, 1, 0}, (V){0, -100, 0}, m, NULL));
+  glint_scene_get_info(s, &info);
+  assert_true(info.bounds_min.x == -4 && info.bounds_max.x == 1.5);
+  assert_true(info.bounds_min.y == -1 && info.bounds_max.y == 7);
+  assert_true(info.bounds_min.z == -4 && info.bounds_max.z == 3.5);
+  glint_scene_destroy(s);
+}
+
 /* Default settings at a size, on one backend. */
 static glint_render_settings settings_for(glint_backend backend, int width,
                                           int height) {
@@ -378,6 +401,7 @@ static void scenes_load_from_memory(void **state) {
 int main(void) {
   const struct CMUnitTest tests[] = {
       cmocka_unit_test(primitives_refuse_bad_numbers),
+      cmocka_unit_test(info_bounds_every_shape),
       cmocka_unit_test(coordinates_stay_within_the_limit),
       cmocka_unit_test(materials_refuse_bad_values),
       cmocka_unit_test(camera_refuses_degenerate_views),

@@ -384,6 +384,20 @@ glint_status glint_scene_add_mesh(glint_scene *s, const glint_mesh *m,
   return st;
 }
 
+/* [lo, hi] grown to hold the cube of half-size r about p. Comparisons,
+ * not fmin and fmax: those are calls, and every render through the CLI
+ * asks for the scene's information (the 200k-triangle dragon: 3.6 million
+ * calls). A NaN is passed over, as fmin and fmax do. */
+static double lower(double v, double m) { return v < m ? v : m; }
+static double higher(double v, double m) { return v > m ? v : m; }
+
+static void grow_bounds(glint_vec3 *lo, glint_vec3 *hi, glint_vec3 p,
+                        double r) {
+  lo->x = lower(p.x - r, lo->x), hi->x = higher(p.x + r, hi->x);
+  lo->y = lower(p.y - r, lo->y), hi->y = higher(p.y + r, hi->y);
+  lo->z = lower(p.z - r, lo->z), hi->z = higher(p.z + r, hi->z);
+}
+
 void glint_scene_get_info(const glint_scene *s, glint_scene_info *info) {
   info->camera = s->camera;
   info->width = s->width;
@@ -399,23 +413,16 @@ void glint_scene_get_info(const glint_scene *s, glint_scene_info *info) {
   info->cones = s->cone_count;
   glint_vec3 lo = {INFINITY, INFINITY, INFINITY},
              hi = {-INFINITY, -INFINITY, -INFINITY};
-#define GROW(p, r)                                                             \
-  do {                                                                         \
-    lo.x = fmin(lo.x, (p).x - (r)), hi.x = fmax(hi.x, (p).x + (r));            \
-    lo.y = fmin(lo.y, (p).y - (r)), hi.y = fmax(hi.y, (p).y + (r));            \
-    lo.z = fmin(lo.z, (p).z - (r)), hi.z = fmax(hi.z, (p).z + (r));            \
-  } while (0)
   for (size_t i = 0; i < s->sphere_count; i++)
-    GROW(s->spheres[i].center, s->spheres[i].radius);
+    grow_bounds(&lo, &hi, s->spheres[i].center, s->spheres[i].radius);
   for (size_t i = 0; i < s->triangle_count; i++)
     for (int k = 0; k < 3; k++)
-      GROW(s->triangles[i].v[k], 0.0);
+      grow_bounds(&lo, &hi, s->triangles[i].v[k], 0.0);
   for (size_t i = 0; i < s->cone_count; i++) {
     double r = fmax(s->cones[i].base_radius, s->cones[i].apex_radius);
-    GROW(s->cones[i].base, r);
-    GROW(s->cones[i].apex, r);
+    grow_bounds(&lo, &hi, s->cones[i].base, r);
+    grow_bounds(&lo, &hi, s->cones[i].apex, r);
   }
-#undef GROW
   info->bounds_min = lo;
   info->bounds_max = hi;
 }
