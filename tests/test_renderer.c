@@ -327,7 +327,7 @@ static void bad_arguments_are_refused(void **state) {
 }
 
 /* A scene of n mirror spheres in a row, and a matte floor. */
-static glint_scene *mirrors(int n) {
+static glint_scene *mirrors(int n, int matte_spheres) {
   glint_scene *s;
   ASSERT_OK(glint_scene_create(&s, &e_));
   glint_material mirror, matte;
@@ -341,23 +341,29 @@ static glint_scene *mirrors(int n) {
                                   (glint_vec3){0, 0, 0}, f, &e_));
   for (int i = 0; i < n; i++)
     ASSERT_OK(glint_scene_add_sphere(s, (glint_vec3){i, 1, 0}, 0.4, m, &e_));
+  for (int i = 0; i < matte_spheres; i++)
+    ASSERT_OK(glint_scene_add_sphere(s, (glint_vec3){i, 2, 0}, 0.4, f, &e_));
   return s;
 }
 
 /* GLINT_BACKEND_AUTO (src/render/backend_choice.c): the widest beams unless
- * rays scatter: 64 specular primitives from depth 2, 4 from depth 5; and a
- * renderer runs what glint_backend_choose says. Other backends pass as
- * glint_backend_resolve gives them. */
+ * rays scatter: 64 specular primitives from depth 2, 4 from depth 5, but
+ * only from depth 10 where they are under 1/16 of the primitives other
+ * than planes; and a renderer runs what glint_backend_choose says. Other
+ * backends pass as glint_backend_resolve gives them. */
 static void auto_picks_streams_where_rays_scatter(void **state) {
   (void)state;
   glint_backend beams = glint_backend_resolve(GLINT_BACKEND_AUTO);
   glint_backend streams = glint_backend_resolve(GLINT_BACKEND_STREAM);
   static const struct {
-    int spheres, depth, stream;
-  } cases[] = {{64, 2, 1}, {64, 1, 0}, {63, 4, 0}, {63, 5, 1},
-               {4, 5, 1},  {3, 15, 0}, {0, 15, 0}, {200, 5, 1}};
+    int spheres, matte, depth, stream;
+  } cases[] = {{64, 0, 2, 1},   {64, 0, 1, 0},   {63, 0, 4, 0},
+               {63, 0, 5, 1},   {4, 0, 5, 1},    {3, 0, 15, 0},
+               {0, 0, 15, 0},   {200, 0, 5, 1},  {4, 60, 5, 1},
+               {4, 61, 5, 0},   {4, 61, 9, 0},   {4, 61, 10, 1},
+               {64, 960, 2, 1}, {64, 961, 2, 0}, {64, 961, 10, 1}};
   for (size_t i = 0; i < sizeof cases / sizeof *cases; i++) {
-    glint_scene *s = mirrors(cases[i].spheres);
+    glint_scene *s = mirrors(cases[i].spheres, cases[i].matte);
     glint_render_settings rs;
     glint_render_settings_default(&rs);
     rs.max_depth = cases[i].depth;
