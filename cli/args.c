@@ -74,6 +74,29 @@ int parse_int(const char *option, const char *text, long min, long max,
   return 0;
 }
 
+int parse_region(const char *option, const char *text, int out[4]) {
+  if (!text)
+    return -1;
+  const char *p = text;
+  for (int k = 0; k < 4; k++) {
+    long v = 0;
+    int digits = 0;
+    /* digits only, and at most what GLINT_MAX_DIMENSION needs: no wrap */
+    for (; *p >= '0' && *p <= '9' && v <= GLINT_MAX_DIMENSION; p++, digits++)
+      v = v * 10 + (*p - '0');
+    if (!digits || *p != (k < 3 ? ',' : '\0') || v > GLINT_MAX_DIMENSION ||
+        (k >= 2 && v < 1)) {
+      cli_error("%s: '%s' is not X,Y,WIDTH,HEIGHT in pixels (whole numbers, "
+                "X and Y from 0, WIDTH and HEIGHT from 1, each at most %d)",
+                option, text, GLINT_MAX_DIMENSION);
+      return -1;
+    }
+    out[k] = (int)v;
+    p++;
+  }
+  return 0;
+}
+
 int parse_double(const char *option, const char *text, double min,
                  double *out) {
   if (!text)

@@ -30,6 +30,10 @@ char *arg_value(arg_cursor *c, const char *option);
 int parse_int(const char *option, const char *text, long min, long max,
               int *out);
 int parse_double(const char *option, const char *text, double min, double *out);
+/* A region X,Y,WIDTH,HEIGHT in pixels: four plain decimal numbers (digits
+ * only), X and Y from 0, WIDTH and HEIGHT from 1, none above
+ * GLINT_MAX_DIMENSION; on error prints one message and returns -1. */
+int parse_region(const char *option, const char *text, int out[4]);
 /* A gamma within GLINT_MIN_GAMMA..GLINT_MAX_GAMMA. */
 int parse_gamma(const char *option, const char *text, double *out);
 

@@ -458,14 +458,11 @@ int render_parse(int argc, char **argv, render_options *o) {
     } else if (arg_is(&c, NULL, "--region")) {
       if (!(v = arg_value(&c, "--region")))
         return EXIT_USAGE;
-      char extra;
-      if (sscanf(v, "%d,%d,%d,%d%c", &rs->region_x, &rs->region_y,
-                 &rs->region_width, &rs->region_height, &extra) != 4 ||
-          rs->region_width < 1 || rs->region_height < 1 || rs->region_x < 0 ||
-          rs->region_y < 0) {
-        cli_error("--region: '%s' is not X,Y,WIDTH,HEIGHT in pixels", v);
+      int r[4];
+      if (parse_region("--region", v, r))
         return EXIT_USAGE;
-      }
+      rs->region_x = r[0], rs->region_y = r[1];
+      rs->region_width = r[2], rs->region_height = r[3];
     } else if (arg_is(&c, NULL, "--png-compression")) {
       if (!(v = arg_value(&c, "--png-compression")))
         return EXIT_USAGE;

@@ -156,6 +156,20 @@ static void size_errors(void **state) {
   EXPECT_USAGE_ERROR("--depth: 65 is outside 1..64", "render", "-d", "65");
   EXPECT_USAGE_ERROR("--spp: 0 is outside 1..4096", "render", "-s", "0");
   EXPECT_USAGE_ERROR("--threads: -1 is outside", "render", "-t", "-1");
+  /* --region: four plain numbers, none wrapping past 2^32 into a small one */
+  EXPECT_USAGE_ERROR("--region: '4294967311,4294967311,1,1' is not "
+                     "X,Y,WIDTH,HEIGHT",
+                     "render", "--region", "4294967311,4294967311,1,1");
+  EXPECT_USAGE_ERROR("--region: '0,0,4294967297,1'", "render", "--region",
+                     "0,0,4294967297,1");
+  EXPECT_USAGE_ERROR("--region: '0,0,0,1'", "render", "--region", "0,0,0,1");
+  EXPECT_USAGE_ERROR("--region: '1,1,1'", "render", "--region", "1,1,1");
+  EXPECT_USAGE_ERROR("--region: '1,1,1,1,1'", "render", "--region",
+                     "1,1,1,1,1");
+  EXPECT_USAGE_ERROR("--region: ' 1,1,1,1'", "render", "--region", " 1,1,1,1");
+  EXPECT_USAGE_ERROR("--region: '-1,0,1,1'", "render", "--region", "-1,0,1,1");
+  EXPECT_USAGE_ERROR("--region: '16385,0,1,1'", "render", "--region",
+                     "16385,0,1,1");
 }
 
 static void output_errors(void **state) {
