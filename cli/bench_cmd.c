@@ -151,6 +151,26 @@ static int check_plot_dir(const char *dir) {
   return 0;
 }
 
+/* Text inside a gnuplot single-quoted string, where a quote is written
+ * twice. */
+static void put_gnuplot_text(FILE *f, const char *text) {
+  for (const char *p = text; *p; p++)
+    if (*p == '\'')
+      fputs("''", f);
+    else
+      fputc(*p, f);
+}
+
+/* DIR/SCENE.SUFFIX as a gnuplot string. */
+static void put_gnuplot_path(FILE *f, const char *dir, const char *scene,
+                             const char *suffix) {
+  fputc('\'', f);
+  put_gnuplot_text(f, dir);
+  fputc('/', f);
+  put_gnuplot_text(f, scene);
+  fprintf(f, ".%s'", suffix);
+}
+
 /* Seconds against depth, one line per column, like the thesis's figures
  * 5.4-5.6: DIR/SCENE.dat (the data), DIR/SCENE.gp (the script) and
  * DIR/SCENE.png (the plot). */
@@ -177,24 +197,31 @@ static int plot_scene(const char *dir, const char *scene, const int *depths,
   snprintf(path, sizeof path, "%s/%s.gp", dir, scene);
   if (!(f = fopen(path, "w")))
     return -1;
+  /* Names go into gnuplot's single-quoted strings, quotes doubled; and
+   * gnuplot runs without a shell, so no name is ever a command. */
+  fprintf(f, "set terminal pngcairo size 800,500 font 'sans,11'\n"
+             "set output ");
+  put_gnuplot_path(f, dir, scene, "png");
+  fprintf(f, "\nset title 'Scene \"");
+  put_gnuplot_text(f, scene);
   fprintf(f,
-          "set terminal pngcairo size 800,500 font 'sans,11'\n"
-          "set output '%s/%s.png'\n"
-          "set title 'Scene \"%s\": render time against recursion depth "
-          "(%dx%d, %d spp)'\n"
+          "\": render time against recursion depth (%dx%d, %d spp)'\n"
           "set xlabel 'recursion depth'\nset ylabel 'seconds'\n"
           "set key top left\nset grid\nset xtics 1\n"
           "plot ",
-          dir, scene, scene, st->width, st->height, st->spp);
-  for (int c = 0; c < ncols; c++)
-    fprintf(f, "%s'%s/%s.dat' using 1:%d with linespoints lw 2 title '%s'",
-            c ? ", " : "", dir, scene, c + 2, cols[c].name);
+          st->width, st->height, st->spp);
+  for (int c = 0; c < ncols; c++) {
+    fprintf(f, "%s", c ? ", " : "");
+    put_gnuplot_path(f, dir, scene, "dat");
+    fprintf(f, " using 1:%d with linespoints lw 2 title '%s'", c + 2,
+            cols[c].name);
+  }
   fprintf(f, "\n");
   if (fclose(f) != 0)
     return -1;
-  char cmd[16384];
-  snprintf(cmd, sizeof cmd, "gnuplot '%s/%s.gp'", dir, scene);
-  return system(cmd) == 0 ? 0 : -1;
+  char *argv[] = {"gnuplot", path, NULL};
+  static char output[4096];
+  return bench_run_capture(argv, output, sizeof output) == 0 ? 0 : -1;
 }
 
 static void print_header(const char *title, const char *scene,

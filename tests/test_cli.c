@@ -557,6 +557,36 @@ static void put_text(const char *name, const char *text) {
   fclose(f);
 }
 
+/* bench --plot runs gnuplot without a shell and quotes names inside its
+ * script: a scene or folder named with quotes and a command stays a name
+ * (it ran the command through system() before). */
+static void bench_plot_names_are_not_commands(void **state) {
+  (void)state;
+  if (system("command -v gnuplot >/dev/null 2>&1") != 0)
+    skip(); /* gnuplot-nox: scripts/install-deps.sh */
+  static const char scene[] = "x'; touch INJECTED; echo '.nff";
+  put_text(scene, "v\nfrom 0 0 -5\nat 0 0 0\nup 0 1 0\nangle 40\n"
+                  "hither 1\nresolution 8 8\nl 1 1 -5\n"
+                  "f 1 0 0 1 0 1 0 1\ns 0 0 0 1\n");
+  assert_int_equal(run("bench", "--scenes", scene, "--depths", "1,2", "--runs",
+                       "1", "-s", "1", "--backends", "scalar-float", "--plot",
+                       "pl'ots", NULL),
+                   0);
+  assert_false(exists("INJECTED"));
+  static const char *made[] = {"pl'ots/x'; touch INJECTED; echo '.png",
+                               "pl'ots/x'; touch INJECTED; echo '.dat",
+                               "pl'ots/x'; touch INJECTED; echo '.gp", scene};
+  for (size_t i = 0; i < sizeof made / sizeof *made; i++) {
+    char p[256];
+    snprintf(p, sizeof p, "%s/%s", dir, made[i]);
+    assert_true(exists(made[i]));
+    unlink(p);
+  }
+  char p[256];
+  snprintf(p, sizeof p, "%s/pl'ots", dir);
+  assert_int_equal(rmdir(p), 0);
+}
+
 /* The bytes of NAME in the test folder; *size its length. */
 static char *file_bytes(const char *name, long *size) {
   char p[256];
@@ -879,6 +909,7 @@ int main(void) {
       cmocka_unit_test(bench_runs_and_writes_csv),
       cmocka_unit_test(bench_time_to_image),
       cmocka_unit_test(bench_errors),
+      cmocka_unit_test(bench_plot_names_are_not_commands),
       cmocka_unit_test(bench_thread_columns),
       cmocka_unit_test(missing_instruction_sets),
       cmocka_unit_test(options_as_people_write_them),
