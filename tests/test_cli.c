@@ -587,6 +587,30 @@ static void bench_plot_names_are_not_commands(void **state) {
   assert_int_equal(rmdir(p), 0);
 }
 
+/* -o - into a pipe whose reader has gone (glint render -o - | head): the
+ * write fails, glint says so and exits 2, not killed by SIGPIPE. */
+static void a_closed_pipe_is_an_error(void **state) {
+  (void)state;
+  int fds[2];
+  assert_int_equal(pipe(fds), 0);
+  close(fds[0]); /* no reader */
+  posix_spawn_file_actions_t fa;
+  posix_spawn_file_actions_init(&fa);
+  posix_spawn_file_actions_adddup2(&fa, fds[1], 1);
+  posix_spawn_file_actions_addopen(&fa, 2, "/dev/null", O_WRONLY, 0);
+  char *argv[] = {"glint", "render",   "whitted", "-W", "64", "-H", "48",
+                  "-q",    "--format", "ppm",     "-o", "-",  NULL};
+  pid_t pid;
+  assert_int_equal(posix_spawn(&pid, GLINT_EXE, &fa, NULL, argv, environ), 0);
+  posix_spawn_file_actions_destroy(&fa);
+  close(fds[1]);
+  int status;
+  assert_int_equal(waitpid(pid, &status, 0), pid);
+  if (!WIFEXITED(status))
+    fail_msg("glint was killed by signal %d", WTERMSIG(status));
+  assert_int_equal(WEXITSTATUS(status), 2);
+}
+
 /* The bytes of NAME in the test folder; *size its length. */
 static char *file_bytes(const char *name, long *size) {
   char p[256];
@@ -909,6 +933,7 @@ int main(void) {
       cmocka_unit_test(bench_runs_and_writes_csv),
       cmocka_unit_test(bench_time_to_image),
       cmocka_unit_test(bench_errors),
+      cmocka_unit_test(a_closed_pipe_is_an_error),
       cmocka_unit_test(bench_plot_names_are_not_commands),
       cmocka_unit_test(bench_thread_columns),
       cmocka_unit_test(missing_instruction_sets),
