@@ -10,6 +10,7 @@
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
+#include <sys/stat.h>
 
 typedef enum command_kind {
   CMD_KEY,
@@ -60,7 +61,17 @@ void view_script_free(view_script *s) {
 
 static int script_error(const view_script *s, int line, const char *what,
                         const char *word) {
-  cli_error("%s:%d: %s '%s'", s->path, line, what, word);
+  /* the word as printable ASCII: a control byte or a byte of a binary file
+   * as \xNN, not sent to the terminal */
+  char shown[4 * 1024 + 1];
+  size_t n = 0;
+  for (const unsigned char *p = (const unsigned char *)word;
+       *p && n + 5 < sizeof shown; p++)
+    n += (size_t)(*p >= 0x20 && *p < 0x7f
+                      ? snprintf(shown + n, sizeof shown - n, "%c", *p)
+                      : snprintf(shown + n, sizeof shown - n, "\\x%02x", *p));
+  shown[n] = '\0';
+  cli_error("%s:%d: %s '%s'", s->path, line, what, shown);
   return -1;
 }
 
@@ -171,6 +182,17 @@ static int parse_line(view_script *s, char *text, int line, command *c) {
 }
 
 view_script *view_script_load(const char *path) {
+  /* A regular file only: a folder reads as empty, and a FIFO without a
+   * writer would block for ever (as the scene readers refuse them). */
+  struct stat sb;
+  if (stat(path, &sb) != 0) {
+    cli_error("--script %s: %s", path, strerror(errno));
+    return NULL;
+  }
+  if (!S_ISREG(sb.st_mode)) {
+    cli_error("--script %s: not a regular file", path);
+    return NULL;
+  }
   FILE *f = fopen(path, "r");
   if (!f) {
     cli_error("--script %s: %s", path, strerror(errno));
@@ -181,6 +203,14 @@ view_script *view_script_load(const char *path) {
   char text[1024];
   while (!bad && fgets(text, sizeof text, f)) {
     line++;
+    /* fgets stops at a newline only: a NUL byte inside the line leaves
+     * text shorter than what was read */
+    size_t len = strlen(text);
+    if (len + 1 < sizeof text && text[len - (len > 0)] != '\n' && !feof(f)) {
+      cli_error("%s:%d: a NUL byte (not a text file)", path, line);
+      bad = 1;
+      break;
+    }
     if (!strchr(text, '\n') && !feof(f)) {
       cli_error("%s:%d: a line longer than %d characters", path, line,
                 (int)sizeof text - 2);

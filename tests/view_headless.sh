@@ -153,4 +153,21 @@ printf '%s\n' "$states" | sed -n 4p | grep -q 'depth 5' || fail "state after the
 grep -q 'reloaded scene.json' err.txt || fail "the changed scene was not reloaded"
 printf '%s\n' "$states" | sed -n 5p | grep -q '200x150 at scale 1.000' ||
   fail "the resize did not render at 200x150"
+# A script that is not a text file is refused before any window: a folder
+# (read as empty before), a FIFO without a writer (blocked for ever), a NUL
+# byte (reported as an overlong line), and control bytes shown escaped.
+script_refused() { # $1: the script; $2: the message
+  timeout 20 "$glint" view scene.json --script "$1" >out.txt 2>err.txt
+  local rc=$?
+  [ $rc -eq 2 ] || fail "--script $1: exit status $rc, want 2"
+  grep -qF -- "$2" err.txt || fail "--script $1: no '$2'"
+}
+mkdir folder
+mkfifo fifo
+printf 'wait\nkey a\0b\n' >nul.txt
+printf 'key \001\033[31mred\n' >control.txt
+script_refused folder "--script folder: not a regular file"
+script_refused fifo "--script fifo: not a regular file"
+script_refused nul.txt "nul.txt:2: a NUL byte"
+script_refused control.txt "control.txt:1: no key is named '\x01\x1b[31mred'"
 echo "view_headless: PASSED"
