@@ -96,7 +96,7 @@ static int run(const char *first, ...) {
 }
 
 static int exists(const char *name) {
-  char p[256];
+  char p[512];
   snprintf(p, sizeof p, "%s/%s", dir, name);
   struct stat sb;
   return stat(p, &sb) == 0;
@@ -190,6 +190,22 @@ static void output_errors(void **state) {
   assert_int_equal(rc, 2);
   assert_non_null(strstr(err, "is a directory"));
   rmdir(sub);
+  /* Names up to NAME_MAX (255 bytes) are written, though the temporary
+   * name beside them, ".NAME.XXXXXX", would be longer; longer names are
+   * refused before rendering. */
+  char name[300];
+  memset(name, 'a', 251);
+  strcpy(name + 251, ".png");
+  assert_int_equal(run("render", "-W", "8", "-H", "8", "-q", "-o", name, NULL),
+                   0);
+  assert_true(exists(name));
+  char written[512];
+  snprintf(written, sizeof written, "%s/%s", dir, name);
+  unlink(written);
+  memset(name, 'a', 252);
+  strcpy(name + 252, ".png");
+  EXPECT_USAGE_ERROR("cannot write here: File name too long", "render", "-W",
+                     "8", "-H", "8", "-o", name);
 }
 
 /* An existing image survives a failed run untouched. */

@@ -7,6 +7,7 @@
 #include "core/error.h"
 
 #include <errno.h>
+#include <limits.h>
 #include <fcntl.h>
 #include <math.h>
 #include <stdlib.h>
@@ -76,15 +77,24 @@ typedef struct encode_job {
   glint_png_compression compression;
 } encode_job;
 
-/* "dir/name.png" -> "dir/.name.png.XXXXXX" for mkstemp. */
+#ifndef NAME_MAX
+#define NAME_MAX 255
+#endif
+
+/* "dir/name.png" -> "dir/.name.png.XXXXXX" for mkstemp; of a name too long
+ * for the dot and the suffix (248 bytes or more), only its first
+ * NAME_MAX - 8 bytes go into the temporary name. */
 static char *temp_template(const char *path) {
   const char *slash = strrchr(path, '/');
   size_t dirlen = slash ? (size_t)(slash - path) + 1 : 0;
   const char *base = path + dirlen;
+  size_t baselen = strlen(base);
+  if (baselen > NAME_MAX - 8)
+    baselen = NAME_MAX - 8;
   size_t n = strlen(path) + 16;
   char *t = malloc(n);
   if (t)
-    snprintf(t, n, "%.*s.%s.XXXXXX", (int)dirlen, path, base);
+    snprintf(t, n, "%.*s.%.*s.XXXXXX", (int)dirlen, path, (int)baselen, base);
   return t;
 }
 
@@ -93,6 +103,13 @@ static int open_temp(const char *path, char **temp, glint_error *error) {
   struct stat sb;
   if (stat(path, &sb) == 0 && S_ISDIR(sb.st_mode)) {
     gli_fail(error, GLINT_E_IO, "%s: is a directory", path);
+    return -1;
+  }
+  const char *slash = strrchr(path, '/');
+  if (strlen(slash ? slash + 1 : path) > NAME_MAX) {
+    /* found now, before a render, not by the rename after it */
+    gli_fail(error, GLINT_E_IO, "%s: cannot write here: %s", path,
+             strerror(ENAMETOOLONG));
     return -1;
   }
   *temp = temp_template(path);
