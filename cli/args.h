@@ -7,9 +7,15 @@
 
 #include <stddef.h>
 
-/* Exit statuses (see glint --help): bad arguments or input get 2; a render
- * stopped by Ctrl-C (or SIGTERM, SIGHUP) gets 130, as shells report it. */
-enum { EXIT_USAGE = 2, EXIT_INTERRUPTED = 130 };
+/* Exit statuses (see glint --help): memory that could not be had gets 1;
+ * bad arguments or input 2; a render stopped by Ctrl-C (or SIGTERM,
+ * SIGHUP) 130, as shells report it. */
+enum { EXIT_MEMORY = 1, EXIT_USAGE = 2, EXIT_INTERRUPTED = 130 };
+
+/* The exit status of a failed library call. */
+static inline int cli_exit_code(glint_status st) {
+  return st == GLINT_E_MEMORY ? EXIT_MEMORY : EXIT_USAGE;
+}
 
 typedef struct arg_cursor {
   int argc;

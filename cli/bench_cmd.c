@@ -422,11 +422,12 @@ int bench_scenes(char **names, int nscenes, const int *depths, int ndepths,
   glint_scene *scenes[MAX_ITEMS];
   char stems[MAX_ITEMS][64];
   for (int i = 0; i < nscenes; i++) {
-    scenes[i] = cli_load_scene(names[i], stems[i], sizeof stems[i]);
+    int code = EXIT_USAGE;
+    scenes[i] = cli_load_scene(names[i], stems[i], sizeof stems[i], &code);
     if (!scenes[i]) {
       for (int k = 0; k < i; k++)
         glint_scene_destroy(scenes[k]);
-      return EXIT_USAGE;
+      return code;
     }
   }
   size_t ncells = (size_t)nscenes * ndepths * ncols;

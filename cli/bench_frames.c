@@ -35,9 +35,10 @@ typedef struct frame_times {
 int bench_frames(const char *scene_name, const glint_render_settings *base,
                  int frames) {
   char stem[256];
-  glint_scene *scene = cli_load_scene(scene_name, stem, sizeof stem);
+  int code = EXIT_USAGE;
+  glint_scene *scene = cli_load_scene(scene_name, stem, sizeof stem, &code);
   if (!scene)
-    return EXIT_USAGE;
+    return code;
   glint_render_settings rs = *base;
   glint_scene_info info;
   glint_scene_get_info(scene, &info);

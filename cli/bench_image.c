@@ -68,9 +68,10 @@ int bench_time_to_image(char **scenes, int nscenes,
   int status = times ? 0 : 1;
   for (int s = 0; s < nscenes && status == 0; s++) {
     char stem[256];
-    glint_scene *scene = cli_load_scene(scenes[s], stem, sizeof stem);
+    int code = EXIT_USAGE;
+    glint_scene *scene = cli_load_scene(scenes[s], stem, sizeof stem, &code);
     if (!scene) {
-      status = EXIT_USAGE;
+      status = code;
       break;
     }
     char *argv[] = {"/proc/self/exe",

@@ -80,14 +80,15 @@ typedef struct compare_options {
 int compare_parse(int argc, char **argv, compare_options *options);
 
 /* Loads a built-in scene by name, or a scene file when the argument names
- * one (it has a '.' or a '/'); prints one message and returns NULL on error.
+ * one (it has a '.' or a '/'); prints one message and returns NULL on
+ * error, with the exit status in *exit_code (EXIT_MEMORY or EXIT_USAGE).
  * `stem` receives the name to derive an output file from. An animated scene
  * comes still, as its first frame (glint_scene_at_time at 0) ... */
 struct glint_scene *cli_load_scene(const char *arg, char *stem,
-                                   unsigned long stem_size);
+                                   unsigned long stem_size, int *exit_code);
 /* ... or, from this one, with its animation. */
 struct glint_scene *cli_load_animation(const char *arg, char *stem,
-                                       unsigned long stem_size);
+                                       unsigned long stem_size, int *exit_code);
 
 /* Finished tiles into an image writer, which encodes while the rest of the
  * frame renders (a glint_tile_fn; the origin is the region's, as tiles come

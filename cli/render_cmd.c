@@ -182,8 +182,8 @@ double cli_peak_rss_mib(void) {
 }
 
 glint_scene *cli_load_scene(const char *arg, char *stem,
-                            unsigned long stem_size) {
-  glint_scene *scene = cli_load_animation(arg, stem, stem_size);
+                            unsigned long stem_size, int *exit_code) {
+  glint_scene *scene = cli_load_animation(arg, stem, stem_size, exit_code);
   glint_animation animation;
   if (!scene || !glint_scene_get_animation(scene, &animation))
     return scene;
@@ -194,13 +194,14 @@ glint_scene *cli_load_scene(const char *arg, char *stem,
   glint_scene_destroy(scene);
   if (st) {
     cli_error("%s: %s", arg, err.message);
+    *exit_code = cli_exit_code(st);
     return NULL;
   }
   return still;
 }
 
 glint_scene *cli_load_animation(const char *arg, char *stem,
-                                unsigned long stem_size) {
+                                unsigned long stem_size, int *exit_code) {
   glint_error err;
   glint_scene *scene = NULL;
   int is_file = strchr(arg, '.') != NULL || strchr(arg, '/') != NULL;
@@ -208,6 +209,7 @@ glint_scene *cli_load_animation(const char *arg, char *stem,
                             : glint_scene_builtin(arg, &scene, &err);
   if (st) {
     cli_error("%s", err.message);
+    *exit_code = cli_exit_code(st);
     return NULL;
   }
   /* The stem: the file's base name without its extension. */
@@ -547,12 +549,13 @@ int cmd_render(int argc, char **argv) {
   char stem[256], default_output[300];
   command_times times;
   double t0 = cli_now();
-  glint_scene *scene = o.frames
-                           ? cli_load_animation(scene_arg, stem, sizeof stem)
-                           : cli_load_scene(scene_arg, stem, sizeof stem);
+  int load_status = EXIT_USAGE;
+  glint_scene *scene =
+      o.frames ? cli_load_animation(scene_arg, stem, sizeof stem, &load_status)
+               : cli_load_scene(scene_arg, stem, sizeof stem, &load_status);
   times.load = cli_now() - t0;
   if (!scene)
-    return EXIT_USAGE;
+    return load_status;
   if (o.frames)
     return render_frames(scene, &o, stem);
   if (!output) {
@@ -578,13 +581,16 @@ int cmd_render(int argc, char **argv) {
   cli_tile_sink sink = {NULL, rs.region_x, rs.region_y, 0, {0}};
   int out_w, out_h;
   output_size(scene, &rs, &out_w, &out_h);
-  if (!to_stdout && (film_output ? glint_film_check_writable(output, &err)
-                                 : glint_image_writer_open(
-                                       output, out_w, out_h, rs.gamma,
-                                       png_compression, &sink.writer, &err))) {
+  glint_status opened =
+      to_stdout ? GLINT_OK
+      : film_output
+          ? glint_film_check_writable(output, &err)
+          : glint_image_writer_open(output, out_w, out_h, rs.gamma,
+                                    png_compression, &sink.writer, &err);
+  if (opened) {
     cli_error("%s", err.message);
     glint_scene_destroy(scene);
-    return EXIT_USAGE;
+    return cli_exit_code(opened);
   }
 
   cli_catch_stop_signals(); /* from here on Ctrl-C cancels and says so */
@@ -614,7 +620,7 @@ int cmd_render(int argc, char **argv) {
   }
   if (st) {
     cli_error("%s", err.message);
-    return st == GLINT_E_MEMORY ? 1 : EXIT_USAGE;
+    return cli_exit_code(st);
   }
 
   /* A stop signal from here on lets the file be written whole (the handler
@@ -629,7 +635,7 @@ int cmd_render(int argc, char **argv) {
   glint_film_destroy(film);
   if (st) {
     cli_error("%s", err.message);
-    return EXIT_USAGE;
+    return cli_exit_code(st);
   }
   if (stop_signal) {
     cli_error("interrupted after %s was written",

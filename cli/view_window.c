@@ -625,10 +625,11 @@ int view_run(const view_options *o) {
   v.user_scale = v.auto_scale = 1;
   if (o->script_path && !(v.script = view_script_load(o->script_path)))
     return EXIT_USAGE;
-  v.scene = cli_load_scene(o->scene, v.stem, sizeof v.stem);
+  int code = EXIT_USAGE;
+  v.scene = cli_load_scene(o->scene, v.stem, sizeof v.stem, &code);
   if (!v.scene) {
     view_script_free(v.script);
-    return EXIT_USAGE;
+    return code;
   }
   v.is_file = strchr(o->scene, '.') || strchr(o->scene, '/');
   if (v.is_file)

@@ -627,6 +627,31 @@ static void a_closed_pipe_is_an_error(void **state) {
   assert_int_equal(WEXITSTATUS(status), 2);
 }
 
+/* Memory that cannot be had is exit status 1 (glint --help), from every
+ * place that asks for it: the image, a scene's meshes. (Not under
+ * AddressSanitizer, which reserves terabytes of address space.) */
+static void out_of_memory_exits_1(void **state) {
+  (void)state;
+#if defined(__SANITIZE_ADDRESS__)
+  skip();
+#elif defined(__has_feature)
+#if __has_feature(address_sanitizer)
+  skip();
+#endif
+#endif
+  struct rlimit saved, small;
+  getrlimit(RLIMIT_AS, &saved);
+  small = saved;
+  small.rlim_cur = (rlim_t)600 << 20; /* a 16384x16384 image needs more */
+  setrlimit(RLIMIT_AS, &small);
+  int rc = run("render", "whitted", "-W", "16384", "-H", "16384", "-d", "1",
+               "-s", "1", "-o", "big.png", NULL);
+  setrlimit(RLIMIT_AS, &saved);
+  assert_int_equal(rc, 1);
+  assert_non_null(strstr(err, "out of memory"));
+  assert_true(folder_is_empty());
+}
+
 /* The bytes of NAME in the test folder; *size its length. */
 static char *file_bytes(const char *name, long *size) {
   char p[256];
@@ -950,6 +975,7 @@ int main(void) {
       cmocka_unit_test(bench_time_to_image),
       cmocka_unit_test(bench_errors),
       cmocka_unit_test(a_closed_pipe_is_an_error),
+      cmocka_unit_test(out_of_memory_exits_1),
       cmocka_unit_test(bench_plot_names_are_not_commands),
       cmocka_unit_test(bench_thread_columns),
       cmocka_unit_test(missing_instruction_sets),

@@ -71,8 +71,8 @@ static void info_bounds_every_shape(void **state) {
   ASSERT_OK(glint_scene_add_sphere(s, (V){1, 2, 3}, 0.5, m, NULL));
   ASSERT_OK(glint_scene_add_triangle(s, (V){-4, 0, 0}, (V){0, 7, 0},
                                      (V){0, 0, 2}, m, NULL));
-  ASSERT_OK(glint_scene_add_cone(s, (V){0, 0, -3}, 0.25, (V){0, 0, -1}, 1, m,
-                                 NULL));
+  ASSERT_OK(
+      glint_scene_add_cone(s, (V){0, 0, -3}, 0.25, (V){0, 0, -1}, 1, m, NULL));
   ASSERT_OK(glint_scene_add_plane(s, (V){0, 1, 0}, (V){0, -100, 0}, m, NULL));
   glint_scene_get_info(s, &info);
   assert_true(info.bounds_min.x == -4 && info.bounds_max.x == 1.5);

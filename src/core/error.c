@@ -1,5 +1,6 @@
 #include "core/error.h"
 
+#include <errno.h>
 #include <stdarg.h>
 #include <stdio.h>
 
@@ -13,6 +14,10 @@ glint_status gli_fail(glint_error *error, glint_status status,
     error->status = status;
   }
   return status;
+}
+
+glint_status gli_errno_status(int err) {
+  return err == ENOMEM ? GLINT_E_MEMORY : GLINT_E_IO;
 }
 
 void gli_error_clear(glint_error *error) {

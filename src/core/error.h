@@ -15,6 +15,10 @@
 glint_status gli_fail(glint_error *error, glint_status status,
                       const char *format, ...) GLI_PRINTF(3, 4);
 
+/* The status of a failed system call: GLINT_E_MEMORY where it ran out of
+ * memory (ENOMEM), GLINT_E_IO otherwise. */
+glint_status gli_errno_status(int err);
+
 /* Clears an error record (status GLINT_OK, empty message). */
 void gli_error_clear(glint_error *error);
 

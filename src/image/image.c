@@ -180,8 +180,8 @@ glint_status gli_atomic_commit(gli_atomic_file *file, int failed,
     unlink(file->temp);
   free(file->temp);
   if (bad)
-    return gli_fail(error, GLINT_E_IO, "%s: writing failed: %s", file->path,
-                    saved ? strerror(saved) : "encoder error");
+    return gli_fail(error, gli_errno_status(saved), "%s: writing failed: %s",
+                    file->path, saved ? strerror(saved) : "encoder error");
   return GLINT_OK;
 }
 

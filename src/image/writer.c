@@ -261,7 +261,8 @@ glint_status glint_image_writer_put(glint_image_writer *w,
     return gli_fail(error, GLINT_E_ARGUMENT,
                     "%s: a tile repeated pixels already given", w->file.path);
   if (failed)
-    return gli_fail(error, GLINT_E_IO, "%s: writing failed: %s", w->file.path,
+    return gli_fail(error, gli_errno_status(failed_errno),
+                    "%s: writing failed: %s", w->file.path,
                     failed_errno ? strerror(failed_errno) : "encoder error");
   return GLINT_OK;
 }
@@ -281,9 +282,9 @@ static glint_status incomplete(const glint_image_writer *w,
                                glint_error *error) {
   const char *path = w->file.path;
   if (w->failed)
-    return gli_fail(error, GLINT_E_IO, "%s: writing failed: %s", path,
-                    w->failed_errno ? strerror(w->failed_errno)
-                                    : "encoder error");
+    return gli_fail(
+        error, gli_errno_status(w->failed_errno), "%s: writing failed: %s",
+        path, w->failed_errno ? strerror(w->failed_errno) : "encoder error");
   if (w->bad_put)
     return gli_fail(error, GLINT_E_ARGUMENT,
                     "%s: tiles outside the image or repeated", path);

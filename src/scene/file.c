@@ -15,7 +15,7 @@ static glint_status io_fail(glint_error *e, const char *path, const char *what,
   char buf[256];
   if (strerror_r(err, buf, sizeof buf) != 0)
     snprintf(buf, sizeof buf, "error %d", err);
-  return gli_fail(e, GLINT_E_IO, "%s: %s%s", path, what, buf);
+  return gli_fail(e, gli_errno_status(err), "%s: %s%s", path, what, buf);
 }
 
 static glint_status too_large(glint_error *e, const char *path,
