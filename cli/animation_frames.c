@@ -128,6 +128,31 @@ int frame_file_written(const char *path) {
   return stat(path, &sb) == 0 && S_ISREG(sb.st_mode) && sb.st_size > 0;
 }
 
+/* Every frame's camera and objects, before any is rendered: a spline can
+ * overshoot between valid keys (a scale below 0, a field of view over 180
+ * degrees), and a run that found it at frame 2 had written frames 0 and 1
+ * over what was there. */
+static int check_frames(const glint_scene *scene, const char *scene_name,
+                        int first, int last, const glint_animation *anim) {
+  int moving = glint_scene_has_motion(scene);
+  for (int f = first; f <= last; f++) {
+    double time = (double)(f - anim->first_frame) / anim->fps;
+    glint_error err;
+    glint_camera camera;
+    glint_scene *still = NULL;
+    glint_status st = moving
+                          ? glint_scene_at_time(scene, time, &still, &err)
+                          : glint_scene_camera_at(scene, time, &camera, &err);
+    glint_scene_destroy(still);
+    if (st) {
+      cli_error("%s: frame %d (t = %g s): %s; no frame was written", scene_name,
+                f, time, err.message);
+      return -1;
+    }
+  }
+  return 0;
+}
+
 int frame_files_init(frame_files *files, const glint_scene *scene,
                      const render_options *o, const char *stem,
                      glint_animation *anim) {
@@ -143,6 +168,8 @@ int frame_files_init(frame_files *files, const glint_scene *scene,
               o->last_frame, scene_name, anim->first_frame, anim->last_frame);
     return -1;
   }
+  if (check_frames(scene, scene_name, o->first_frame, o->last_frame, anim))
+    return -1;
   files->name = o->output;
   if (!files->name) {
     snprintf(files->default_name, sizeof files->default_name, "%s.png", stem);

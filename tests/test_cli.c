@@ -123,6 +123,16 @@ static int folder_is_empty(void) {
       fail_msg("a file was written on error");                                 \
   } while (0)
 
+/* EXPECT_USAGE_ERROR where the folder holds files of the test's own. */
+#define EXPECT_USAGE_ERROR_KEEPING(text, ...)                                  \
+  do {                                                                         \
+    int rc_ = run(__VA_ARGS__, NULL);                                          \
+    if (rc_ != 2)                                                              \
+      fail_msg("exit %d, want 2; stderr: %s", rc_, err);                       \
+    if (!strstr(err, text))                                                    \
+      fail_msg("stderr '%s' lacks '%s'", err, text);                           \
+  } while (0)
+
 static void usage_errors(void **state) {
   (void)state;
   EXPECT_USAGE_ERROR("unknown command 'paint'", "paint");
@@ -834,6 +844,29 @@ static void frames_with_moving_objects(void **state) {
            "still.png move.json moved.json",
            dir);
   assert_int_equal(system(cmd), 0);
+  /* A spline that overshoots between valid keys (the scale below 0 at
+   * frame 1 of 0-3) is found before any frame is written: frame 0's file
+   * keeps what it held. */
+  snprintf(text, sizeof text,
+           "%s {\"type\": \"sphere\", \"center\": [0, 1, 0], \"radius\": 1, "
+           "\"material\": \"m\", \"transform\": {\"interpolation\": "
+           "\"catmull-rom\", \"keys\": [{\"time\": 0, \"scale\": 0.001}, "
+           "{\"time\": 1, \"scale\": 0.001}, {\"time\": 1.01, \"scale\": "
+           "1}]}}], \"animation\": {\"fps\": 3, \"frames\": [0, 3]}}",
+           head);
+  put_text("overshoot.json", text);
+  put_text("o0.png", "precious");
+  EXPECT_USAGE_ERROR_KEEPING(
+      "overshoot.json: frame 1 (t = 0.333333 s): object 1's motion at "
+      "0.333333 s has a scale of",
+      "render", "overshoot.json", "--frames", "0-3", "-o", "o%d.png");
+  long n;
+  char *kept = file_bytes("o0.png", &n);
+  assert_true(n == 8 && memcmp(kept, "precious", 8) == 0);
+  free(kept);
+  snprintf(cmd, sizeof cmd, "cd '%s' && rm -f o0.png overshoot.json", dir);
+  assert_int_equal(system(cmd), 0);
+  assert_true(folder_is_empty());
 }
 
 /* Runs `glint render ARGS... -o keep.png` over an existing keep.png, sends
