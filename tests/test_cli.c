@@ -662,6 +662,28 @@ static void out_of_memory_exits_1(void **state) {
   assert_true(folder_is_empty());
 }
 
+/* A new image has 0666 less the umask; one written over keeps its own
+ * permissions. */
+static void written_files_keep_their_permissions(void **state) {
+  (void)state;
+  char p[256];
+  snprintf(p, sizeof p, "%s/mode.png", dir);
+  mode_t saved = umask(027);
+  int rc = run("render", "-W", "8", "-H", "8", "-q", "-o", "mode.png", NULL);
+  umask(saved);
+  assert_int_equal(rc, 0);
+  struct stat sb;
+  assert_int_equal(stat(p, &sb), 0);
+  assert_int_equal(sb.st_mode & 07777, 0640);
+  assert_int_equal(chmod(p, 0604), 0);
+  assert_int_equal(
+      run("render", "-W", "8", "-H", "8", "-q", "-o", "mode.png", NULL), 0);
+  assert_int_equal(stat(p, &sb), 0);
+  assert_int_equal(sb.st_mode & 07777, 0604);
+  unlink(p);
+  assert_true(folder_is_empty());
+}
+
 /* The bytes of NAME in the test folder; *size its length. */
 static char *file_bytes(const char *name, long *size) {
   char p[256];
@@ -1008,6 +1030,7 @@ int main(void) {
       cmocka_unit_test(bench_time_to_image),
       cmocka_unit_test(bench_errors),
       cmocka_unit_test(a_closed_pipe_is_an_error),
+      cmocka_unit_test(written_files_keep_their_permissions),
       cmocka_unit_test(out_of_memory_exits_1),
       cmocka_unit_test(bench_plot_names_are_not_commands),
       cmocka_unit_test(bench_thread_columns),

@@ -10,9 +10,12 @@
 #include <limits.h>
 #include <fcntl.h>
 #include <math.h>
+#include <stdint.h>
 #include <stdlib.h>
 #include <string.h>
 #include <strings.h>
+#include <time.h>
+#include <sys/random.h>
 #include <sys/stat.h>
 #include <unistd.h>
 
@@ -81,9 +84,9 @@ typedef struct encode_job {
 #define NAME_MAX 255
 #endif
 
-/* "dir/name.png" -> "dir/.name.png.XXXXXX" for mkstemp; of a name too long
- * for the dot and the suffix (248 bytes or more), only its first
- * NAME_MAX - 8 bytes go into the temporary name. */
+/* "dir/name.png" -> "dir/.name.png.XXXXXX" (create_exclusive); of a name too
+ * long for the dot and the suffix (248 bytes or more), only its first NAME_MAX
+ * - 8 bytes go into the temporary name. */
 static char *temp_template(const char *path) {
   const char *slash = strrchr(path, '/');
   size_t dirlen = slash ? (size_t)(slash - path) + 1 : 0;
@@ -96,6 +99,37 @@ static char *temp_template(const char *path) {
   if (t)
     snprintf(t, n, "%.*s.%.*s.XXXXXX", (int)dirlen, path, (int)baselen, base);
   return t;
+}
+
+/* Creates `name`, whose last six characters are XXXXXX, replaced by
+ * random ones until no file has that name; returns its descriptor. Not
+ * mkstemp: its 0600 would need the umask to be read, which only setting
+ * it does, a change every thread of the process sees (a file another
+ * thread made meanwhile would get mode 0666). With mode 0666 here the
+ * kernel applies the umask. */
+static int create_exclusive(char *name) {
+  static const char letters[] =
+      "abcdefghijklmnopqrstuvwxyzABCDEFGHIJKLMNOPQRSTUVWXYZ0123456789";
+  char *x = name + strlen(name) - 6;
+  for (int attempt = 0; attempt < 1000; attempt++) {
+    unsigned char r[6];
+    if (getrandom(r, sizeof r, 0) != (ssize_t)sizeof r) {
+      /* no entropy to be had: a mix of the clock and the attempt */
+      struct timespec ts;
+      clock_gettime(CLOCK_MONOTONIC, &ts);
+      uint64_t v = (uint64_t)ts.tv_nsec * 2654435761u + (uint64_t)attempt +
+                   (uint64_t)getpid() * 40503u;
+      for (int k = 0; k < 6; k++, v >>= 8)
+        r[k] = (unsigned char)v;
+    }
+    for (int k = 0; k < 6; k++)
+      x[k] = letters[r[k] % (sizeof letters - 1)];
+    int fd = open(name, O_WRONLY | O_CREAT | O_EXCL | O_CLOEXEC, 0666);
+    if (fd >= 0 || errno != EEXIST)
+      return fd;
+  }
+  errno = EEXIST;
+  return -1;
 }
 
 /* Creates the temporary file beside `path`; returns its descriptor. */
@@ -117,7 +151,7 @@ static int open_temp(const char *path, char **temp, glint_error *error) {
     gli_fail(error, GLINT_E_MEMORY, "out of memory");
     return -1;
   }
-  int fd = mkstemp(*temp);
+  int fd = create_exclusive(*temp);
   if (fd < 0) {
     gli_fail(error, GLINT_E_IO, "%s: cannot write here: %s", path,
              strerror(errno));
@@ -149,10 +183,11 @@ glint_status gli_atomic_open(const char *path, gli_atomic_file *file,
   int fd = open_temp(path, &file->temp, error);
   if (fd < 0)
     return error ? error->status : GLINT_E_IO;
-  /* mkstemp creates 0600; give the file the usual permissions. */
-  mode_t mask = umask(0);
-  umask(mask);
-  fchmod(fd, 0666 & ~mask);
+  /* A file replaced keeps its permissions (a new one has 0666 less the
+   * umask, as create_exclusive made it). */
+  struct stat sb;
+  if (stat(path, &sb) == 0 && S_ISREG(sb.st_mode))
+    fchmod(fd, sb.st_mode & 07777);
   file->path = path;
   file->f = fdopen(fd, "wb");
   if (!file->f) {
