@@ -497,7 +497,13 @@ static const bad_case syntax_cases[] = {
     {"{'a\\q': 1}", ":1:4: JSON syntax error: an invalid escape sequence"},
     /* Columns count characters: the é is two bytes. */
     {"{'\xc3\xa9': x}", ":1:7: JSON syntax error: found 'x'"},
-    {"{'a': \xc3\xa9}", ":1:7: JSON syntax error: found '\xc3\xa9'"},
+    {"{'a': \xc3\xa9}", ":1:7: JSON syntax error: found '\xc3\xa9' (U+00E9)"},
+    /* characters that look like nothing say which they are */
+    {"\xef\xbb\xbf\xef\xbb\xbf{}",
+     ":1:2: JSON syntax error: found '\xef\xbb\xbf' (U+FEFF)"},
+    {"{'a':\xc2\xa0"
+     "1}",
+     ":1:6: JSON syntax error: found '\xc2\xa0' (U+00A0)"},
     {"{'a': \xc3}", ":1:7: JSON syntax error: found the byte 0xc3"},
     {"{\r\n\t'a': [1 2]}", ":2:10: JSON syntax error: found '2'"},
 };

@@ -8,14 +8,35 @@
 #include <string.h>
 #include <unistd.h>
 
+/* Where the encoder writes, and why a write failed (an errno; 0: none). */
+typedef struct exr_sink {
+  FILE *f;
+  int error;
+} exr_sink;
+
 static int64_t write_at(exr_const_context_t ctxt, void *user,
                         const void *buffer, uint64_t size, uint64_t offset,
                         exr_stream_error_func_ptr_t error_cb) {
   (void)ctxt;
   (void)error_cb;
-  FILE *f = user;
-  ssize_t n = pwrite(fileno(f), buffer, size, (off_t)offset);
-  return n < 0 ? -1 : (int64_t)n;
+  exr_sink *sink = user;
+  /* All of it, or the reason it could not be: a short write (a disk
+   * filling, a file-size limit reached) is followed by one that says
+   * why. */
+  const char *bytes = buffer;
+  uint64_t done = 0;
+  while (done < size) {
+    ssize_t n = pwrite(fileno(sink->f), bytes + done, size - done,
+                       (off_t)(offset + done));
+    if (n < 0 && errno == EINTR)
+      continue;
+    if (n <= 0) {
+      sink->error = n < 0 ? errno : ENOSPC;
+      return -1;
+    }
+    done += (uint64_t)n;
+  }
+  return (int64_t)done;
 }
 
 /* Library messages stay out of stderr: the caller reports the failure. */
@@ -70,7 +91,8 @@ int gli_exr_encode(const glint_film *film, FILE *f) {
   if (fflush(f) != 0)
     return -1;
   exr_context_initializer_t init = EXR_DEFAULT_CONTEXT_INITIALIZER;
-  init.user_data = f;
+  exr_sink sink = {f, 0};
+  init.user_data = &sink;
   init.write_fn = write_at;
   init.error_handler_fn = quiet;
   exr_context_t ctx = NULL;
@@ -94,7 +116,7 @@ int gli_exr_encode(const glint_film *film, FILE *f) {
   if (rv == EXR_ERR_SUCCESS)
     rv = done;
   if (rv != EXR_ERR_SUCCESS) {
-    errno = 0;
+    errno = sink.error; /* 0 when the encoder itself failed */
     return -1;
   }
   /* The stream's own position never moved: put it at the end, so the

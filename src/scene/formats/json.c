@@ -1054,7 +1054,14 @@ static void syntax_hint(const char *data, const char **at, char *out,
   } else if (c > 0x20 && c < 0x7F) {
     snprintf(out, size, "found '%c'", *p);
   } else if (c >= 0xC2 && c <= 0xF4 && utf8_length(p) > 0) {
-    snprintf(out, size, "found '%.*s'", utf8_length(p), p);
+    /* with its code point: U+FEFF (a second byte-order mark) or U+00A0
+     * (a no-break space) look like nothing in a terminal */
+    int n = utf8_length(p);
+    const unsigned char *u = (const unsigned char *)p;
+    unsigned cp = u[0] & (0x7Fu >> n);
+    for (int i = 1; i < n; i++)
+      cp = cp << 6 | (u[i] & 0x3Fu);
+    snprintf(out, size, "found '%.*s' (U+%04X)", n, p, cp);
   } else {
     snprintf(out, size, "found the byte 0x%02x", c);
   }
