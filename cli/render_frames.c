@@ -40,7 +40,7 @@ int render_frames(glint_scene *scene, const render_options *o,
     cli_error("%s", err.message);
     glint_world_destroy(world);
     glint_scene_destroy(scene);
-    return EXIT_USAGE;
+    return cli_exit_code(err.status);
   }
   glint_world_destroy(world);
   glint_scene_info info;
@@ -83,7 +83,7 @@ int render_frames(glint_scene *scene, const render_options *o,
         glint_image_writer_open(path, w, h, rs->gamma, o->png_compression,
                                 &sink.writer, &err)) {
       cli_error("frame %d: %s", f, err.message);
-      status = EXIT_USAGE;
+      status = cli_exit_code(err.status);
       break;
     }
     cli_remove_on_stop(sink.writer);
@@ -102,12 +102,12 @@ int render_frames(glint_scene *scene, const render_options *o,
       glint_image_writer_discard(sink.writer);
       cli_error("frame %d: %s", f,
                 sink.failed ? sink.error.message : err.message);
-      status = EXIT_USAGE;
+      status = cli_exit_code(sink.failed ? sink.error.status : rst);
       break;
     }
     if (glint_image_writer_finish(sink.writer, &err)) {
       cli_error("frame %d: %s", f, err.message);
-      status = EXIT_USAGE;
+      status = cli_exit_code(err.status);
       break;
     }
     double seconds = cli_now() - t0;
