@@ -6,6 +6,11 @@
  * and, when the caller passes a glint_error, a readable message saying what
  * went wrong (naming the file and line for scene files). The library keeps no
  * global mutable state: two scenes rendered on two threads never interfere.
+ * A NULL where a pointer is required is refused like any bad argument
+ * (GLINT_E_ARGUMENT, "FUNCTION: ARGUMENT is NULL"); the functions that
+ * cannot fail answer it with nothing (0, NULL, an empty glint_scene_info),
+ * and the destroy functions accept it. Where a pointer may be NULL, its
+ * function says so.
  *
  * The renderer implements the specification distilled from J. Kučera,
  * "Ray-tracing using SSE" (FIT BUT Brno, 2010): the extended Phong (Whitted)
@@ -508,7 +513,8 @@ typedef struct glint_stats {
   uint64_t stream_bytes_per_thread;
 } glint_stats;
 
-/* Renders `scene` into a new image. `stats` may be NULL. */
+/* Renders `scene` into a new image. `settings` may be NULL (the defaults,
+ * glint_render_settings_default), as may `stats`. */
 glint_status glint_render(const glint_scene *scene,
                           const glint_render_settings *settings,
                           glint_image **image, glint_stats *stats,
@@ -608,7 +614,8 @@ void glint_world_get_info(const glint_world *world, glint_scene_info *info);
 /* A renderer owns a pool of worker threads, started once, and their scratch
  * memory. It is created from a world and the settings that stay fixed for
  * its life: backend, math, rcp_newton, accel and threads. Its other fields
- * (size, region, depth, spp, progress) are the defaults of each frame. */
+ * (size, region, depth, spp, progress) are the defaults of each frame.
+ * `settings` may be NULL: glint_render_settings_default's. */
 typedef struct glint_renderer glint_renderer;
 
 glint_status glint_renderer_create(glint_world *world,

@@ -105,6 +105,17 @@ static void orbit(void **state) {
   at(s, 47.0 / 24, &c);
   near(c.from.x, 1 + 6 * sin(2 * pi * 47 / 48), "from.x at the last frame");
   glint_scene_destroy(s);
+  /* Frames up to INT_MAX through the API (JSON stops at 99999999): the
+   * span is counted without overflowing int (UBSan saw last - first + 1
+   * overflow) */
+  s = load("{\"camera\": {\"from\": [0, 0, 5], \"at\": [0, 0, 0]}}");
+  glint_animation frames = {1, 0, 2147483647};
+  ASSERT_OK(glint_scene_set_animation(s, &frames, &e_));
+  ASSERT_OK(
+      glint_scene_set_camera_orbit(s, (glint_vec3){0, 0, 0}, 6, 0, 360, &e_));
+  at(s, 2147483648.0 / 2, &c); /* half-way round: the -z side */
+  assert_true(fabs(c.from.z + 6) < 1e-6);
+  glint_scene_destroy(s);
 }
 
 static void world_keeps_the_animation(void **state) {

@@ -367,9 +367,24 @@ static void refuses_bad_tiles(void **state) {
       glint_image_writer_open(path, W, H, 1, GLINT_PNG_FAST, &writer, &e_));
   ASSERT_OK(put_rect(writer, film, 0, 0, W, 10, &e_));
   assert_int_equal(put_rect(writer, film, 5, 5, 10, 10, &e), GLINT_E_ARGUMENT);
-  assert_non_null(strstr(e.message, "repeated"));
+  assert_non_null(strstr(e.message, "tile 10x10 at (5, 5) repeats pixels"));
   /* The writer stays failed: later puts and finish say so. */
   assert_int_equal(put_rect(writer, film, 0, 10, W, H - 10, &e),
+                   GLINT_E_ARGUMENT);
+  assert_non_null(strstr(e.message, "an earlier tile was refused"));
+  assert_int_equal(glint_image_writer_finish(writer, &e), GLINT_E_ARGUMENT);
+  assert_int_equal(access(path, F_OK), -1);
+
+  /* The left half of every row twice is not a whole image (counted by
+   * pixels a row, it passed for one, and the right half's unset bytes
+   * were written). */
+  ASSERT_OK(
+      glint_image_writer_open(path, W, H, 1, GLINT_PNG_FAST, &writer, &e_));
+  ASSERT_OK(put_rect(writer, film, 0, 0, W / 2, H, &e_));
+  assert_int_equal(put_rect(writer, film, 0, 0, W / 2, H, &e),
+                   GLINT_E_ARGUMENT);
+  assert_non_null(strstr(e.message, "repeats pixels"));
+  assert_int_equal(put_rect(writer, film, W / 2, 0, W - W / 2, H, &e),
                    GLINT_E_ARGUMENT);
   assert_int_equal(glint_image_writer_finish(writer, &e), GLINT_E_ARGUMENT);
   assert_int_equal(access(path, F_OK), -1);
@@ -394,7 +409,7 @@ static void expect_open_error(const char *path, int w, int h, double gamma,
 static void refuses_bad_opens(void **state) {
   (void)state;
   expect_open_error(in_folder("x.tiff"), W, H, 1, 0, "unknown image format");
-  expect_open_error(NULL, W, H, 1, 0, "unknown image format");
+  expect_open_error(NULL, W, H, 1, 0, "glint_image_writer_open: path is NULL");
   expect_open_error("/nonexistent-folder/x.png", W, H, 1, 0,
                     "cannot write here");
   expect_open_error(folder, W, H, 1, 0, "unknown image format");
@@ -414,6 +429,15 @@ static void refuses_bad_opens(void **state) {
   expect_open_error(in_folder("x.ppm"), W, H, 1e308, 0,
                     "gamma 1e+308 is outside 0.01..100");
   expect_open_error(in_folder("x.png"), W, H, 1, 7, "unknown PNG compression");
+  /* into memory: a format that is none of the three */
+  glint_image_writer *writer = NULL;
+  glint_error e;
+  assert_int_equal(glint_image_writer_open_memory((glint_image_format)42, W, H,
+                                                  1, GLINT_PNG_FAST, &writer,
+                                                  &e),
+                   GLINT_E_ARGUMENT);
+  assert_non_null(strstr(e.message, "unknown image format 42"));
+  assert_null(writer);
   assert_int_equal(leftovers(), 0);
 }
 

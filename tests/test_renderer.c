@@ -11,6 +11,7 @@
  *  - each bad argument is refused with a message. */
 #include "test_util.h"
 
+#include <limits.h>
 #include <math.h>
 #include <pthread.h>
 #include <stdio.h>
@@ -277,7 +278,9 @@ static void bad_arguments_are_refused(void **state) {
   glint_film *film, *small;
   glint_error e;
   expect_error(glint_world_commit(NULL, &world, NULL, &e), GLINT_E_ARGUMENT, &e,
-               "no scene");
+               "glint_world_commit: scene is NULL");
+  expect_error(glint_world_commit(scene, NULL, NULL, &e), GLINT_E_ARGUMENT, &e,
+               "glint_world_commit: world is NULL");
   ASSERT_OK(glint_world_commit(scene, &world, NULL, &e_));
   glint_render_settings rs = settings_for(GLINT_BACKEND_AUTO);
   rs.max_depth = 0;
@@ -285,7 +288,7 @@ static void bad_arguments_are_refused(void **state) {
                GLINT_E_ARGUMENT, &e, "depth 0");
   rs = settings_for(GLINT_BACKEND_AUTO);
   expect_error(glint_renderer_create(NULL, &rs, &renderer, &e),
-               GLINT_E_ARGUMENT, &e, "no world");
+               GLINT_E_ARGUMENT, &e, "glint_renderer_create: world is NULL");
   ASSERT_OK(glint_renderer_create(world, &rs, &renderer, &e_));
   ASSERT_OK(glint_film_create(W, H, &film, &e_));
   ASSERT_OK(glint_film_create(W / 2, H, &small, &e_));
@@ -298,6 +301,17 @@ static void bad_arguments_are_refused(void **state) {
   fs.spp = GLINT_MAX_SPP + 1;
   expect_error(glint_renderer_render(renderer, &fs, film, NULL, &e),
                GLINT_E_ARGUMENT, &e, "samples per pixel");
+  /* sample ranges: each bound named, no int overflow in the message */
+  glint_frame_settings_default(&fs);
+  fs.spp = 5, fs.sample_first = 2, fs.sample_count = INT_MAX;
+  expect_error(glint_renderer_render(renderer, &fs, film, NULL, &e),
+               GLINT_E_ARGUMENT, &e, "sample_count 2147483647");
+  fs.sample_count = -1;
+  expect_error(glint_renderer_render(renderer, &fs, film, NULL, &e),
+               GLINT_E_ARGUMENT, &e, "sample_count -1");
+  fs.sample_first = 5, fs.sample_count = 0;
+  expect_error(glint_renderer_render(renderer, &fs, film, NULL, &e),
+               GLINT_E_ARGUMENT, &e, "sample_first 5");
   glint_frame_settings_default(&fs);
   fs.region_x = W - 4, fs.region_width = 8, fs.region_height = 8;
   expect_error(glint_renderer_render(renderer, &fs, film, NULL, &e),

@@ -81,6 +81,70 @@ static void info_bounds_every_shape(void **state) {
   glint_scene_destroy(s);
 }
 
+/* NULL where glint.h requires a pointer is refused with the function's
+ * name and the argument's (it crashed before: glint_render rendered the
+ * whole frame first); the functions that cannot fail answer NULL with
+ * nothing. And counts whose products would wrap are refused before use. */
+static void null_and_overflowing_arguments_are_refused(void **state) {
+  (void)state;
+  uint32_t m;
+  glint_scene *s = scene_with_default_material(&m);
+  glint_scene *out;
+  glint_image *im;
+  glint_film *film;
+  glint_backend b;
+  EXPECT_ERR(glint_scene_create(NULL, &e_), GLINT_E_ARGUMENT,
+             "glint_scene_create: scene is NULL");
+  EXPECT_ERR(glint_scene_set_camera(s, NULL, &e_), GLINT_E_ARGUMENT,
+             "glint_scene_set_camera: camera is NULL");
+  EXPECT_ERR(glint_scene_add_material(s, NULL, NULL, &e_), GLINT_E_ARGUMENT,
+             "material is NULL");
+  EXPECT_ERR(glint_scene_add_sphere(NULL, (V){0, 0, 0}, 1, m, &e_),
+             GLINT_E_ARGUMENT, "glint_scene_add_sphere: scene is NULL");
+  EXPECT_ERR(glint_scene_builtin(NULL, &out, &e_), GLINT_E_ARGUMENT,
+             "name is NULL");
+  EXPECT_ERR(glint_scene_camera_at(s, 0, NULL, &e_), GLINT_E_ARGUMENT,
+             "camera is NULL");
+  EXPECT_ERR(glint_scene_at_time(NULL, 0, &out, &e_), GLINT_E_ARGUMENT,
+             "scene is NULL");
+  EXPECT_ERR(glint_backend_parse("sse", NULL, &e_), GLINT_E_ARGUMENT,
+             "backend is NULL");
+  EXPECT_ERR(glint_backend_parse(NULL, &b, &e_), GLINT_E_ARGUMENT,
+             "name is NULL");
+  EXPECT_ERR(glint_render(s, NULL, NULL, NULL, &e_), GLINT_E_ARGUMENT,
+             "glint_render: image is NULL");
+  EXPECT_ERR(glint_world_commit(s, NULL, NULL, &e_), GLINT_E_ARGUMENT,
+             "world is NULL");
+  EXPECT_ERR(glint_image_create(4, 4, NULL, &e_), GLINT_E_ARGUMENT,
+             "image is NULL");
+  EXPECT_ERR(glint_image_read(NULL, &im, &e_), GLINT_E_ARGUMENT,
+             "path is NULL");
+  EXPECT_ERR(glint_film_create(4, 4, NULL, &e_), GLINT_E_ARGUMENT,
+             "film is NULL");
+  ASSERT_OK(glint_film_create(4, 4, &film, NULL));
+  EXPECT_ERR(glint_film_to_image(film, 1, NULL, &e_), GLINT_E_ARGUMENT,
+             "image is NULL");
+  EXPECT_ERR(glint_film_write(film, NULL, &e_), GLINT_E_ARGUMENT,
+             "path is NULL");
+  glint_film_destroy(film);
+  assert_int_equal(glint_image_width(NULL), 0);
+  assert_null(glint_image_pixels(NULL));
+  assert_int_equal(glint_image_format_from_path(NULL), GLINT_FORMAT_UNKNOWN);
+  assert_true(glint_image_psnr(NULL, NULL) < 0);
+  assert_int_equal(glint_scene_has_motion(NULL), 0);
+  glint_scene_info info;
+  glint_scene_get_info(NULL, &info);
+  assert_int_equal(info.objects, 0);
+  /* 3 * triangle_count wrapped to 2: two indices were checked and the
+   * third, out of range, read beyond the positions */
+  glint_vec3 pos[3] = {{0, 0, 0}, {1, 0, 0}, {0, 1, 0}};
+  uint32_t idx[3] = {0, 1, 3};
+  glint_mesh mesh = {pos, NULL, 3, idx, SIZE_MAX / 3 + 1};
+  EXPECT_ERR(glint_scene_add_mesh(s, &mesh, m, &e_), GLINT_E_ARGUMENT,
+             "more than a scene holds");
+  glint_scene_destroy(s);
+}
+
 /* Default settings at a size, on one backend. */
 static glint_render_settings settings_for(glint_backend backend, int width,
                                           int height) {
@@ -402,6 +466,7 @@ int main(void) {
   const struct CMUnitTest tests[] = {
       cmocka_unit_test(primitives_refuse_bad_numbers),
       cmocka_unit_test(info_bounds_every_shape),
+      cmocka_unit_test(null_and_overflowing_arguments_are_refused),
       cmocka_unit_test(coordinates_stay_within_the_limit),
       cmocka_unit_test(materials_refuse_bad_values),
       cmocka_unit_test(camera_refuses_degenerate_views),

@@ -19,6 +19,15 @@ glint_status gli_fail(glint_error *error, glint_status status,
  * memory (ENOMEM), GLINT_E_IO otherwise. */
 glint_status gli_errno_status(int err);
 
+/* Refuses a NULL pointer argument p of a public function, naming both by
+ * glint.h's names: "glint_render: image is NULL". */
+#define GLI_NOT_NULL(p, name, error)                                           \
+  do {                                                                         \
+    if (!(p))                                                                  \
+      return gli_fail((error), GLINT_E_ARGUMENT, "%s: %s is NULL", __func__,   \
+                      name);                                                   \
+  } while (0)
+
 /* Clears an error record (status GLINT_OK, empty message). */
 void gli_error_clear(glint_error *error);
 

@@ -13,6 +13,7 @@
 
 glint_status glint_film_create(int w, int h, glint_film **out,
                                glint_error *error) {
+  GLI_NOT_NULL(out, "film", error);
   if (w < 1 || h < 1 || w > GLINT_MAX_DIMENSION || h > GLINT_MAX_DIMENSION)
     return gli_fail(error, GLINT_E_ARGUMENT, "film size %dx%d is outside 1..%d",
                     w, h, GLINT_MAX_DIMENSION);
@@ -38,11 +39,13 @@ void glint_film_destroy(glint_film *film) {
   }
 }
 
-int glint_film_width(const glint_film *film) { return film->width; }
-int glint_film_height(const glint_film *film) { return film->height; }
-float *glint_film_pixels(glint_film *film) { return film->rgb; }
+int glint_film_width(const glint_film *film) { return film ? film->width : 0; }
+int glint_film_height(const glint_film *film) {
+  return film ? film->height : 0;
+}
+float *glint_film_pixels(glint_film *film) { return film ? film->rgb : NULL; }
 const float *glint_film_pixels_const(const glint_film *film) {
-  return film->rgb;
+  return film ? film->rgb : NULL;
 }
 
 glint_status gli_gamma_check(double gamma, glint_error *error) {
@@ -54,6 +57,8 @@ glint_status gli_gamma_check(double gamma, glint_error *error) {
 
 glint_status glint_film_to_image(const glint_film *film, double gamma,
                                  glint_image *image, glint_error *error) {
+  GLI_NOT_NULL(film, "film", error);
+  GLI_NOT_NULL(image, "image", error);
   if (gli_gamma_check(gamma, error))
     return GLINT_E_ARGUMENT;
   if (image->width != film->width || image->height != film->height)
@@ -115,6 +120,7 @@ static glint_status film_writer(const char *path, write_fn *write,
 }
 
 glint_status glint_film_check_writable(const char *path, glint_error *error) {
+  GLI_NOT_NULL(path, "path", error);
   write_fn write = NULL;
   glint_status st = film_writer(path, &write, error);
   return st ? st : gli_check_folder_writable(path, error);
@@ -122,6 +128,8 @@ glint_status glint_film_check_writable(const char *path, glint_error *error) {
 
 glint_status glint_film_write(const glint_film *film, const char *path,
                               glint_error *error) {
+  GLI_NOT_NULL(film, "film", error);
+  GLI_NOT_NULL(path, "path", error);
   write_fn write = NULL;
   glint_status st = film_writer(path, &write, error);
   return st ? st : gli_write_atomically(path, write, film, error);

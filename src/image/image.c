@@ -21,6 +21,7 @@
 
 glint_status glint_image_create(int w, int h, glint_image **out,
                                 glint_error *error) {
+  GLI_NOT_NULL(out, "image", error);
   if (w < 1 || h < 1 || w > GLINT_MAX_DIMENSION || h > GLINT_MAX_DIMENSION)
     return gli_fail(error, GLINT_E_ARGUMENT,
                     "image size %dx%d is outside 1..%d", w, h,
@@ -48,14 +49,16 @@ void glint_image_destroy(glint_image *im) {
   }
 }
 
-int glint_image_width(const glint_image *im) { return im->width; }
-int glint_image_height(const glint_image *im) { return im->height; }
-uint8_t *glint_image_pixels(glint_image *im) { return im->rgb; }
+int glint_image_width(const glint_image *im) { return im ? im->width : 0; }
+int glint_image_height(const glint_image *im) { return im ? im->height : 0; }
+uint8_t *glint_image_pixels(glint_image *im) { return im ? im->rgb : NULL; }
 const uint8_t *glint_image_pixels_const(const glint_image *im) {
-  return im->rgb;
+  return im ? im->rgb : NULL;
 }
 
 glint_image_format glint_image_format_from_path(const char *path) {
+  if (!path)
+    return GLINT_FORMAT_UNKNOWN;
   const char *slash = strrchr(path, '/');
   const char *dot = strrchr(slash ? slash : path, '.');
   if (!dot)
@@ -162,6 +165,7 @@ static int open_temp(const char *path, char **temp, glint_error *error) {
 }
 
 glint_status glint_image_check_writable(const char *path, glint_error *error) {
+  GLI_NOT_NULL(path, "path", error);
   if (glint_image_format_from_path(path) == GLINT_FORMAT_UNKNOWN)
     return unknown_format(path, error);
   return gli_check_folder_writable(path, error);
@@ -268,6 +272,8 @@ static int encode_image(const void *data, FILE *f) {
 glint_status glint_image_write_with(const glint_image *im, const char *path,
                                     glint_png_compression compression,
                                     glint_error *error) {
+  GLI_NOT_NULL(im, "image", error);
+  GLI_NOT_NULL(path, "path", error);
   glint_image_format fmt = glint_image_format_from_path(path);
   if (fmt == GLINT_FORMAT_UNKNOWN)
     return unknown_format(path, error);
@@ -306,6 +312,8 @@ glint_status glint_image_write(const glint_image *im, const char *path,
 
 glint_status glint_image_read(const char *path, glint_image **out,
                               glint_error *error) {
+  GLI_NOT_NULL(path, "path", error);
+  GLI_NOT_NULL(out, "image", error);
   glint_image_format fmt = glint_image_format_from_path(path);
   if (fmt == GLINT_FORMAT_UNKNOWN)
     return unknown_format(path, error);
@@ -321,7 +329,7 @@ glint_status glint_image_read(const char *path, glint_image **out,
 }
 
 double glint_image_psnr(const glint_image *a, const glint_image *b) {
-  if (a->width != b->width || a->height != b->height)
+  if (!a || !b || a->width != b->width || a->height != b->height)
     return -1;
   size_t n = (size_t)a->width * (size_t)a->height * 3;
   double sum = 0;

@@ -24,7 +24,8 @@ struct glint_image_writer {
   char *memory;
   size_t memory_size;
   glint_image image;   /* the 8-bit pixels, filled by put */
-  int *row_pixels;     /* pixels put in each row so far */
+  int *row_pixels;     /* pixels converted in each row so far */
+  uint64_t *given;     /* a bit a pixel: given by a put (under `lock`) */
   gli_png_writer *png; /* PNG only, owned by the encoder thread */
   pthread_t encoder;
   pthread_mutex_t lock; /* guards everything below */
@@ -37,6 +38,26 @@ struct glint_image_writer {
   int failed, failed_errno; /* the encoder could not write */
   int bad_put;              /* a put outside the image or repeated */
 };
+
+/* The bits [from, from + n) of word k, as a mask. */
+static uint64_t span_mask(size_t k, size_t from, size_t n) {
+  size_t lo = from > 64 * k ? from - 64 * k : 0;
+  size_t hi = from + n < 64 * (k + 1) ? from + n - 64 * k : 64;
+  uint64_t below_hi = hi == 64 ? ~(uint64_t)0 : ((uint64_t)1 << hi) - 1;
+  return below_hi & ~(((uint64_t)1 << lo) - 1);
+}
+
+/* Whether any of pixels [from, from + n) (n >= 1) of the bitmap is set;
+ * sets them all when none is. */
+static int give_pixels(uint64_t *given, size_t from, size_t n) {
+  size_t first = from / 64, last = (from + n - 1) / 64;
+  for (size_t k = first; k <= last; k++)
+    if (given[k] & span_mask(k, from, n))
+      return 1;
+  for (size_t k = first; k <= last; k++)
+    given[k] |= span_mask(k, from, n);
+  return 0;
+}
 
 /* Encodes rows [from, to); a PNG or PPM row by row, a BMP (bottom row
  * first) once every row is there. 0 on success. */
@@ -95,6 +116,7 @@ static void writer_free(glint_image_writer *w) {
   pthread_cond_destroy(&w->wake);
   free(w->image.rgb);
   free(w->row_pixels);
+  free(w->given);
   free(w);
 }
 
@@ -105,10 +127,11 @@ static glint_status writer_create(const char *label, glint_image_format format,
                                   glint_png_compression compression,
                                   glint_image_writer **out,
                                   glint_error *error) {
-  if (format == GLINT_FORMAT_UNKNOWN)
+  if (format != GLINT_FORMAT_PNG && format != GLINT_FORMAT_BMP &&
+      format != GLINT_FORMAT_PPM)
     return gli_fail(error, GLINT_E_ARGUMENT,
-                    "%s: unknown image format (use .png, .bmp or .ppm)",
-                    label ? label : "(no path)");
+                    "%s: unknown image format %d (use .png, .bmp or .ppm)",
+                    label ? label : "(no path)", (int)format);
   if (width < 1 || height < 1 || width > GLINT_MAX_DIMENSION ||
       height > GLINT_MAX_DIMENSION)
     return gli_fail(error, GLINT_E_ARGUMENT,
@@ -132,9 +155,11 @@ static glint_status writer_create(const char *label, glint_image_format format,
   w->image = (glint_image){width, height, gamma, NULL};
   w->image.rgb = malloc((size_t)width * (size_t)height * 3);
   w->row_pixels = calloc((size_t)height, sizeof *w->row_pixels);
+  w->given =
+      calloc(((size_t)width * (size_t)height + 63) / 64, sizeof *w->given);
   pthread_mutex_init(&w->lock, NULL);
   pthread_cond_init(&w->wake, NULL);
-  if (!w->image.rgb || !w->row_pixels) {
+  if (!w->image.rgb || !w->row_pixels || !w->given) {
     writer_free(w);
     return gli_fail(error, GLINT_E_MEMORY, "out of memory for a %dx%d image",
                     width, height);
@@ -176,6 +201,8 @@ glint_status glint_image_writer_open(const char *path, int width, int height,
                                      glint_png_compression compression,
                                      glint_image_writer **out,
                                      glint_error *error) {
+  GLI_NOT_NULL(path, "path", error);
+  GLI_NOT_NULL(out, "writer", error);
   glint_image_format format =
       path ? glint_image_format_from_path(path) : GLINT_FORMAT_UNKNOWN;
   glint_image_writer *w = NULL;
@@ -198,6 +225,7 @@ glint_status glint_image_writer_open_memory(glint_image_format format,
                                             glint_png_compression compression,
                                             glint_image_writer **out,
                                             glint_error *error) {
+  GLI_NOT_NULL(out, "writer", error);
   static const char label[] = "image in memory";
   glint_image_writer *w = NULL;
   glint_status st = writer_create(label, format, width, height, gamma,
@@ -230,18 +258,39 @@ glint_status glint_image_writer_put(glint_image_writer *w,
                     w->file.path, tile->width, tile->height, tile->x, tile->y,
                     w->width, w->height);
   }
-  /* Tiles are disjoint: the conversion needs no lock. */
+  /* Every pixel is given once: a tile that repeats one is refused before
+   * it is converted, so that a row is complete only when each of its
+   * pixels came (counting pixels a row, the left half given twice passed
+   * for a whole row, and the right half's unset bytes were written). */
+  pthread_mutex_lock(&w->lock);
+  int repeated = 0;
+  for (int y = tile->y; y < tile->y + tile->height && !repeated; y++)
+    repeated = give_pixels(w->given, (size_t)y * w->width + tile->x,
+                           (size_t)tile->width);
+  if (repeated) {
+    /* the rows given before the repeat stay marked: the image is spoilt */
+    w->bad_put = 1;
+    pthread_mutex_unlock(&w->lock);
+    return gli_fail(error, GLINT_E_ARGUMENT,
+                    "%s: tile %dx%d at (%d, %d) repeats pixels already given",
+                    w->file.path, tile->width, tile->height, tile->x, tile->y);
+  }
+  int spoilt = w->bad_put;
+  pthread_mutex_unlock(&w->lock);
+  if (spoilt)
+    return gli_fail(error, GLINT_E_ARGUMENT,
+                    "%s: an earlier tile was refused, so the image cannot be "
+                    "finished",
+                    w->file.path);
+  /* Tiles are disjoint now: the conversion needs no lock. */
   for (int y = 0; y < tile->height; y++)
     gli_byte_encode(&w->encoding, tile->pixels + (size_t)y * tile->stride,
                     w->image.rgb +
                         ((size_t)(tile->y + y) * w->width + tile->x) * 3,
                     (size_t)tile->width * 3);
   pthread_mutex_lock(&w->lock);
-  for (int y = tile->y; y < tile->y + tile->height; y++) {
+  for (int y = tile->y; y < tile->y + tile->height; y++)
     w->row_pixels[y] += tile->width;
-    if (w->row_pixels[y] > w->width)
-      w->bad_put = 1;
-  }
   int ready = w->ready;
   while (ready < w->height && w->row_pixels[ready] == w->width)
     ready++;
@@ -255,11 +304,8 @@ glint_status glint_image_writer_put(glint_image_writer *w,
     }
     w->ready = ready;
   }
-  int failed = w->failed, failed_errno = w->failed_errno, bad = w->bad_put;
+  int failed = w->failed, failed_errno = w->failed_errno;
   pthread_mutex_unlock(&w->lock);
-  if (bad)
-    return gli_fail(error, GLINT_E_ARGUMENT,
-                    "%s: a tile repeated pixels already given", w->file.path);
   if (failed)
     return gli_fail(error, gli_errno_status(failed_errno),
                     "%s: writing failed: %s", w->file.path,

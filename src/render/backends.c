@@ -112,6 +112,8 @@ static glint_status parse_name(const char *name, const char *const *names,
 
 glint_status glint_backend_parse(const char *name, glint_backend *b,
                                  glint_error *error) {
+  GLI_NOT_NULL(name, "name", error);
+  GLI_NOT_NULL(b, "backend", error);
   const char *names[GLINT_BACKEND_COUNT];
   for (int i = 0; i < GLINT_BACKEND_COUNT; i++)
     names[i] = backends[i].name;
@@ -132,6 +134,8 @@ const char *glint_math_name(glint_math m) {
 
 glint_status glint_math_parse(const char *name, glint_math *m,
                               glint_error *error) {
+  GLI_NOT_NULL(name, "name", error);
+  GLI_NOT_NULL(m, "math", error);
   int v = 0;
   glint_status st =
       parse_name(name, math_names, GLINT_MATH_COUNT, "math", &v, error);
@@ -149,6 +153,8 @@ const char *glint_accel_name(glint_accel a) {
 
 glint_status glint_accel_parse(const char *name, glint_accel *a,
                                glint_error *error) {
+  GLI_NOT_NULL(name, "name", error);
+  GLI_NOT_NULL(a, "accel", error);
   int v = 0;
   glint_status st = parse_name(name, accel_names, GLINT_ACCEL_COUNT,
                                "acceleration", &v, error);

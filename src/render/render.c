@@ -77,6 +77,8 @@ glint_status glint_render(const glint_scene *scene,
                           const glint_render_settings *settings,
                           glint_image **image, glint_stats *stats,
                           glint_error *error) {
+  GLI_NOT_NULL(scene, "scene", error);
+  GLI_NOT_NULL(image, "image", error);
   glint_image *result = NULL;
   frame_output out = {NULL, NULL, 1, 0, 0};
   glint_status st = render_once(scene, settings, &out, &result, stats, error);
@@ -89,6 +91,8 @@ glint_status glint_trace_primary(const glint_scene *scene,
                                  const glint_render_settings *settings,
                                  uint64_t *hits, glint_stats *stats,
                                  glint_error *error) {
+  GLI_NOT_NULL(scene, "scene", error);
+  GLI_NOT_NULL(hits, "hits", error);
   frame_output out = {NULL, NULL, 1, 1, 0};
   glint_status st = render_once(scene, settings, &out, NULL, stats, error);
   if (st == GLINT_OK && hits)

@@ -157,8 +157,8 @@ static glint_status grow_scratch(glint_renderer *r, int depth,
 glint_status glint_renderer_create(glint_world *world,
                                    const glint_render_settings *settings,
                                    glint_renderer **out, glint_error *error) {
-  if (!world)
-    return gli_fail(error, GLINT_E_ARGUMENT, "no world to render");
+  GLI_NOT_NULL(world, "world", error);
+  GLI_NOT_NULL(out, "renderer", error);
   glint_render_settings defaults;
   if (!settings) {
     glint_render_settings_default(&defaults);
@@ -422,10 +422,16 @@ glint_status gli_renderer_render(glint_renderer *r,
   if (st)
     return st;
   int first = frame->sample_first, count = frame->sample_count;
-  if (first < 0 || count < 0 || first >= spp || count > spp - first)
+  if (first < 0 || first >= spp)
     return gli_fail(error, GLINT_E_ARGUMENT,
-                    "samples %d..%d are not among the %d of the pattern", first,
-                    first + count - 1, spp);
+                    "sample_first %d is not among the %d samples of the "
+                    "pattern (0..%d)",
+                    first, spp, spp - 1);
+  if (count < 0 || count > spp - first)
+    return gli_fail(error, GLINT_E_ARGUMENT,
+                    "sample_count %d: samples %d.. of the %d of the pattern "
+                    "leave 0..%d",
+                    count, first, spp, spp - first);
   if (count == 0)
     count = spp - first;
   if (!rw)

@@ -120,6 +120,8 @@ static glint_status finish_commit(glint_world *w, glint_world **out,
 
 glint_status glint_world_commit(const glint_scene *scene, glint_world **out,
                                 glint_stats *stats, glint_error *error) {
+  GLI_NOT_NULL(scene, "scene", error);
+  GLI_NOT_NULL(out, "world", error);
   glint_world *w = NULL;
   glint_status st = gli_world_create(scene, 0, &w, error);
   if (st)
@@ -168,5 +170,5 @@ glint_status glint_world_commit_at(const glint_scene *scene, double time,
 void glint_world_destroy(glint_world *w) { gli_world_release(w); }
 
 void glint_world_get_info(const glint_world *w, glint_scene_info *info) {
-  glint_scene_get_info(w->scene, info);
+  glint_scene_get_info(w ? w->scene : NULL, info);
 }

@@ -164,7 +164,7 @@ glint_status glint_scene_set_animation(glint_scene *s, const glint_animation *a,
 }
 
 int glint_scene_get_animation(const glint_scene *s, glint_animation *a) {
-  if (!s->animation.present)
+  if (!s || !a || !s->animation.present)
     return 0;
   *a = s->animation.frames;
   return 1;
@@ -223,6 +223,8 @@ glint_status glint_scene_set_camera_orbit(glint_scene *s, glint_vec3 center,
 
 glint_status glint_scene_camera_at(const glint_scene *s, double time,
                                    glint_camera *out, glint_error *error) {
+  GLI_NOT_NULL(s, "scene", error);
+  GLI_NOT_NULL(out, "camera", error);
   const gli_animation *a = &s->animation;
   if (!isfinite(time))
     return gli_fail(error, GLINT_E_ARGUMENT, "time %g is not finite", time);
@@ -239,7 +241,7 @@ glint_status glint_scene_camera_at(const glint_scene *s, double time,
     /* The angle sweeps `degrees` over the frames, the last frame one step
      * short of the whole, so that a full circle loops. */
     const glint_animation *f = &a->frames;
-    double span = (double)(f->last_frame - f->first_frame + 1) / f->fps;
+    double span = ((double)f->last_frame - f->first_frame + 1) / f->fps;
     double angle = a->orbit_degrees * pi / 180 * time / span;
     glint_vec3 m = a->orbit_center;
     c.from =
@@ -324,11 +326,13 @@ glint_status glint_scene_set_object_motion(glint_scene *s, uint32_t object,
 }
 
 int glint_scene_has_motion(const glint_scene *s) {
-  return s->animation.motion_count > 0;
+  return s && s->animation.motion_count > 0;
 }
 
 glint_status glint_scene_at_time(const glint_scene *s, double time,
                                  glint_scene **out, glint_error *error) {
+  GLI_NOT_NULL(s, "scene", error);
+  GLI_NOT_NULL(out, "still", error);
   glint_camera camera;
   glint_status st = glint_scene_camera_at(s, time, &camera, error);
   if (st)

@@ -223,6 +223,8 @@ const char *glint_builtin_scene_name(size_t i) {
 
 glint_status glint_scene_builtin(const char *name, glint_scene **out,
                                  glint_error *e) {
+  GLI_NOT_NULL(name, "name", e);
+  GLI_NOT_NULL(out, "scene", e);
   for (size_t i = 0; i < BUILTIN_COUNT; i++)
     if (strcmp(name, builtins[i].name) == 0) {
       glint_scene *s;

@@ -226,6 +226,8 @@ glint_status glint_scene_add_mesh_file(glint_scene *scene, const char *path,
                                        double scale, glint_vec3 translate,
                                        uint32_t material_id,
                                        glint_error *error) {
+  GLI_NOT_NULL(scene, "scene", error);
+  GLI_NOT_NULL(path, "path", error);
   return gli_scene_add_mesh_from(scene, NULL, path, scale, translate,
                                  material_id, error);
 }

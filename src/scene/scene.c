@@ -9,6 +9,9 @@
 #include <stdlib.h>
 #include <string.h>
 
+/* The triangles a scene holds (their indices are 32-bit). */
+#define GLI_MAX_MESH_TRIANGLES (UINT32_MAX - 1)
+
 int gli_vec3_finite(glint_vec3 v) {
   return isfinite(v.x) && isfinite(v.y) && isfinite(v.z);
 }
@@ -45,6 +48,7 @@ void glint_material_default(glint_material *m) {
 }
 
 glint_status glint_scene_create(glint_scene **out, glint_error *error) {
+  GLI_NOT_NULL(out, "scene", error);
   glint_scene *s = calloc(1, sizeof *s);
   if (!s)
     return gli_fail(error, GLINT_E_MEMORY, "out of memory creating a scene");
@@ -99,6 +103,8 @@ glint_status gli_camera_check(const glint_camera *c, glint_error *error) {
 
 glint_status glint_scene_set_camera(glint_scene *s, const glint_camera *c,
                                     glint_error *error) {
+  GLI_NOT_NULL(s, "scene", error);
+  GLI_NOT_NULL(c, "camera", error);
   glint_status st = gli_camera_check(c, error);
   if (st)
     return st;
@@ -108,6 +114,7 @@ glint_status glint_scene_set_camera(glint_scene *s, const glint_camera *c,
 
 glint_status glint_scene_set_resolution(glint_scene *s, int w, int h,
                                         glint_error *error) {
+  GLI_NOT_NULL(s, "scene", error);
   if (w < 1 || h < 1 || w > GLINT_MAX_DIMENSION || h > GLINT_MAX_DIMENSION)
     return gli_fail(error, GLINT_E_ARGUMENT,
                     "resolution %dx%d is outside 1..%d", w, h,
@@ -139,16 +146,19 @@ static glint_status set_color(glint_vec3 *field, glint_vec3 c, const char *what,
 
 glint_status glint_scene_set_background(glint_scene *s, glint_vec3 c,
                                         glint_error *error) {
+  GLI_NOT_NULL(s, "scene", error);
   return set_color(&s->background, c, "background colour", error);
 }
 
 glint_status glint_scene_set_ambient(glint_scene *s, glint_vec3 c,
                                      glint_error *error) {
+  GLI_NOT_NULL(s, "scene", error);
   return set_color(&s->ambient, c, "ambient light", error);
 }
 
 glint_status glint_scene_add_light(glint_scene *s, glint_vec3 p, glint_vec3 c,
                                    glint_error *error) {
+  GLI_NOT_NULL(s, "scene", error);
   if (!gli_vec3_in_range(p))
     return gli_fail(error, GLINT_E_ARGUMENT,
                     "light position must be " GLI_RANGE_TEXT);
@@ -162,6 +172,8 @@ glint_status glint_scene_add_light(glint_scene *s, glint_vec3 p, glint_vec3 c,
 
 glint_status glint_scene_add_material(glint_scene *s, const glint_material *m,
                                       uint32_t *id, glint_error *error) {
+  GLI_NOT_NULL(s, "scene", error);
+  GLI_NOT_NULL(m, "material", error);
   glint_status st;
   if ((st = check_color(m->color, "material colour", error)) ||
       (st = check_color(m->checker_odd, "checker colour", error)) ||
@@ -229,6 +241,7 @@ glint_status gli_scene_begin_object(glint_scene *s, gli_shape shape,
 
 glint_status glint_scene_add_sphere(glint_scene *s, glint_vec3 c, double r,
                                     uint32_t material, glint_error *error) {
+  GLI_NOT_NULL(s, "scene", error);
   if (!gli_vec3_in_range(c) || !gli_in_range(r))
     return gli_fail(error, GLINT_E_ARGUMENT,
                     "sphere: centre and radius must be " GLI_RANGE_TEXT);
@@ -252,6 +265,7 @@ glint_status glint_scene_add_sphere(glint_scene *s, glint_vec3 c, double r,
 
 glint_status glint_scene_add_plane(glint_scene *s, glint_vec3 n, glint_vec3 p,
                                    uint32_t material, glint_error *error) {
+  GLI_NOT_NULL(s, "scene", error);
   if (!gli_vec3_in_range(n) || !gli_vec3_in_range(p))
     return gli_fail(error, GLINT_E_ARGUMENT,
                     "plane: coordinates must be " GLI_RANGE_TEXT);
@@ -280,7 +294,7 @@ glint_status gli_scene_push_triangle(glint_scene *s, glint_vec3 a, glint_vec3 b,
     return gli_fail(error, GLINT_E_ARGUMENT,
                     "triangle: coordinates must be " GLI_RANGE_TEXT);
   gli_object *o = &s->objects[s->object_count - 1];
-  if (s->triangle_count >= UINT32_MAX - 1)
+  if (s->triangle_count >= GLI_MAX_MESH_TRIANGLES)
     return gli_fail(error, GLINT_E_ARGUMENT, "too many triangles");
   gli_triangle_prim t = {
       {a, b, c}, (uint32_t)(s->object_count - 1), GLI_NO_NORMALS};
@@ -312,6 +326,7 @@ glint_status gli_scene_push_triangle(glint_scene *s, glint_vec3 a, glint_vec3 b,
 glint_status glint_scene_add_triangle(glint_scene *s, glint_vec3 a,
                                       glint_vec3 b, glint_vec3 c,
                                       uint32_t material, glint_error *error) {
+  GLI_NOT_NULL(s, "scene", error);
   if (!gli_vec3_in_range(a) || !gli_vec3_in_range(b) || !gli_vec3_in_range(c))
     return gli_fail(error, GLINT_E_ARGUMENT,
                     "triangle: coordinates must be " GLI_RANGE_TEXT);
@@ -328,6 +343,7 @@ glint_status glint_scene_add_triangle(glint_scene *s, glint_vec3 a,
 glint_status glint_scene_add_cone(glint_scene *s, glint_vec3 base, double rb,
                                   glint_vec3 apex, double ra, uint32_t material,
                                   glint_error *error) {
+  GLI_NOT_NULL(s, "scene", error);
   if (!gli_vec3_in_range(base) || !gli_vec3_in_range(apex) ||
       !gli_in_range(rb) || !gli_in_range(ra))
     return gli_fail(error, GLINT_E_ARGUMENT,
@@ -353,8 +369,15 @@ glint_status glint_scene_add_cone(glint_scene *s, glint_vec3 base, double rb,
 
 glint_status glint_scene_add_mesh(glint_scene *s, const glint_mesh *m,
                                   uint32_t material, glint_error *error) {
+  GLI_NOT_NULL(s, "scene", error);
   if (!m || !m->positions || (!m->indices && m->triangle_count))
     return gli_fail(error, GLINT_E_ARGUMENT, "mesh: missing arrays");
+  /* 3 * triangle_count must not wrap (past it the loop below would check
+   * a few indices and the copy read beyond them) */
+  if (m->triangle_count > GLI_MAX_MESH_TRIANGLES)
+    return gli_fail(error, GLINT_E_ARGUMENT,
+                    "mesh: %zu triangles, more than a scene holds (%zu)",
+                    m->triangle_count, (size_t)GLI_MAX_MESH_TRIANGLES);
   for (size_t i = 0; i < 3 * m->triangle_count; i++)
     if (m->indices[i] >= m->vertex_count)
       return gli_fail(error, GLINT_E_ARGUMENT,
@@ -399,6 +422,12 @@ static void grow_bounds(glint_vec3 *lo, glint_vec3 *hi, glint_vec3 p,
 }
 
 void glint_scene_get_info(const glint_scene *s, glint_scene_info *info) {
+  if (!info)
+    return;
+  if (!s) {
+    memset(info, 0, sizeof *info);
+    return;
+  }
   info->camera = s->camera;
   info->width = s->width;
   info->height = s->height;

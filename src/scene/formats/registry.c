@@ -68,6 +68,8 @@ static glint_status not_a_scene(const char *name, glint_error *error) {
 
 glint_status glint_scene_load(const char *path, glint_scene **out,
                               glint_error *error) {
+  GLI_NOT_NULL(path, "path", error);
+  GLI_NOT_NULL(out, "scene", error);
   return gli_scene_load_from(NULL, path, out, error);
 }
 
