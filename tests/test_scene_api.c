@@ -44,6 +44,14 @@ static void primitives_refuse_bad_numbers(void **state) {
              "same point");
   EXPECT_ERR(glint_scene_add_cone(s, ok, 0, (V){0, 1, 0}, 0, m, &e_),
              GLINT_E_ARGUMENT, "radii");
+  /* apart, but too little for a direction in double precision */
+  EXPECT_ERR(glint_scene_add_cone(s, ok, 1, (V){0, 0, 1e-300}, 1, m, &e_),
+             GLINT_E_ARGUMENT, "too close for an axis");
+  glint_camera near_cam = {{0, 0, 1e-300}, {0, 0, 0}, {0, 1, 0}, 40};
+  EXPECT_ERR(glint_scene_set_camera(s, &near_cam, &e_), GLINT_E_ARGUMENT,
+             "too close for a direction");
+  EXPECT_ERR(glint_scene_set_camera_orbit(s, (V){1e300, 0, 0}, 1, 0, 360, &e_),
+             GLINT_E_ARGUMENT, "magnitude at most 1e15");
   EXPECT_ERR(glint_scene_add_light(s, nan3, (V){1, 1, 1}, &e_),
              GLINT_E_ARGUMENT, "finite");
   EXPECT_ERR(glint_scene_add_light(s, ok, (V){-1, 1, 1}, &e_), GLINT_E_ARGUMENT,

@@ -208,11 +208,13 @@ glint_status glint_scene_set_camera_keys(glint_scene *s,
 glint_status glint_scene_set_camera_orbit(glint_scene *s, glint_vec3 center,
                                           double radius, double height,
                                           double degrees, glint_error *error) {
-  if (!s || !gli_vec3_finite(center) || !isfinite(height) ||
-      !isfinite(degrees) || !(radius > 0) || !isfinite(radius))
-    return gli_fail(error, GLINT_E_ARGUMENT,
-                    "camera orbit: center, height and degrees must be "
-                    "finite and the radius positive");
+  GLI_NOT_NULL(s, "scene", error);
+  if (!gli_vec3_in_range(center) || !gli_in_range(height) ||
+      !isfinite(degrees) || !(radius > 0) || !gli_in_range(radius))
+    return gli_fail(
+        error, GLINT_E_ARGUMENT,
+        "camera orbit: center, radius and height must be " GLI_RANGE_TEXT
+        ", the radius positive, and degrees finite");
   s->animation.orbit_center = center;
   s->animation.orbit_radius = radius;
   s->animation.orbit_height = height;

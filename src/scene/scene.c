@@ -91,8 +91,10 @@ glint_status gli_camera_check(const glint_camera *c, glint_error *error) {
                     c->fov_x_degrees);
   glint_vec3 d = vsub(c->at, c->from);
   if (vlen(d) == 0)
-    return gli_fail(error, GLINT_E_ARGUMENT,
-                    "camera: 'from' and 'at' are the same point");
+    return gli_fail(error, GLINT_E_ARGUMENT, "camera: 'from' and 'at' are %s",
+                    d.x == 0 && d.y == 0 && d.z == 0
+                        ? "the same point"
+                        : "too close for a direction between them");
   double dl = vlen(d), ul = vlen(c->up);
   if (ul == 0 || vlen(vcross(d, c->up)) <= 1e-9 * dl * ul)
     return gli_fail(error, GLINT_E_ARGUMENT,
@@ -352,9 +354,12 @@ glint_status glint_scene_add_cone(glint_scene *s, glint_vec3 base, double rb,
     return gli_fail(error, GLINT_E_ARGUMENT,
                     "cone: radii %g and %g must be >= 0 and not both 0", rb,
                     ra);
-  if (vlen(vsub(apex, base)) == 0)
-    return gli_fail(error, GLINT_E_ARGUMENT,
-                    "cone: base and apex are the same point");
+  glint_vec3 axis = vsub(apex, base);
+  if (vlen(axis) == 0)
+    return gli_fail(error, GLINT_E_ARGUMENT, "cone: base and apex are %s",
+                    axis.x == 0 && axis.y == 0 && axis.z == 0
+                        ? "the same point"
+                        : "too close for an axis between them");
   glint_status st = gli_scene_begin_object(s, GLI_SHAPE_CONE, material, error);
   if (st)
     return st;
