@@ -206,7 +206,8 @@ view_script *view_script_load(const char *path) {
     /* fgets stops at a newline only: a NUL byte inside the line leaves
      * text shorter than what was read */
     size_t len = strlen(text);
-    if (len + 1 < sizeof text && text[len - (len > 0)] != '\n' && !feof(f)) {
+    int whole_line = len > 0 && text[len - 1] == '\n';
+    if (len + 1 < sizeof text && !whole_line && !feof(f)) {
       cli_error("%s:%d: a NUL byte (not a text file)", path, line);
       bad = 1;
       break;

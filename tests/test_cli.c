@@ -102,6 +102,13 @@ static int exists(const char *name) {
   return stat(p, &sb) == 0;
 }
 
+/* Removes the file or empty folder NAME of the test folder; 0 when done. */
+static int remove_in_folder(const char *name) {
+  char p[512];
+  snprintf(p, sizeof p, "%s/%s", dir, name);
+  return remove(p);
+}
+
 /* Only the stdout/stderr capture files may be in the folder. */
 static int folder_is_empty(void) {
   char cmd[256];
@@ -109,21 +116,7 @@ static int folder_is_empty(void) {
   return system(cmd) == 0;
 }
 
-#define EXPECT_USAGE_ERROR(text, ...)                                          \
-  do {                                                                         \
-    int rc_ = run(__VA_ARGS__, NULL);                                          \
-    if (rc_ != 2)                                                              \
-      fail_msg("exit %d, want 2; stderr: %s", rc_, err);                       \
-    if (!strstr(err, text))                                                    \
-      fail_msg("stderr '%s' lacks '%s'", err, text);                           \
-    if (strncmp(err, "glint: ", 7) != 0 ||                                     \
-        strchr(err, '\n') != err + strlen(err) - 1)                            \
-      fail_msg("want exactly one line starting 'glint: ', got '%s'", err);     \
-    if (!folder_is_empty())                                                    \
-      fail_msg("a file was written on error");                                 \
-  } while (0)
-
-/* EXPECT_USAGE_ERROR where the folder holds files of the test's own. */
+/* Exit status 2 and `text` in stderr, the test's own files left alone. */
 #define EXPECT_USAGE_ERROR_KEEPING(text, ...)                                  \
   do {                                                                         \
     int rc_ = run(__VA_ARGS__, NULL);                                          \
@@ -131,6 +124,17 @@ static int folder_is_empty(void) {
       fail_msg("exit %d, want 2; stderr: %s", rc_, err);                       \
     if (!strstr(err, text))                                                    \
       fail_msg("stderr '%s' lacks '%s'", err, text);                           \
+  } while (0)
+
+/* The same, as one line starting "glint: ", and nothing written. */
+#define EXPECT_USAGE_ERROR(text, ...)                                          \
+  do {                                                                         \
+    EXPECT_USAGE_ERROR_KEEPING(text, __VA_ARGS__);                             \
+    if (strncmp(err, "glint: ", 7) != 0 ||                                     \
+        strchr(err, '\n') != err + strlen(err) - 1)                            \
+      fail_msg("want exactly one line starting 'glint: ', got '%s'", err);     \
+    if (!folder_is_empty())                                                    \
+      fail_msg("a file was written on error");                                 \
   } while (0)
 
 static void usage_errors(void **state) {
@@ -209,9 +213,7 @@ static void output_errors(void **state) {
   assert_int_equal(run("render", "-W", "8", "-H", "8", "-q", "-o", name, NULL),
                    0);
   assert_true(exists(name));
-  char written[512];
-  snprintf(written, sizeof written, "%s/%s", dir, name);
-  unlink(written);
+  remove_in_folder(name);
   memset(name, 'a', 252);
   strcpy(name + 252, ".png");
   EXPECT_USAGE_ERROR("cannot write here: File name too long", "render", "-W",
@@ -609,14 +611,10 @@ static void bench_plot_names_are_not_commands(void **state) {
                                "plots/x'; touch INJECTED; echo '.dat",
                                "plots/x'; touch INJECTED; echo '.gp", scene};
   for (size_t i = 0; i < sizeof made / sizeof *made; i++) {
-    char p[256];
-    snprintf(p, sizeof p, "%s/%s", dir, made[i]);
     assert_true(exists(made[i]));
-    unlink(p);
+    remove_in_folder(made[i]);
   }
-  char p[256];
-  snprintf(p, sizeof p, "%s/plots", dir);
-  assert_int_equal(rmdir(p), 0);
+  assert_int_equal(remove_in_folder("plots"), 0);
 }
 
 /* -o - into a pipe whose reader has gone (glint render -o - | head): the
@@ -686,7 +684,7 @@ static void written_files_keep_their_permissions(void **state) {
       run("render", "-W", "8", "-H", "8", "-q", "-o", "mode.png", NULL), 0);
   assert_int_equal(stat(p, &sb), 0);
   assert_int_equal(sb.st_mode & 07777, 0604);
-  unlink(p);
+  remove_in_folder("mode.png");
   assert_true(folder_is_empty());
 }
 
