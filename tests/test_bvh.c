@@ -17,6 +17,7 @@
 #include "bvh_scenes.h"
 
 #include <math.h>
+#include <stdint.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
@@ -174,7 +175,8 @@ static void renders_equal(void **state) {
 }
 
 /* Every inner node of `b` comes before its children and holds their boxes,
- * and every primitive is referenced once. */
+ * its two children share a cache line (accel/bvh.c, nodes_alloc), and
+ * every primitive is referenced once. */
 static void assert_sound(const gli_bvh *b, size_t prims) {
   assert_int_equal(b->ref_count, prims);
   char *seen = calloc(prims, 1);
@@ -195,6 +197,7 @@ static void assert_sound(const gli_bvh *b, size_t prims) {
       continue;
     }
     assert_true(n->offset > i); /* children after their parent */
+    assert_int_equal((uintptr_t)&b->nodes[n->offset] % 64, 0);
     for (uint32_t c = n->offset; c < n->offset + 2; c++)
       assert_true(holds(n->lo, n->hi, b->nodes[c].lo, b->nodes[c].hi));
   }
@@ -212,6 +215,7 @@ static void refit_follows_moved_objects(void **state) {
   gli_bvh built, refit;
   ASSERT_OK(gli_bvh_build(g, &built, &e_));
   assert_true(built.node_count > 1);
+  assert_sound(&built, g->sphere_count + g->triangle_count + g->cone_count);
   assert_true(built.cost > 1 && built.cost == built.built_cost);
   ASSERT_OK(gli_bvh_refit(&built, g, &refit, &e_));
   assert_sound(&refit, g->sphere_count + g->triangle_count + g->cone_count);

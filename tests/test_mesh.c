@@ -313,6 +313,139 @@ static void obj_ignores_known_statements(void **state) {
   glint_scene_destroy(s);
 }
 
+/* A grid of n x n unit quads in z = 0, two triangles each, its faces in
+ * a scrambled order (quad k is the (k * 769) mod n^2-th); the faces at
+ * file places bad1 and bad2 (-1: none) use a vertex beyond the coordinate
+ * limit. Returns the OBJ text (free it). */
+static char *scrambled_grid(int n, int bad1, int bad2) {
+  size_t cap = 32 * (size_t)(n + 1) * (n + 1) + 64 * (size_t)n * n, len = 0;
+  char *text = malloc(cap);
+  assert_non_null(text);
+  for (int y = 0; y <= n; y++)
+    for (int x = 0; x <= n; x++)
+      len += (size_t)snprintf(text + len, cap - len, "v %d %d 0\n", x, y);
+  len += (size_t)snprintf(text + len, cap - len, "v 2e15 0 0\n");
+  int far = (n + 1) * (n + 1) + 1, face = 0;
+  for (int k = 0; k < n * n; k++) {
+    int q = (int)(((long)k * 769) % (n * n)), x = q % n, y = q / n;
+    int a = y * (n + 1) + x + 1, b = a + 1, c = a + n + 2, d = a + n + 1;
+    int tri[2][3] = {{a, b, c}, {a, c, d}};
+    for (int t = 0; t < 2; t++, face++)
+      len += (size_t)snprintf(text + len, cap - len, "f %d %d %d\n",
+                              face == bad1 || face == bad2 ? far : tri[t][0],
+                              tri[t][1], tri[t][2]);
+  }
+  assert_true(len < cap);
+  return text;
+}
+
+/* Triangle t's first vertex and three times its centroid, as one integer
+ * (the grid's coordinates are small whole numbers). */
+static long triangle_key(const gli_triangle_prim *t) {
+  long cx = lround(t->v[0].x + t->v[1].x + t->v[2].x);
+  long cy = lround(t->v[0].y + t->v[1].y + t->v[2].y);
+  return ((cx * 1000 + cy) * 100 + lround(t->v[0].x)) * 100 + lround(t->v[0].y);
+}
+
+/* The distance from each triangle's centroid to the next one's, summed
+ * (city-block, grid units). */
+static double walk_length(const gli_triangle_prim *t, size_t count) {
+  double sum = 0;
+  for (size_t i = 1; i < count; i++) {
+    double dx = (t[i].v[0].x + t[i].v[1].x + t[i].v[2].x) -
+                (t[i - 1].v[0].x + t[i - 1].v[1].x + t[i - 1].v[2].x);
+    double dy = (t[i].v[0].y + t[i].v[1].y + t[i].v[2].y) -
+                (t[i - 1].v[0].y + t[i - 1].v[1].y + t[i - 1].v[2].y);
+    sum += (fabs(dx) + fabs(dy)) / 3;
+  }
+  return sum;
+}
+
+static int compare_long(const void *a, const void *b) {
+  long x = *(const long *)a, y = *(const long *)b;
+  return (x > y) - (x < y);
+}
+
+/* A mesh of GLI_MORTON_MIN_TRIANGLES or more is kept along a Morton curve
+ * (gli_morton_order, scene.c), whatever its file's order: the same
+ * triangles, each turned as in the file, with neighbours in space near in
+ * memory; the API's meshes alike. A bad triangle is still named by its
+ * place in the file, the first of two. */
+static void large_meshes_are_kept_in_space_order(void **state) {
+  fixture *f = *state;
+  enum { N = 32, COUNT = 2 * N * N };
+  assert_true(COUNT >= GLI_MORTON_MIN_TRIANGLES);
+  char *text = scrambled_grid(N, -1, -1);
+  glint_scene *s = load(write_text(f, "grid.obj", text), 1, (V){0, 0, 0});
+  assert_int_equal(s->triangle_count, COUNT);
+
+  /* The file's triangles in its order, read back from the text. */
+  uint32_t m;
+  glint_scene *file = scene_with_default_material(&m);
+  ASSERT_OK(gli_scene_begin_object(file, GLI_SHAPE_TRIANGLE, m, &e_));
+  glint_vec3 *pos = calloc((N + 1) * (N + 1) + 1, sizeof *pos);
+  uint32_t *indices = calloc(3 * COUNT, sizeof *indices);
+  long *got = calloc(2 * COUNT, sizeof *got), *want = got + COUNT;
+  assert_true(pos && indices && got);
+  size_t npos = 0, nidx = 0;
+  for (const char *line = text; *line; line = strchr(line, '\n') + 1) {
+    int a, b, c;
+    double x, y, z;
+    if (sscanf(line, "v %lf %lf %lf", &x, &y, &z) == 3)
+      pos[npos++] = (V){x, y, z};
+    else if (sscanf(line, "f %d %d %d", &a, &b, &c) == 3) {
+      ASSERT_OK(gli_scene_push_triangle(file, pos[a - 1], pos[b - 1],
+                                        pos[c - 1], NULL, &e_));
+      indices[nidx++] = (uint32_t)a - 1;
+      indices[nidx++] = (uint32_t)b - 1;
+      indices[nidx++] = (uint32_t)c - 1;
+    }
+  }
+  assert_int_equal(file->triangle_count, COUNT);
+
+  /* The same triangles, each once. */
+  for (size_t i = 0; i < COUNT; i++) {
+    got[i] = triangle_key(&s->triangles[i]);
+    want[i] = triangle_key(&file->triangles[i]);
+  }
+  qsort(got, COUNT, sizeof *got, compare_long);
+  qsort(want, COUNT, sizeof *want, compare_long);
+  assert_memory_equal(got, want, COUNT * sizeof *got);
+  for (size_t i = 1; i < COUNT; i++)
+    assert_true(want[i] != want[i - 1]); /* the keys tell them apart */
+
+  /* Neighbours near: along the Morton curve a step is 1.4 units on
+   * average; in the scrambled file, 7.5. */
+  double walked = walk_length(s->triangles, COUNT);
+  double scrambled = walk_length(file->triangles, COUNT);
+  if (!(walked < 1.6 * COUNT && walked < scrambled / 4))
+    fail_msg("consecutive triangles %g apart in all, the file's %g", walked,
+             scrambled);
+
+  /* The API's meshes: in the order the file's reader gives. */
+  glint_scene *api = scene_with_default_material(&m);
+  glint_mesh mesh = {pos, NULL, npos, indices, COUNT};
+  ASSERT_OK(glint_scene_add_mesh(api, &mesh, m, &e_));
+  assert_int_equal(api->triangle_count, COUNT);
+  for (size_t i = 0; i < COUNT; i++)
+    for (int k = 0; k < 3; k++)
+      assert_vec(api->triangles[i].v[k], s->triangles[i].v[k].x,
+                 s->triangles[i].v[k].y, s->triangles[i].v[k].z);
+  glint_scene_destroy(api);
+  glint_scene_destroy(file);
+  glint_scene_destroy(s);
+  free(got);
+  free(indices);
+  free(pos);
+  free(text);
+
+  /* Faces 1500 and 700 use a vertex past the limit: 700 is named. */
+  text = scrambled_grid(N, 1500, 700);
+  expect_fail(f, "bad.obj", text, GLINT_E_ARGUMENT, "triangle 700,",
+              "magnitude at most 1e15");
+  free(text);
+}
+
 static void obj_gzip_and_two_meshes(void **state) {
   fixture *f = *state;
   const char *text = "v 0 0 0\nv 1 0 0\nv 0 1 0\nv 1 1 0\nf 1 2 3\nf 2 4 3\n";
@@ -1120,6 +1253,7 @@ int main(int argc, char **argv) {
       cmocka_unit_test(obj_vertex_forms_and_normals),
       cmocka_unit_test(obj_ignores_known_statements),
       cmocka_unit_test(obj_gzip_and_two_meshes),
+      cmocka_unit_test(large_meshes_are_kept_in_space_order),
       cmocka_unit_test(ply_ascii_skips_what_it_does_not_use),
       cmocka_unit_test(ply_ascii_unusual_but_valid),
       cmocka_unit_test(ply_binary_both_byte_orders),

@@ -93,6 +93,20 @@ int gli_mesh_emit_face(mesh_data *m, int obj, int with_normals) {
   return r;
 }
 
+/* Triangle i's vertex normals in n, or NULL where it has none. */
+static const glint_vec3 *triangle_normals(const mesh_data *m, size_t i,
+                                          glint_vec3 n[3]) {
+  const uint32_t *v = m->vertex_normals ? m->tri[i].v
+                      : m->tri_nrm && m->tri_nrm[i].v[0] != MESH_NO_INDEX
+                          ? m->tri_nrm[i].v
+                          : NULL;
+  if (!v)
+    return NULL;
+  for (int k = 0; k < 3; k++)
+    n[k] = m->nrm[v[k]];
+  return n;
+}
+
 static glint_status add_to_scene(glint_scene *s, const char *path, mesh_data *m,
                                  double scale, glint_vec3 tr, uint32_t material,
                                  glint_error *e) {
@@ -118,21 +132,13 @@ static glint_status add_to_scene(glint_scene *s, const char *path, mesh_data *m,
     st = gli_mesh_oom(path, e);
     goto fail;
   }
+  /* Checked in the file's order, so that a message names the file's first
+   * bad triangle; added in a Morton order (gli_morton_order). */
   for (size_t i = 0; i < m->ntri; i++) {
-    const uint32_t *v = m->tri[i].v;
     glint_vec3 n[3];
-    const glint_vec3 *normals = NULL;
-    if (m->vertex_normals) {
-      for (int k = 0; k < 3; k++)
-        n[k] = m->nrm[v[k]];
-      normals = n;
-    } else if (m->tri_nrm && m->tri_nrm[i].v[0] != MESH_NO_INDEX) {
-      for (int k = 0; k < 3; k++)
-        n[k] = m->nrm[m->tri_nrm[i].v[k]];
-      normals = n;
-    }
-    st = gli_scene_push_triangle(s, m->pos[v[0]], m->pos[v[1]], m->pos[v[2]],
-                                 normals, e);
+    const uint32_t *v = m->tri[i].v;
+    st = gli_scene_check_triangle(m->pos[v[0]], m->pos[v[1]], m->pos[v[2]],
+                                  triangle_normals(m, i, n), e);
     if (st) {
       /* A coordinate beyond GLINT_MAX_COORDINATE, in the file or scaled. */
       char msg[sizeof e->message];
@@ -142,6 +148,19 @@ static glint_status add_to_scene(glint_scene *s, const char *path, mesh_data *m,
       goto fail;
     }
   }
+  _Static_assert(sizeof(tri3) == 3 * sizeof(uint32_t), "tri3 is 3 indices");
+  uint32_t *order =
+      gli_morton_order(m->pos, m->ntri ? m->tri[0].v : NULL, m->ntri);
+  for (size_t k = 0; k < m->ntri && !st; k++) {
+    size_t i = order ? order[k] : k;
+    glint_vec3 n[3];
+    const uint32_t *v = m->tri[i].v;
+    st = gli_scene_push_triangle(s, m->pos[v[0]], m->pos[v[1]], m->pos[v[2]],
+                                 triangle_normals(m, i, n), e);
+  }
+  free(order);
+  if (st)
+    goto fail;
   /* Solid textures are in object-local coordinates: the file's origin,
    * wherever the translation put it. */
   s->objects[obj0].origin = tr;

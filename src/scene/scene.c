@@ -289,22 +289,31 @@ glint_status glint_scene_add_plane(glint_scene *s, glint_vec3 n, glint_vec3 p,
   return GLINT_OK;
 }
 
-glint_status gli_scene_push_triangle(glint_scene *s, glint_vec3 a, glint_vec3 b,
-                                     glint_vec3 c, const glint_vec3 normals[3],
-                                     glint_error *error) {
+glint_status gli_scene_check_triangle(glint_vec3 a, glint_vec3 b, glint_vec3 c,
+                                      const glint_vec3 normals[3],
+                                      glint_error *error) {
   if (!gli_vec3_in_range(a) || !gli_vec3_in_range(b) || !gli_vec3_in_range(c))
     return gli_fail(error, GLINT_E_ARGUMENT,
                     "triangle: coordinates must be " GLI_RANGE_TEXT);
+  for (int i = 0; normals && i < 3; i++)
+    if (!gli_vec3_in_range(normals[i]))
+      return gli_fail(error, GLINT_E_ARGUMENT,
+                      "triangle: normals must be " GLI_RANGE_TEXT);
+  return GLINT_OK;
+}
+
+glint_status gli_scene_push_triangle(glint_scene *s, glint_vec3 a, glint_vec3 b,
+                                     glint_vec3 c, const glint_vec3 normals[3],
+                                     glint_error *error) {
+  glint_status st = gli_scene_check_triangle(a, b, c, normals, error);
+  if (st)
+    return st;
   gli_object *o = &s->objects[s->object_count - 1];
   if (s->triangle_count >= GLI_MAX_MESH_TRIANGLES)
     return gli_fail(error, GLINT_E_ARGUMENT, "too many triangles");
   gli_triangle_prim t = {
       {a, b, c}, (uint32_t)(s->object_count - 1), GLI_NO_NORMALS};
   if (normals) {
-    for (int i = 0; i < 3; i++)
-      if (!gli_vec3_in_range(normals[i]))
-        return gli_fail(error, GLINT_E_ARGUMENT,
-                        "triangle: normals must be " GLI_RANGE_TEXT);
     if (s->tri_normal_count >= UINT32_MAX - 3)
       return gli_fail(error, GLINT_E_ARGUMENT, "too many normals");
     if (gli_grow((void **)&s->tri_normals, &s->tri_normal_cap,
@@ -323,6 +332,85 @@ glint_status gli_scene_push_triangle(glint_scene *s, glint_vec3 a, glint_vec3 b,
     return oom(error);
   o->count++;
   return GLINT_OK;
+}
+
+/* A mesh's triangles in the order of their centroids along a Morton
+ * (Z-order) curve, 10 bits an axis within the mesh's bounds: triangles
+ * near one another in space are near in memory, so the BVH's leaves, which
+ * gather neighbours, read neighbouring records. A scanner's or a modeller's
+ * file order need not be so: the 200k-triangle dragon's primary rays
+ * waited on the triangle records that leaves named (the costliest
+ * instruction of the walk) and ran 5% faster so ordered. A mesh's order
+ * is nowhere else visible: messages name a triangle by its place in the
+ * file, checked before this. No memory: the file's order, still correct. */
+static uint32_t morton_spread(uint32_t v) { /* bit k to bit 3k */
+  v &= 0x3ff;
+  v = (v | (v << 16)) & 0x030000ff;
+  v = (v | (v << 8)) & 0x0300f00f;
+  v = (v | (v << 4)) & 0x030c30c3;
+  return (v | (v << 2)) & 0x09249249;
+}
+
+/* Sorts the n keys in `a` by their top 32 bits, of which the low 30 are
+ * used, in three stable passes of 10 bits (least significant first)
+ * between a and b; returns the one holding the result. */
+static const uint64_t *radix_sort30(uint64_t *a, uint64_t *b, size_t n) {
+  for (int shift = 32; shift < 62; shift += 10) {
+    size_t start[1024] = {0};
+    for (size_t i = 0; i < n; i++)
+      start[(a[i] >> shift) & 1023]++;
+    size_t sum = 0;
+    for (int k = 0; k < 1024; k++) {
+      size_t c = start[k];
+      start[k] = sum;
+      sum += c;
+    }
+    for (size_t i = 0; i < n; i++)
+      b[start[(a[i] >> shift) & 1023]++] = a[i];
+    uint64_t *t = a;
+    a = b;
+    b = t;
+  }
+  return a;
+}
+
+uint32_t *gli_morton_order(const glint_vec3 *pos, const uint32_t *triples,
+                           size_t count) {
+  if (count < GLI_MORTON_MIN_TRIANGLES || count > UINT32_MAX)
+    return NULL;
+  uint64_t *keys = malloc(2 * count * sizeof *keys);
+  uint32_t *order = malloc(count * sizeof *order);
+  if (!keys || !order) {
+    free(keys);
+    free(order);
+    return NULL;
+  }
+  /* centroids times 3, and their bounds */
+  double lo[3] = {INFINITY, INFINITY, INFINITY};
+  double hi[3] = {-INFINITY, -INFINITY, -INFINITY};
+  for (int pass = 0; pass < 2; pass++)
+    for (size_t i = 0; i < count; i++) {
+      const uint32_t *v = &triples[3 * i];
+      double c[3] = {pos[v[0]].x + pos[v[1]].x + pos[v[2]].x,
+                     pos[v[0]].y + pos[v[1]].y + pos[v[2]].y,
+                     pos[v[0]].z + pos[v[1]].z + pos[v[2]].z};
+      uint32_t code = 0;
+      for (int a = 0; a < 3; a++) {
+        if (pass == 0) {
+          lo[a] = c[a] < lo[a] ? c[a] : lo[a];
+          hi[a] = c[a] > hi[a] ? c[a] : hi[a];
+        } else {
+          double f = hi[a] > lo[a] ? (c[a] - lo[a]) / (hi[a] - lo[a]) : 0;
+          code |= morton_spread((uint32_t)(f * 1023.0)) << a;
+        }
+      }
+      keys[i] = (uint64_t)code << 32 | i; /* ties keep the file's order */
+    }
+  const uint64_t *sorted = radix_sort30(keys, keys + count, count);
+  for (size_t i = 0; i < count; i++)
+    order[i] = (uint32_t)sorted[i];
+  free(keys);
+  return order;
 }
 
 glint_status glint_scene_add_triangle(glint_scene *s, glint_vec3 a,
@@ -394,12 +482,14 @@ glint_status glint_scene_add_mesh(glint_scene *s, const glint_mesh *m,
   if (st)
     return st;
   size_t tri0 = s->triangle_count, nrm0 = s->tri_normal_count;
-  for (size_t i = 0; i < m->triangle_count && st == GLINT_OK; i++) {
-    const uint32_t *ix = &m->indices[3 * i];
+  uint32_t *order =
+      gli_morton_order(m->positions, m->indices, m->triangle_count);
+  for (size_t k = 0; k < m->triangle_count && st == GLINT_OK; k++) {
+    const uint32_t *ix = &m->indices[3 * (order ? order[k] : k)];
     glint_vec3 n[3];
     if (m->normals)
-      for (int k = 0; k < 3; k++)
-        n[k] = m->normals[ix[k]];
+      for (int c = 0; c < 3; c++)
+        n[c] = m->normals[ix[c]];
     st = gli_scene_push_triangle(s, m->positions[ix[0]], m->positions[ix[1]],
                                  m->positions[ix[2]], m->normals ? n : NULL,
                                  error);
@@ -409,6 +499,7 @@ glint_status glint_scene_add_mesh(glint_scene *s, const glint_mesh *m,
     s->tri_normal_count = nrm0;
     s->object_count--;
   }
+  free(order);
   return st;
 }
 

@@ -139,6 +139,20 @@ glint_status gli_scene_push_triangle(glint_scene *scene, glint_vec3 a,
                                      glint_vec3 b, glint_vec3 c,
                                      const glint_vec3 normals[3],
                                      glint_error *error);
+/* What gli_scene_push_triangle checks of a triangle's own values: its
+ * coordinates and normals (NULL: none) within range. */
+glint_status gli_scene_check_triangle(glint_vec3 a, glint_vec3 b, glint_vec3 c,
+                                      const glint_vec3 normals[3],
+                                      glint_error *error);
+
+/* The order in which to add a mesh's `count` triangles (vertex indices
+ * `triples`, three a triangle, into `pos`): along a Morton curve through
+ * their centroids (scene.c). Free it; NULL: the given order, for a mesh of
+ * fewer than GLI_MORTON_MIN_TRIANGLES (whose records a cache holds in any
+ * order) or without memory. */
+#define GLI_MORTON_MIN_TRIANGLES 1024
+uint32_t *gli_morton_order(const glint_vec3 *pos, const uint32_t *triples,
+                           size_t count);
 
 /* The scene file readers (scene/formats/nff.c, json.c): `data` is the
  * file's `size` bytes followed by a NUL; `path` names it in messages and
