@@ -166,6 +166,9 @@ static glint_status bind(const void *data, const gli_bvh *bvh,
                           ? (bvh->wide.hand_overs ? GLI_HYBRID_LANES : 0)
                       : accel == GLINT_ACCEL_BVH8 ? LANES
                                                   : 0;
+  v->ps.prefetch =
+      bvh->node_count &&
+      v->s.triangle_count * sizeof *ps->triangles >= GLI_PREFETCH_BYTES;
   if (v->ps.alone_lanes) {
     glint_status st = leaf_blocks_build(&v->s, bvh, &v->blocks, error);
     if (st) {

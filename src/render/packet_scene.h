@@ -68,11 +68,16 @@ typedef struct packet_scene {
    * BVH when at most this many of them enter it (0: never; LANES: from the
    * root on: accel/packet_traverse.h). */
   int alone_lanes;
+  /* The walks prefetch a leaf's triangles (render/packet_rays.h): where
+   * their records outgrow the caches, GLI_PREFETCH_BYTES or more. */
+  int prefetch;
   /* The tests a query makes beside the BVH's walks: the planes, and every
    * primitive when there is no BVH (the statistics' count). */
   size_t outside_tests;
   const struct leaf_blocks *blocks; /* what they test (render/leaf_blocks.h) */
 } packet_scene;
+
+#define GLI_PREFETCH_BYTES (4u << 20)
 
 /* The converted layout this ISA's backends share (render/backend.h). */
 #if defined(GLINT_ISA_SSE)
