@@ -432,6 +432,21 @@ static void large_meshes_are_kept_in_space_order(void **state) {
       assert_vec(api->triangles[i].v[k], s->triangles[i].v[k].x,
                  s->triangles[i].v[k].y, s->triangles[i].v[k].z);
   glint_scene_destroy(api);
+
+  /* Unchecked numbers reach the ordering: refused after it, no harm. */
+  for (int k = 0; k < 3; k++) {
+    V saved = pos[5];
+    pos[5] = (V[]){{NAN, 0, 0}, {0, INFINITY, 0}, {0, 0, -1e300}}[k];
+    api = scene_with_default_material(&m);
+    glint_error err;
+    assert_int_equal(glint_scene_add_mesh(api, &mesh, m, &err),
+                     GLINT_E_ARGUMENT);
+    if (!strstr(err.message, "coordinates"))
+      fail_msg("message '%s'", err.message);
+    assert_int_equal(api->triangle_count, 0);
+    glint_scene_destroy(api);
+    pos[5] = saved;
+  }
   glint_scene_destroy(file);
   glint_scene_destroy(s);
   free(got);

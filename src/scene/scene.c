@@ -400,8 +400,11 @@ uint32_t *gli_morton_order(const glint_vec3 *pos, const uint32_t *triples,
           lo[a] = c[a] < lo[a] ? c[a] : lo[a];
           hi[a] = c[a] > hi[a] ? c[a] : hi[a];
         } else {
-          double f = hi[a] > lo[a] ? (c[a] - lo[a]) / (hi[a] - lo[a]) : 0;
-          code |= morton_spread((uint32_t)(f * 1023.0)) << a;
+          /* The API's meshes come here unchecked: a NaN or an infinity
+           * goes to a cell, as any number does (the push refuses it). */
+          double f = (c[a] - lo[a]) / (hi[a] - lo[a]);
+          uint32_t cell = !(f > 0) ? 0 : f < 1 ? (uint32_t)(f * 1023) : 1023;
+          code |= morton_spread(cell) << a;
         }
       }
       keys[i] = (uint64_t)code << 32 | i; /* ties keep the file's order */
