@@ -186,7 +186,7 @@ typedef void (*packet_leaf_fn)(void *ctx, uint32_t ref, vmask m);
  * before the leaf's box test, so that the primitives' misses overlap the
  * test: on the 200k-triangle dragon's primary rays the first read of a
  * triangle was the walk's costliest instruction, and prefetched there the
- * rays ran 15% faster (AVX-512 beams and streams, one thread). The segment
+ * rays ran 10% faster (AVX-512 beams and streams, one thread). The segment
  * walk has none: there its mere presence made the streams' shadow packets
  * 5-8% slower on the SPD scenes, whose primitives the caches hold. */
 typedef void (*packet_prefetch_fn)(void *ctx, const uint32_t *refs,

@@ -89,10 +89,11 @@ static ALWAYS_INLINE void packet_prim(const packet_scene *ps, uint32_t ref,
   }
 }
 
-/* The closest-hit walk's packet_prefetch_fn: every line of a leaf's
- * triangles starts loading (a triangle's record is the largest a leaf
- * reads, two or three lines with AVX2 and AVX-512), where the scene's
- * triangles outgrow the caches (ps->prefetch). */
+/* The closest-hit walk's packet_prefetch_fn: the lines of a leaf's
+ * triangles start loading (a triangle's record is the largest a leaf
+ * reads: two or three lines with AVX2 and AVX-512, all of them prefetched;
+ * seven with SSE's broadcast numbers, of which the first, second and last),
+ * where the scene's triangles outgrow the caches (ps->prefetch). */
 static ALWAYS_INLINE void prefetch_prims(const packet_scene *ps,
                                          const uint32_t *refs, uint32_t count) {
   if (!ps->prefetch)

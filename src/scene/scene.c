@@ -351,6 +351,13 @@ static uint32_t morton_spread(uint32_t v) { /* bit k to bit 3k */
   return (v | (v << 2)) & 0x09249249;
 }
 
+/* Three times the centroid of the triangle of vertices v[0..2]. */
+static void centroid3(const glint_vec3 *pos, const uint32_t *v, double c[3]) {
+  c[0] = pos[v[0]].x + pos[v[1]].x + pos[v[2]].x;
+  c[1] = pos[v[0]].y + pos[v[1]].y + pos[v[2]].y;
+  c[2] = pos[v[0]].z + pos[v[1]].z + pos[v[2]].z;
+}
+
 /* Sorts the n keys in `a` by their top 32 bits, of which the low 30 are
  * used, in three stable passes of 10 bits (least significant first)
  * between a and b; returns the one holding the result. */
@@ -385,30 +392,30 @@ uint32_t *gli_morton_order(const glint_vec3 *pos, const uint32_t *triples,
     free(order);
     return NULL;
   }
-  /* centroids times 3, and their bounds */
+  /* centroids (times 3) and their bounds */
   double lo[3] = {INFINITY, INFINITY, INFINITY};
   double hi[3] = {-INFINITY, -INFINITY, -INFINITY};
-  for (int pass = 0; pass < 2; pass++)
-    for (size_t i = 0; i < count; i++) {
-      const uint32_t *v = &triples[3 * i];
-      double c[3] = {pos[v[0]].x + pos[v[1]].x + pos[v[2]].x,
-                     pos[v[0]].y + pos[v[1]].y + pos[v[2]].y,
-                     pos[v[0]].z + pos[v[1]].z + pos[v[2]].z};
-      uint32_t code = 0;
-      for (int a = 0; a < 3; a++) {
-        if (pass == 0) {
-          lo[a] = c[a] < lo[a] ? c[a] : lo[a];
-          hi[a] = c[a] > hi[a] ? c[a] : hi[a];
-        } else {
-          /* The API's meshes come here unchecked: a NaN or an infinity
-           * goes to a cell, as any number does (the push refuses it). */
-          double f = (c[a] - lo[a]) / (hi[a] - lo[a]);
-          uint32_t cell = !(f > 0) ? 0 : f < 1 ? (uint32_t)(f * 1023) : 1023;
-          code |= morton_spread(cell) << a;
-        }
-      }
-      keys[i] = (uint64_t)code << 32 | i; /* ties keep the file's order */
+  for (size_t i = 0; i < count; i++) {
+    double c[3];
+    centroid3(pos, &triples[3 * i], c);
+    for (int a = 0; a < 3; a++) {
+      lo[a] = c[a] < lo[a] ? c[a] : lo[a];
+      hi[a] = c[a] > hi[a] ? c[a] : hi[a];
     }
+  }
+  for (size_t i = 0; i < count; i++) {
+    double c[3];
+    centroid3(pos, &triples[3 * i], c);
+    uint32_t code = 0;
+    for (int a = 0; a < 3; a++) {
+      /* The API's meshes come here unchecked: a NaN or an infinity goes
+       * to a cell, as any number does (the push refuses it later). */
+      double f = (c[a] - lo[a]) / (hi[a] - lo[a]);
+      uint32_t cell = !(f > 0) ? 0 : f < 1 ? (uint32_t)(f * 1023) : 1023;
+      code |= morton_spread(cell) << a;
+    }
+    keys[i] = (uint64_t)code << 32 | i; /* ties keep the file's order */
+  }
   const uint64_t *sorted = radix_sort30(keys, keys + count, count);
   for (size_t i = 0; i < count; i++)
     order[i] = (uint32_t)sorted[i];
