@@ -93,13 +93,17 @@ int gli_mesh_emit_face(mesh_data *m, int obj, int with_normals) {
   return r;
 }
 
+/* The indices of triangle i's vertex normals, or NULL where it has none. */
+static const uint32_t *normal_indices(const mesh_data *m, size_t i) {
+  return m->vertex_normals                                   ? m->tri[i].v
+         : m->tri_nrm && m->tri_nrm[i].v[0] != MESH_NO_INDEX ? m->tri_nrm[i].v
+                                                             : NULL;
+}
+
 /* Triangle i's vertex normals in n, or NULL where it has none. */
 static const glint_vec3 *triangle_normals(const mesh_data *m, size_t i,
                                           glint_vec3 n[3]) {
-  const uint32_t *v = m->vertex_normals ? m->tri[i].v
-                      : m->tri_nrm && m->tri_nrm[i].v[0] != MESH_NO_INDEX
-                          ? m->tri_nrm[i].v
-                          : NULL;
+  const uint32_t *v = normal_indices(m, i);
   if (!v)
     return NULL;
   for (int k = 0; k < 3; k++)
@@ -123,8 +127,7 @@ static glint_status add_to_scene(glint_scene *s, const char *path, mesh_data *m,
   /* One allocation up front instead of a doubling per power of two. */
   size_t smooth = 0;
   for (size_t i = 0; i < m->ntri; i++)
-    smooth += m->vertex_normals ||
-              (m->tri_nrm && m->tri_nrm[i].v[0] != MESH_NO_INDEX);
+    smooth += normal_indices(m, i) != NULL;
   if (gli_grow((void **)&s->triangles, &s->triangle_cap, tri0 + m->ntri,
                sizeof *s->triangles) ||
       (smooth && gli_grow((void **)&s->tri_normals, &s->tri_normal_cap,
@@ -155,8 +158,8 @@ static glint_status add_to_scene(glint_scene *s, const char *path, mesh_data *m,
     size_t i = order ? order[k] : k;
     glint_vec3 n[3];
     const uint32_t *v = m->tri[i].v;
-    st = gli_scene_push_triangle(s, m->pos[v[0]], m->pos[v[1]], m->pos[v[2]],
-                                 triangle_normals(m, i, n), e);
+    st = gli_scene_append_triangle(s, m->pos[v[0]], m->pos[v[1]], m->pos[v[2]],
+                                   triangle_normals(m, i, n), e);
   }
   free(order);
   if (st)

@@ -306,8 +306,13 @@ glint_status gli_scene_push_triangle(glint_scene *s, glint_vec3 a, glint_vec3 b,
                                      glint_vec3 c, const glint_vec3 normals[3],
                                      glint_error *error) {
   glint_status st = gli_scene_check_triangle(a, b, c, normals, error);
-  if (st)
-    return st;
+  return st ? st : gli_scene_append_triangle(s, a, b, c, normals, error);
+}
+
+glint_status gli_scene_append_triangle(glint_scene *s, glint_vec3 a,
+                                       glint_vec3 b, glint_vec3 c,
+                                       const glint_vec3 normals[3],
+                                       glint_error *error) {
   gli_object *o = &s->objects[s->object_count - 1];
   if (s->triangle_count >= GLI_MAX_MESH_TRIANGLES)
     return gli_fail(error, GLINT_E_ARGUMENT, "too many triangles");

@@ -144,6 +144,11 @@ glint_status gli_scene_push_triangle(glint_scene *scene, glint_vec3 a,
 glint_status gli_scene_check_triangle(glint_vec3 a, glint_vec3 b, glint_vec3 c,
                                       const glint_vec3 normals[3],
                                       glint_error *error);
+/* gli_scene_push_triangle for a triangle already checked. */
+glint_status gli_scene_append_triangle(glint_scene *scene, glint_vec3 a,
+                                       glint_vec3 b, glint_vec3 c,
+                                       const glint_vec3 normals[3],
+                                       glint_error *error);
 
 /* The order in which to add a mesh's `count` triangles (vertex indices
  * `triples`, three a triangle, into `pos`): along a Morton curve through
