@@ -92,7 +92,8 @@ static void nearest_hits_agree(void **state) {
           hit_r h;
           vec3 org = v3(o[i], o[w + i], o[2 * w + i]);
           vec3 dir = v3(d[i], d[w + i], d[2 * w + i]);
-          int found = gli_scalar_nearest_hit_float(ref, org, dir, REAL_MAX, &h);
+          int found =
+              gli_scalar_nearest_hit_float(ref, &org, &dir, REAL_MAX, &h);
           int ref_obj = -1;
           if (found) {
             hits++;

@@ -70,10 +70,9 @@ static void nearest_hits_equal_brute_force(void **state) {
       float o[3], d[3];
       make_ray(&info, &seed, o, d);
       hit_r ha, hb;
-      int fa = gli_scalar_nearest_hit_float(
-          fb, v3(o[0], o[1], o[2]), v3(d[0], d[1], d[2]), REAL_MAX, &ha);
-      int fbr = gli_scalar_nearest_hit_float(
-          fn, v3(o[0], o[1], o[2]), v3(d[0], d[1], d[2]), REAL_MAX, &hb);
+      vec3 org = v3(o[0], o[1], o[2]), dir = v3(d[0], d[1], d[2]);
+      int fa = gli_scalar_nearest_hit_float(fb, &org, &dir, REAL_MAX, &ha);
+      int fbr = gli_scalar_nearest_hit_float(fn, &org, &dir, REAL_MAX, &hb);
       compare(scenes[si], "scalar-float", fa ? object_of(fb, &ha) : -1, ha.t,
               fbr ? object_of(fn, &hb) : -1, hb.t, &ties);
     }

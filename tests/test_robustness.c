@@ -249,9 +249,9 @@ static void count_misses(const scene_r *ref, void *const views[3],
                          int misses[4]) {
   for (int i = 0; i < lanes; i++) {
     hit_r h;
-    misses[0] += !gli_scalar_nearest_hit_float(
-        ref, v3(o[i], o[lanes + i], o[2 * lanes + i]),
-        v3(d[i], d[lanes + i], d[2 * lanes + i]), REAL_MAX, &h);
+    vec3 org = v3(o[i], o[lanes + i], o[2 * lanes + i]);
+    vec3 dir = v3(d[i], d[lanes + i], d[2 * lanes + i]);
+    misses[0] += !gli_scalar_nearest_hit_float(ref, &org, &dir, REAL_MAX, &h);
   }
   for (int p = 0; p < 3; p++)
     if (views[p])

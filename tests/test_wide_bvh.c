@@ -24,13 +24,20 @@
 
 #if REAL_IS_DOUBLE
 #define DATA_SCALAR DATA_SCALAR_DOUBLE
-#define scalar_nearest gli_scalar_nearest_hit_double
-#define scalar_transmission_of gli_scalar_transmission_double
 #else
 #define DATA_SCALAR DATA_SCALAR_FLOAT
-#define scalar_nearest gli_scalar_nearest_hit_float
-#define scalar_transmission_of gli_scalar_transmission_float
 #endif
+
+/* The scalar queries with the ray by value. */
+static int scalar_nearest(const scene_r *s, vec3 o, vec3 d, real tmax,
+                          hit_r *hit) {
+  return scalar_nearest_hit(s, &o, &d, tmax, hit);
+}
+
+static vec3 scalar_transmission_of(const scene_r *s, vec3 o, vec3 d,
+                                   real dist) {
+  return scalar_transmission(s, &o, &d, dist);
+}
 
 /* ---- the tree ----------------------------------------------------------- */
 

@@ -201,13 +201,14 @@ void scalar_scene_release(scene_r *s) {
 
 /* ---- the queries (render/scalar_rays.h) -------------------------------- */
 
-int scalar_nearest_hit(const scene_r *s, vec3 o, vec3 d, real tmax,
-                       hit_r *hit) {
-  return ray_nearest(s, o, d, tmax, hit);
+int scalar_nearest_hit(const scene_r *s, const vec3 *o, const vec3 *d,
+                       real tmax, hit_r *hit) {
+  return ray_nearest(s, *o, *d, tmax, hit);
 }
 
-vec3 scalar_transmission(const scene_r *s, vec3 o, vec3 d, real dist) {
-  return ray_transmission(s, o, d, dist);
+vec3 scalar_transmission(const scene_r *s, const vec3 *o, const vec3 *d,
+                         real dist) {
+  return ray_transmission(s, *o, *d, dist);
 }
 
 /* ---- the world's conversion and a renderer's view (render/backend.h) ---- */

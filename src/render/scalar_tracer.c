@@ -106,7 +106,7 @@ static int worth_tracing(vec3 weight) {
 static vec3 trace(const scene_r *s, int max_depth, vec3 o, vec3 d, int level,
                   vec3 weight, glint_stats *st) {
   hit_r h;
-  if (!scalar_nearest_hit(s, o, d, REAL_MAX, &h))
+  if (!scalar_nearest_hit(s, &o, &d, REAL_MAX, &h))
     return s->background;
   surface f = surface_at(s, &h, o, d);
   const object_r *ob = &s->objects[f.object];
@@ -127,7 +127,7 @@ static vec3 trace(const scene_r *s, int max_depth, vec3 o, vec3 d, int level,
     if (nl <= 0)
       continue; /* the light is behind the surface: no diffuse, no highlight */
     st->shadow_rays++;
-    vec3 sj = scalar_transmission(s, f.p, l, dist);
+    vec3 sj = scalar_transmission(s, &f.p, &l, dist);
     if (sj.x == 0 && sj.y == 0 && sj.z == 0)
       continue;
     vec3 il = v3_mul(sj, li->color);
@@ -218,8 +218,8 @@ static uint64_t primary_tile(const void *view, const frame_params *frame,
         real px = (real)x + (real)0.5 + (real)frame->samples[k][0];
         real py = (real)y + (real)0.5 + (real)frame->samples[k][1];
         hit_r h;
-        hits += (uint64_t)scalar_nearest_hit(
-            s, cam.from, camera_dir(&cam, px, py), REAL_MAX, &h);
+        vec3 d = camera_dir(&cam, px, py);
+        hits += (uint64_t)scalar_nearest_hit(s, &cam.from, &d, REAL_MAX, &h);
       }
   st->primary_rays += (uint64_t)(tile->x1 - tile->x0) *
                       (uint64_t)(tile->y1 - tile->y0) * (uint64_t)frame->spp;
