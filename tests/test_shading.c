@@ -90,6 +90,29 @@ static void diffuse_only(void **state) {
   expect_pixel(s, 5, 0.8 * 0.6, 0.6 * 0.6, 0.4 * 0.6);
 }
 
+/* A mesh whose vertex normals are all zero (a file may say `vn 0 0 0`):
+ * the interpolated normal cancels, and every backend shades with the
+ * triangle's own normal, as diffuse_only's wall (the SIMD backends used
+ * to normalise the zero vector and light nothing). */
+static void zero_vertex_normals_shade_flat(void **state) {
+  (void)state;
+  glint_material m;
+  glint_material_default(&m);
+  m.color = (V){0.8, 0.6, 0.4};
+  m.ka = 0.2;
+  m.kd = 0.5;
+  glint_scene *s =
+      new_scene((V){0, 0, 5}, (V){0, 0, 0}, (V){0, 1, 0}, (V){0, 0, 0});
+  ASSERT_OK(glint_scene_set_ambient(s, (V){0.5, 0.5, 0.5}, &e_));
+  const V positions[3] = {{-2, -1, 0}, {2, -1, 0}, {0, 2, 0}};
+  const V normals[3] = {{0, 0, 0}, {0, 0, 0}, {0, 0, 0}};
+  const uint32_t indices[3] = {0, 1, 2};
+  glint_mesh mesh = {positions, normals, 3, indices, 1};
+  ASSERT_OK(glint_scene_add_mesh(s, &mesh, material(s, &m), &e_));
+  ASSERT_OK(glint_scene_add_light(s, (V){0, 0, 10}, (V){1, 1, 1}, &e_));
+  expect_pixel(s, 5, 0.8 * 0.6, 0.6 * 0.6, 0.4 * 0.6);
+}
+
 /* The light at (0, 4, 3): L = (0, .8, .6), N·L = .6, R = (0, -.8, .6),
  * V·R = .6, so the highlight is ks .6^h = .5 * .36 = .18 per unit light. */
 static glint_material phong_material(void) {
@@ -332,6 +355,7 @@ static void glass_plane_shadow(void **state) {
 int main(void) {
   const struct CMUnitTest tests[] = {
       cmocka_unit_test(diffuse_only),
+      cmocka_unit_test(zero_vertex_normals_shade_flat),
       cmocka_unit_test(diffuse_and_highlight),
       cmocka_unit_test(light_behind_surface),
       cmocka_unit_test(opaque_shadow),

@@ -125,18 +125,22 @@ typedef struct packet_surface {
 } packet_surface;
 
 /* Interpolated vertex normals (NFF polygonal patches) of the triangles
- * whose first normal index is n0 (x3 floats), facing the ray. */
+ * whose first normal index is n0 (x3 floats), facing the ray; where they
+ * cancel (zero normals in the file, or opposite ones), the geometric normal
+ * `flat`, already facing the ray, as the scalar tracer does. */
 static ALWAYS_INLINE vvec3 packet_smooth_normal(const scene_r *s, vint n0,
                                                 const packet_hit *h, vvec3 d,
-                                                int newton) {
+                                                vvec3 flat, int newton) {
   const float *nb = (const float *)s->normals;
   vvec3 a = vv_gather(nb, n0, 1, 0);
   vvec3 b = vv_gather(nb, n0, 1, 3);
   vvec3 c = vv_gather(nb, n0, 1, 6);
   vfloat w = vf_sub(vf_sub(vf_set1(1), h->u), h->v);
-  vvec3 n =
-      vv_normalize(vv_madd(vv_madd(vv_scale(a, w), h->u, b), h->v, c), newton);
-  return vv_select(vf_lt(vv_dot(n, d), vf_zero()), n, vv_neg(n));
+  vvec3 m = vv_madd(vv_madd(vv_scale(a, w), h->u, b), h->v, c);
+  vmask some = vf_gt(vv_dot(m, m), vf_zero());
+  vvec3 n = vv_normalize(vv_select(some, m, flat), newton);
+  vvec3 facing = vv_select(vf_lt(vv_dot(n, d), vf_zero()), n, vv_neg(n));
+  return vv_select(some, facing, flat);
 }
 
 /* The surface of lanes that all hit one object. */
@@ -177,7 +181,8 @@ packet_surface_object(const packet_scene *ps, const object_r *ob,
                          FLOAT_OFFSET(triangle_r, normals));
       /* Lanes outside the sub-beam may hold a flat triangle's -1. */
       n0 = vi_mul_const(vi_select(vi_eq(n0, vi_set1(-1)), vi_set1(0), n0), 3);
-      f.n = packet_smooth_normal(s, n0, h, d, newton);
+      f.n = packet_smooth_normal(s, n0, h, d,
+                                 vv_select(f.front, ng, vv_neg(ng)), newton);
       return f;
     }
     break;
@@ -240,7 +245,8 @@ static ALWAYS_INLINE packet_surface packet_surface_lanes(
     vmask smooth = vm_andnot(tri, vi_eq(nidx, vi_set1(-1)));
     if (vm_any(smooth)) {
       vint n0 = vi_mul_const(vi_select(smooth, nidx, none), 3);
-      n = vv_select(smooth, packet_smooth_normal(s, n0, h, d, newton), n);
+      vvec3 flat = vv_select(f.front, ng, vv_neg(ng));
+      n = vv_select(smooth, packet_smooth_normal(s, n0, h, d, flat, newton), n);
       smooth_done = smooth;
     }
   }
