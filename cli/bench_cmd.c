@@ -9,7 +9,11 @@
 
 #include <glint.h>
 
+#include <errno.h>
+#include <fcntl.h>
+#include <limits.h>
 #include <math.h>
+#include <signal.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
@@ -43,7 +47,9 @@ static void bench_usage(FILE *f) {
       "      --math NAME    minimax, fast, taylor, exact (default: minimax)\n"
       "      --no-newton    skip the Newton step after rcp\n"
       "      --accel NAME   bvh, bvh2, bvh8, none (default: bvh)\n"
-      "      --csv FILE     also write every measurement as CSV\n"
+      "      --csv FILE     also write every measurement as CSV (once\n"
+      "                     every run has ended; on an error or Ctrl-C an\n"
+      "                     existing FILE stays as it was)\n"
       "      --plot DIR     also plot seconds against depth per scene into\n"
       "                     DIR/SCENE.png (needs gnuplot)\n"
       "      --spd DIR      instead: the SPD scenes in DIR (balls-s4, "
@@ -339,6 +345,93 @@ int bench_parse(int argc, char **argv, bench_options *o) {
   return -1;
 }
 
+/* ---- the CSV file -------------------------------------------------------
+ * The rows are gathered in memory and the file is written only when the
+ * benchmark has run to its end, through a temporary file beside it renamed
+ * over it: a bad scene, a failed render or Ctrl-C leaves an existing file
+ * as it was, and no half-written one. */
+
+/* Creates a new file beside `path` (named in `temp`), mode 0666 less the
+ * umask; returns its descriptor, or -1 with errno set. */
+static int create_beside(const char *path, char *temp, size_t size) {
+  for (int k = 0; k < 100; k++) {
+    if (snprintf(temp, size, "%s.%ld-%d.tmp", path, (long)getpid(), k) >=
+        (int)size) {
+      errno = ENAMETOOLONG;
+      return -1;
+    }
+    int fd = open(temp, O_WRONLY | O_CREAT | O_EXCL | O_CLOEXEC, 0666);
+    if (fd >= 0 || errno != EEXIST)
+      return fd;
+  }
+  errno = EEXIST;
+  return -1;
+}
+
+/* Whether the CSV can be written (checked before anything is measured) and
+ * is none of the scene files the benchmark reads. */
+static int check_csv_path(const char *path, char **scenes, int nscenes) {
+  struct stat csv_sb, scene_sb;
+  if (stat(path, &csv_sb) == 0) {
+    if (S_ISDIR(csv_sb.st_mode)) {
+      cli_error("--csv: %s is a folder", path);
+      return -1;
+    }
+    for (int i = 0; i < nscenes; i++)
+      if (stat(scenes[i], &scene_sb) == 0 && scene_sb.st_dev == csv_sb.st_dev &&
+          scene_sb.st_ino == csv_sb.st_ino) {
+        cli_error("--csv: %s is a scene of this benchmark", path);
+        return -1;
+      }
+  }
+  char temp[PATH_MAX + 32];
+  int fd = create_beside(path, temp, sizeof temp);
+  if (fd < 0) {
+    cli_error("--csv: %s: cannot write here: %s", path, strerror(errno));
+    return -1;
+  }
+  close(fd);
+  unlink(temp);
+  return 0;
+}
+
+/* Writes the CSV's `size` bytes to `path` whole, or not at all. Stop
+ * signals wait until the file is in place. */
+static int write_csv(const char *path, const char *text, size_t size) {
+  sigset_t stops, before;
+  sigemptyset(&stops);
+  sigaddset(&stops, SIGINT);
+  sigaddset(&stops, SIGTERM);
+  sigaddset(&stops, SIGHUP);
+  sigprocmask(SIG_BLOCK, &stops, &before);
+  char temp[PATH_MAX + 32];
+  int fd = create_beside(path, temp, sizeof temp);
+  int saved = fd < 0 ? errno : 0;
+  for (size_t done = 0; fd >= 0 && !saved && done < size;) {
+    ssize_t n = write(fd, text + done, size - done);
+    if (n < 0 && errno != EINTR)
+      saved = errno;
+    else if (n > 0)
+      done += (size_t)n;
+  }
+  if (fd >= 0) {
+    if (!saved && fsync(fd) != 0 && errno != EINVAL)
+      saved = errno;
+    if (close(fd) != 0 && !saved)
+      saved = errno;
+    if (!saved && rename(temp, path) != 0)
+      saved = errno;
+    if (saved)
+      unlink(temp);
+  }
+  sigprocmask(SIG_SETMASK, &before, NULL);
+  if (saved) {
+    cli_error("%s: writing the CSV file failed: %s", path, strerror(saved));
+    return -1;
+  }
+  return 0;
+}
+
 int cmd_bench(int argc, char **argv) {
   bench_options o;
   int status = bench_parse(argc, argv, &o);
@@ -363,9 +456,15 @@ int cmd_bench(int argc, char **argv) {
   }
 
   FILE *csv = NULL;
-  if (o.csv_path && !(csv = fopen(o.csv_path, "w"))) {
-    cli_error("%s: cannot write the CSV file", o.csv_path);
-    return EXIT_USAGE;
+  char *csv_text = NULL;
+  size_t csv_size = 0;
+  if (o.csv_path) {
+    if (check_csv_path(o.csv_path, o.scenes, o.spd_dir ? 0 : o.nscenes))
+      return EXIT_USAGE;
+    if (!(csv = open_memstream(&csv_text, &csv_size))) {
+      cli_error("out of memory");
+      return EXIT_MEMORY;
+    }
   }
   if (csv)
     fprintf(csv, "scene,depth,backend,width,height,spp,threads,runs,"
@@ -379,9 +478,12 @@ int cmd_bench(int argc, char **argv) {
     status = bench_scenes(o.scenes, o.nscenes, o.depths, o.ndepths, &rs, o.cols,
                           o.ncols, o.runs, csv, o.plot_dir);
   if (csv && fclose(csv) != 0 && !status) {
-    cli_error("%s: writing the CSV file failed", o.csv_path);
-    status = EXIT_USAGE;
+    cli_error("out of memory");
+    status = EXIT_MEMORY;
   }
+  if (csv && !status && write_csv(o.csv_path, csv_text, csv_size))
+    status = EXIT_USAGE;
+  free(csv_text);
   return status;
 }
 

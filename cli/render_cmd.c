@@ -73,7 +73,9 @@ static void render_usage(FILE *f) {
       "After rendering, one line gives the wall time, the rays traced and the\n"
       "rate. Errors exit with status 2 and write no file; Ctrl-C stops the\n"
       "render (at the next tile, or abandoning it 2 s later), leaves any\n"
-      "existing file untouched and exits with 130. Short\n"
+      "existing file untouched and exits with 130 (once the render has\n"
+      "ended, the image is finished and written, and glint says so, still\n"
+      "with 130). Short\n"
       "options take -W 800, -W800 or -W=800; -- ends the options.\n",
       f);
 }

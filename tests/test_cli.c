@@ -474,8 +474,8 @@ static void bench_errors(void **state) {
                      "--meshes", "/nonexistent");
   EXPECT_USAGE_ERROR("--plot: cannot create the folder /proc/glint", "bench",
                      "--plot", "/proc/glint");
-  EXPECT_USAGE_ERROR("cannot write the CSV file", "bench", "--csv",
-                     "/nonexistent/b.csv", "--depths", "1", "--scenes",
+  EXPECT_USAGE_ERROR("--csv: /nonexistent/b.csv: cannot write here", "bench",
+                     "--csv", "/nonexistent/b.csv", "--depths", "1", "--scenes",
                      "whitted", "--backends", "scalar-float", "-W", "8", "-H",
                      "8");
 }
@@ -702,6 +702,34 @@ static char *file_bytes(const char *name, long *size) {
   assert_int_equal(fread(data, 1, (size_t)*size, f), (size_t)*size);
   fclose(f);
   return data;
+}
+
+/* The CSV appears only when the benchmark has run to its end: a bad scene
+ * leaves an existing file as it was, and the CSV cannot be a scene. */
+static void bench_csv_keeps_files_on_error(void **state) {
+  (void)state;
+  put_text("keep.csv", "precious");
+  EXPECT_USAGE_ERROR_KEEPING("unknown scene 'atlantis'", "bench", "--scenes",
+                             "whitted,atlantis", "--csv", "keep.csv");
+  put_text("s.nff", "v\nfrom 0 0 -5\nat 0 0 0\nup 0 1 0\nangle 40\n"
+                    "hither 0.001\nresolution 8 8\n"
+                    "f 1 1 1 1 0 0 0 1\ns 0 0 0 1\n");
+  EXPECT_USAGE_ERROR_KEEPING("--csv: s.nff is a scene of this benchmark",
+                             "bench", "--scenes", "s.nff", "--depths", "1",
+                             "--runs", "1", "--backends", "scalar-float",
+                             "--csv", "s.nff");
+  long n;
+  char *kept = file_bytes("keep.csv", &n);
+  assert_true(n == 8 && memcmp(kept, "precious", 8) == 0);
+  free(kept);
+  kept = file_bytes("s.nff", &n);
+  assert_true(n > 8 && memcmp(kept, "v\nfrom", 6) == 0);
+  free(kept);
+  EXPECT_USAGE_ERROR_KEEPING("--csv: . is a folder", "bench", "--scenes",
+                             "s.nff", "--csv", ".");
+  assert_int_equal(remove_in_folder("keep.csv"), 0);
+  assert_int_equal(remove_in_folder("s.nff"), 0);
+  assert_true(folder_is_empty());
 }
 
 static const char orbit_scene[] =
@@ -1031,6 +1059,7 @@ int main(void) {
       cmocka_unit_test(png_compression_and_gamma),
       cmocka_unit_test(defaults_quiet_and_stats),
       cmocka_unit_test(bench_runs_and_writes_csv),
+      cmocka_unit_test(bench_csv_keeps_files_on_error),
       cmocka_unit_test(bench_time_to_image),
       cmocka_unit_test(bench_errors),
       cmocka_unit_test(a_closed_pipe_is_an_error),
