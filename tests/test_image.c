@@ -203,6 +203,67 @@ static void failed_write_keeps_existing_file(void **state) {
   glint_image_destroy(back);
 }
 
+/* An image written to a symbolic link goes to the file it names, and the
+ * link stays a link (as a shell's > writes). */
+static void writes_through_a_link(void **state) {
+  (void)state;
+  char target[128], link[128];
+  snprintf(target, sizeof target, "%s", path("target.ppm"));
+  snprintf(link, sizeof link, "%s", path("link.ppm"));
+  FILE *f = fopen(target, "wb");
+  fputs("original", f);
+  fclose(f);
+  assert_int_equal(symlink("target.ppm", link), 0);
+  glint_image *small = pattern(3, 3), *back;
+  ASSERT_OK(glint_image_write(small, link, &e_));
+  struct stat sb;
+  assert_int_equal(lstat(link, &sb), 0);
+  assert_true(S_ISLNK(sb.st_mode));
+  ASSERT_OK(glint_image_read(target, &back, &e_));
+  assert_memory_equal(glint_image_pixels_const(small),
+                      glint_image_pixels_const(back), 27);
+  glint_image_destroy(small);
+  glint_image_destroy(back);
+  unlink(link);
+  unlink(target);
+}
+
+/* A file its user may not write is refused, not replaced by the rename
+ * (which the folder alone allows). As root, the write is tried by a child
+ * that has become nobody, on a file of root's. */
+static void read_only_file_is_kept(void **state) {
+  (void)state;
+  char p[128];
+  snprintf(p, sizeof p, "%s", path("ro.ppm"));
+  FILE *f = fopen(p, "wb");
+  fputs("original", f);
+  fclose(f);
+  chmod(p, 0444);
+  chmod(dir, 0777);
+  pid_t pid = fork();
+  if (pid == 0) {
+    if (geteuid() == 0 && (setgid(65534) != 0 || setuid(65534) != 0))
+      _exit(2);
+    glint_image *small = pattern(3, 3);
+    glint_error e;
+    int st = glint_image_write(small, p, &e);
+    glint_image_destroy(small);
+    _exit(st == GLINT_E_IO && strstr(e.message, "ro.ppm: cannot write") ? 0
+                                                                        : 1);
+  }
+  int status;
+  waitpid(pid, &status, 0);
+  chmod(dir, 0700);
+  assert_true(WIFEXITED(status) && WEXITSTATUS(status) == 0);
+  char buf[64] = {0};
+  f = fopen(p, "rb");
+  size_t n = fread(buf, 1, sizeof buf - 1, f);
+  fclose(f);
+  assert_int_equal(n, 8);
+  assert_string_equal(buf, "original");
+  unlink(p);
+}
+
 /* Damaged files found by fuzzing: each is refused with the file's name and
  * what is wrong, without undefined behaviour, a leak or libpng's own lines
  * on stderr. */
@@ -252,6 +313,8 @@ int main(void) {
       cmocka_unit_test(psnr_of_known_difference),
       cmocka_unit_test(bad_paths_are_refused),
       cmocka_unit_test(failed_write_keeps_existing_file),
+      cmocka_unit_test(writes_through_a_link),
+      cmocka_unit_test(read_only_file_is_kept),
       cmocka_unit_test(damaged_files_are_refused),
   };
   return cmocka_run_group_tests(tests, setup, teardown);

@@ -1,3 +1,4 @@
+#define _DEFAULT_SOURCE /* realpath */
 /* Images in memory, format dispatch by extension, and the atomic write: the
  * encoder writes a temporary file in the destination folder, which is flushed,
  * synced and renamed over the destination only when complete. A failure or an
@@ -142,6 +143,12 @@ static int open_temp(const char *path, char **temp, glint_error *error) {
     gli_fail(error, GLINT_E_IO, "%s: is a directory", path);
     return -1;
   }
+  /* A file the user may not write is not replaced behind its back by the
+   * rename, which asks only the folder. */
+  if (stat(path, &sb) == 0 && access(path, W_OK) != 0) {
+    gli_fail(error, GLINT_E_IO, "%s: cannot write: %s", path, strerror(errno));
+    return -1;
+  }
   const char *slash = strrchr(path, '/');
   if (strlen(slash ? slash + 1 : path) > NAME_MAX) {
     /* found now, before a render, not by the rename after it */
@@ -171,9 +178,21 @@ glint_status glint_image_check_writable(const char *path, glint_error *error) {
   return gli_check_folder_writable(path, error);
 }
 
+/* Where `path` is a symbolic link to a file, that file (written through
+ * the link, as a shell's > writes, so the link stays a link); else NULL, for
+ * path itself (a dangling link is replaced). */
+static char *link_target(const char *path) {
+  struct stat sb;
+  if (lstat(path, &sb) != 0 || !S_ISLNK(sb.st_mode))
+    return NULL;
+  return realpath(path, NULL);
+}
+
 glint_status gli_check_folder_writable(const char *path, glint_error *error) {
+  char *target = link_target(path);
   char *temp;
-  int fd = open_temp(path, &temp, error);
+  int fd = open_temp(target ? target : path, &temp, error);
+  free(target);
   if (fd < 0)
     return error ? error->status : GLINT_E_IO;
   close(fd);
@@ -184,13 +203,17 @@ glint_status gli_check_folder_writable(const char *path, glint_error *error) {
 
 glint_status gli_atomic_open(const char *path, gli_atomic_file *file,
                              glint_error *error) {
-  int fd = open_temp(path, &file->temp, error);
-  if (fd < 0)
+  file->target = link_target(path);
+  const char *dest = file->target ? file->target : path;
+  int fd = open_temp(dest, &file->temp, error);
+  if (fd < 0) {
+    free(file->target);
     return error ? error->status : GLINT_E_IO;
+  }
   /* A file replaced keeps its permissions (a new one has 0666 less the
    * umask, as create_exclusive made it). */
   struct stat sb;
-  if (stat(path, &sb) == 0 && S_ISREG(sb.st_mode))
+  if (stat(dest, &sb) == 0 && S_ISREG(sb.st_mode))
     fchmod(fd, sb.st_mode & 07777);
   file->path = path;
   file->f = fdopen(fd, "wb");
@@ -199,6 +222,7 @@ glint_status gli_atomic_open(const char *path, gli_atomic_file *file,
     close(fd);
     unlink(file->temp);
     free(file->temp);
+    free(file->target);
     return gli_fail(error, GLINT_E_IO, "%s: %s", path, strerror(saved));
   }
   return GLINT_OK;
@@ -213,11 +237,12 @@ glint_status gli_atomic_commit(gli_atomic_file *file, int failed,
     bad = 1, saved = errno;
   if (fclose(file->f) != 0 && !bad)
     bad = 1, saved = errno;
-  if (!bad && rename(file->temp, file->path) != 0)
+  if (!bad && rename(file->temp, file->target ? file->target : file->path) != 0)
     bad = 1, saved = errno;
   if (bad)
     unlink(file->temp);
   free(file->temp);
+  free(file->target);
   if (bad)
     return gli_fail(error, gli_errno_status(saved), "%s: writing failed: %s",
                     file->path, saved ? strerror(saved) : "encoder error");
@@ -228,6 +253,7 @@ void gli_atomic_discard(gli_atomic_file *file) {
   fclose(file->f);
   unlink(file->temp);
   free(file->temp);
+  free(file->target);
 }
 
 glint_status gli_write_atomically(const char *path, write_fn write,

@@ -48,6 +48,7 @@ glint_status gli_write_atomically(const char *path, write_fn write,
  * with its errno discards instead and reports the failure) or discard. */
 typedef struct gli_atomic_file {
   const char *path;
+  char *target; /* where path is a symbolic link, the file it names */
   char *temp;
   FILE *f;
 } gli_atomic_file;
