@@ -12,6 +12,7 @@
 #include <sys/stat.h>
 #include <sys/wait.h>
 #include <unistd.h>
+#include <zlib.h>
 
 static char dir[64];
 
@@ -264,6 +265,13 @@ static void read_only_file_is_kept(void **state) {
   unlink(p);
 }
 
+static void write_bytes(const char *name, const void *bytes, size_t size) {
+  FILE *f = fopen(name, "wb");
+  assert_non_null(f);
+  assert_int_equal(fwrite(bytes, 1, size, f), size);
+  assert_int_equal(fclose(f), 0);
+}
+
 /* Damaged files found by fuzzing: each is refused with the file's name and
  * what is wrong, without undefined behaviour, a leak or libpng's own lines
  * on stderr. */
@@ -280,11 +288,56 @@ static void damaged_files_are_refused(void **state) {
   bmp[18] = 4;        /* width 4 */
   bmp[22 + 3] = 0x80; /* height 0x80000000 */
   bmp[28] = 24;       /* bits per pixel */
-  FILE *f = fopen(path, "wb");
-  fwrite(bmp, 1, sizeof bmp, f);
-  fclose(f);
+  write_bytes(path, bmp, sizeof bmp);
   assert_int_equal(glint_image_read(path, &got, &e), GLINT_E_PARSE);
   assert_non_null(strstr(e.message, "tall.bmp: a BMP of 4 x -2147483648"));
+  /* the same header saying its pixels start inside it */
+  bmp[22 + 3] = 0;
+  bmp[22] = 1;
+  bmp[10] = 10;
+  write_bytes(path, bmp, sizeof bmp);
+  assert_int_equal(glint_image_read(path, &got, &e), GLINT_E_PARSE);
+  assert_non_null(
+      strstr(e.message, "tall.bmp: the pixels start at byte 10, inside"));
+  /* and an OS/2 BMP's 12-byte header */
+  bmp[10] = 54;
+  bmp[14] = 12;
+  write_bytes(path, bmp, sizeof bmp);
+  assert_int_equal(glint_image_read(path, &got, &e), GLINT_E_PARSE);
+  assert_non_null(strstr(e.message, "tall.bmp: a BMP with a 12-byte header"));
+
+  /* a PNG whose header claims 100000 x 100000 pixels */
+  snprintf(path, sizeof path, "%s/huge.png", dir);
+  ASSERT_OK(glint_image_create(1, 1, &im, &e));
+  ASSERT_OK(glint_image_write(im, path, &e));
+  glint_image_destroy(im);
+  long size;
+  FILE *pf = fopen(path, "rb");
+  fseek(pf, 0, SEEK_END);
+  size = ftell(pf);
+  rewind(pf);
+  uint8_t *png = malloc((size_t)size);
+  assert_int_equal(fread(png, 1, (size_t)size, pf), (size_t)size);
+  fclose(pf);
+  const uint8_t huge_side[4] = {0, 1, 0x86, 0xa0}; /* 100000, big-endian */
+  memcpy(png + 16, huge_side, 4);                  /* IHDR's width */
+  memcpy(png + 20, huge_side, 4);                  /* and height */
+  uLong crc = crc32(0L, png + 12, 17);             /* "IHDR" and its data */
+  for (int k = 0; k < 4; k++)
+    png[29 + k] = (uint8_t)(crc >> (24 - 8 * k));
+  write_bytes(path, png, (size_t)size);
+  free(png);
+  assert_int_equal(glint_image_read(path, &got, &e), GLINT_E_PARSE);
+  assert_non_null(strstr(e.message, "huge.png: a PNG of 100000 x 100000"));
+  unlink(path);
+
+  /* a PPM larger than glint reads */
+  snprintf(path, sizeof path, "%s/huge.ppm", dir);
+  static const char huge_ppm[] = "P6\n100000 100000\n255\n";
+  write_bytes(path, huge_ppm, sizeof huge_ppm - 1);
+  assert_int_equal(glint_image_read(path, &got, &e), GLINT_E_PARSE);
+  assert_non_null(strstr(e.message, "huge.ppm: a PPM of 100000 x 100000"));
+  unlink(path);
 
   /* a PNG cut short in its pixel data */
   snprintf(path, sizeof path, "%s/cut.png", dir);

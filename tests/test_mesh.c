@@ -782,10 +782,29 @@ static void ply_absurd_list_counts(void **state) {
               "property float y\nproperty float z\n"
               "property list uint int junk\nelement face 1\n"
               "property list uint int vertex_indices\nend_header\n"
-              "0 0 0 0\n1 0 0 999999999999 1 2\n0 1 0 0\n3 0 1 2\n",
+              "0 0 0 0\n1 0 0 4000000000 1 2\n0 1 0 0\n3 0 1 2\n",
               GLINT_E_PARSE,
               "long_ascii.ply:12: expected a number for the vertex's 'junk', "
               "found the end of the line",
+              NULL);
+  /* ASCII: a count or an index beyond the type the header gives it. */
+  expect_fail(f, "uchar_ascii.ply",
+              "ply\nformat ascii 1.0\nelement vertex 3\nproperty float x\n"
+              "property float y\nproperty float z\nelement face 1\n"
+              "property list uchar int vertex_indices\nend_header\n"
+              "0 0 0\n1 0 0\n0 1 0\n300 0 1 2\n",
+              GLINT_E_PARSE,
+              "uchar_ascii.ply:13: the count of the face's list "
+              "'vertex_indices' is 300, outside the uchar type",
+              NULL);
+  expect_fail(f, "uint_ascii.ply",
+              "ply\nformat ascii 1.0\nelement vertex 3\nproperty float x\n"
+              "property float y\nproperty float z\nelement face 1\n"
+              "property list uchar uint vertex_indices\nend_header\n"
+              "0 0 0\n1 0 0\n0 1 0\n3 0 1 -2\n",
+              GLINT_E_PARSE,
+              "uint_ascii.ply:13: a face's vertex index is -2, outside the "
+              "uint type",
               NULL);
 }
 

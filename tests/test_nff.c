@@ -158,6 +158,10 @@ static void malformed_files(void **state) {
       "camera.nff:1: camera: 'from' and 'at' are the same point");
   EXPECT_FAIL("glass.nff", VIEW "f 1 1 1 1 0 1 0.5 0\n", GLINT_E_PARSE,
               "glass.nff:8: material ior = 0 must be a finite number > 0");
+  EXPECT_FAIL("patch.nff",
+              VIEW "f 1 1 1 1 0 1 0 1\npp 3\n0 0 0 0 0 1e20\n1 0 0 0 0 1\n"
+                   "0 1 0 0 0 1\n",
+              GLINT_E_PARSE, "patch.nff:9: vertex normals must be finite");
   /* A missing file, and a binary one. */
   glint_scene *s = NULL;
   glint_error e;

@@ -65,9 +65,19 @@ glint_status gli_bmp_decode(FILE *f, const char *path, glint_image **out,
     return gli_fail(error, GLINT_E_PARSE, "%s: not a BMP file", path);
   uint32_t offset = get32(hdr + 10), hsize = get32(hdr + 14);
   int32_t w = (int32_t)get32(hdr + 18), h = (int32_t)get32(hdr + 22);
-  if (hsize < 40 || get16(hdr + 28) != 24 || get32(hdr + 30) != 0)
+  if (hsize < 40)
+    return gli_fail(error, GLINT_E_PARSE,
+                    "%s: a BMP with a %lu-byte header (OS/2 or older; glint "
+                    "reads Windows BMPs, of 40 bytes or more)",
+                    path, (unsigned long)hsize);
+  if (get16(hdr + 28) != 24 || get32(hdr + 30) != 0)
     return gli_fail(error, GLINT_E_PARSE,
                     "%s: only uncompressed 24-bit BMP is supported", path);
+  if (offset < 14 + hsize)
+    return gli_fail(error, GLINT_E_PARSE,
+                    "%s: the pixels start at byte %lu, inside the %lu bytes "
+                    "of the headers",
+                    path, (unsigned long)offset, 14ul + hsize);
   /* A negative height means rows top to bottom; INT32_MIN has no positive
    * twin, and no size beyond glint's images is worth reading. */
   if (w < 1 || w > GLINT_MAX_DIMENSION || h == 0 || h < -GLINT_MAX_DIMENSION ||

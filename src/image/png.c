@@ -144,8 +144,15 @@ glint_status gli_png_decode(FILE *f, const char *path, glint_image **out,
   png_set_gray_to_rgb(png);
   png_set_interlace_handling(png);
   png_read_update_info(png, info);
-  if (w < 1 || h < 1 || w > GLINT_MAX_DIMENSION || h > GLINT_MAX_DIMENSION ||
-      png_get_rowbytes(png, info) != (size_t)w * 3) {
+  if (w < 1 || h < 1 || w > GLINT_MAX_DIMENSION || h > GLINT_MAX_DIMENSION) {
+    png_destroy_read_struct(&png, &info, NULL);
+    return gli_fail(error, GLINT_E_PARSE,
+                    "%s: a PNG of %lu x %lu pixels (glint reads 1 to %d a "
+                    "side)",
+                    path, (unsigned long)w, (unsigned long)h,
+                    GLINT_MAX_DIMENSION);
+  }
+  if (png_get_rowbytes(png, info) != (size_t)w * 3) {
     png_destroy_read_struct(&png, &info, NULL);
     return gli_fail(error, GLINT_E_PARSE, "%s: unsupported PNG layout", path);
   }

@@ -48,6 +48,11 @@ glint_status gli_ppm_decode(FILE *f, const char *path, glint_image **out,
   if (w < 1 || h < 1 || maxval != 255)
     return gli_fail(error, GLINT_E_PARSE,
                     "%s: bad PPM header (only 8-bit P6 is supported)", path);
+  if (w > GLINT_MAX_DIMENSION || h > GLINT_MAX_DIMENSION)
+    return gli_fail(error, GLINT_E_PARSE,
+                    "%s: a PPM of %ld x %ld pixels (glint reads 1 to %d a "
+                    "side)",
+                    path, w, h, GLINT_MAX_DIMENSION);
   glint_image *im;
   glint_status st = glint_image_create((int)w, (int)h, &im, error);
   if (st)

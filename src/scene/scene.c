@@ -298,7 +298,7 @@ glint_status gli_scene_check_triangle(glint_vec3 a, glint_vec3 b, glint_vec3 c,
   for (int i = 0; normals && i < 3; i++)
     if (!gli_vec3_in_range(normals[i]))
       return gli_fail(error, GLINT_E_ARGUMENT,
-                      "triangle: normals must be " GLI_RANGE_TEXT);
+                      "vertex normals must be " GLI_RANGE_TEXT);
   return GLINT_OK;
 }
 

@@ -31,6 +31,12 @@ typedef enum ply_type {
 } ply_type;
 
 static const unsigned char ply_size[] = {1, 1, 2, 2, 4, 4, 4, 8};
+/* The integer types' ranges, for values written as text. */
+static const long long ply_least[] = {-128, 0, -32768, 0, -2147483648LL, 0};
+static const long long ply_most[] = {127,   255,        32767,
+                                     65535, 2147483647, 4294967295LL};
+static const char *const ply_type_name[] = {"char",   "uchar", "short",
+                                            "ushort", "int",   "uint"};
 
 typedef enum ply_format { PLY_ASCII, PLY_LE, PLY_BE } ply_format;
 
@@ -239,13 +245,19 @@ static glint_status ply_whole(ply_reader *r, const ply_property *p, int count,
   const char *t = ply_token(r, &len), *s = t;
   if (len == 0)
     return ply_missing(r, p, count, e);
-  if (gli_text_parse_whole(&s, t + len, out) || s != t + len) {
-    char w[1100], q[48], what[128];
+  char w[1100], q[48], what[128];
+  if (gli_text_parse_whole(&s, t + len, out) || s != t + len)
     return gli_fail(
         e, GLINT_E_PARSE, "%s: expected a whole number for %s, found '%s'",
         ply_where(r, w, sizeof w), ply_what(r, p, count, what, sizeof what),
         gli_text_quote(q, sizeof q, t, len));
-  }
+  if (*out < ply_least[type] || *out > ply_most[type])
+    return gli_fail(e, GLINT_E_PARSE,
+                    "%s: %s is %lld, outside the %s type the header gives it "
+                    "(%lld..%lld)",
+                    ply_where(r, w, sizeof w),
+                    ply_what(r, p, count, what, sizeof what), *out,
+                    ply_type_name[type], ply_least[type], ply_most[type]);
   return GLINT_OK;
 }
 
