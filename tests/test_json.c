@@ -495,6 +495,19 @@ static const bad_case syntax_cases[] = {
     {"{'a' 1}", ":1:6: JSON syntax error: found '1'"},
     {"{'a': tru}", ":1:7: JSON syntax error: found 'tru'"},
     {"{'a\\q': 1}", ":1:4: JSON syntax error: an invalid escape sequence"},
+    /* numbers as RFC 8259 writes them, not as strtod reads them */
+    {"{'a': [1., 0]}",
+     ":1:8: JSON syntax error: a number without a digit after its decimal"},
+    {"{'a': .5}",
+     ":1:7: JSON syntax error: a number without a digit before its decimal"},
+    {"{'a': -.5}",
+     ":1:7: JSON syntax error: a number without a digit before its decimal"},
+    {"{'a': 2e}",
+     ":1:7: JSON syntax error: a number whose exponent has no digits"},
+    {"{'a': 064}", ":1:7: JSON syntax error: a number with a leading zero"},
+    /* strings are UTF-8 */
+    {"{'a\xff\xfe': 1}",
+     ":1:4: JSON syntax error: a string that is not UTF-8 text"},
     /* Columns count characters: the é is two bytes. */
     {"{'\xc3\xa9': x}", ":1:7: JSON syntax error: found 'x'"},
     {"{'a': \xc3\xa9}", ":1:7: JSON syntax error: found '\xc3\xa9' (U+00E9)"},

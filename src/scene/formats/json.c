@@ -1067,12 +1067,58 @@ static void syntax_hint(const char *data, const char **at, char *out,
   }
 }
 
+static int is_digit(const char *p, const char *end) {
+  return p < end && *p >= '0' && *p <= '9';
+}
+
+/* A number at p as RFC 8259 §6 writes it, -? (0 | [1-9][0-9]*) (.[0-9]+)?
+ * ([eE][+-]?[0-9]+)? (cJSON's strtod would also take 1. and -.5): where it
+ * ends, or where it breaks the grammar with *what set. */
+static const char *number_problem(const char *p, const char *end,
+                                  const char **what) {
+  *what = NULL;
+  const char *q = p + (*p == '-');
+  if (q < end && *q == '.') {
+    *what = "a number without a digit before its decimal point";
+    return p;
+  }
+  if (!is_digit(q, end))
+    return q; /* -Infinity, say: cJSON's report names it */
+  if (*q == '0' && is_digit(q + 1, end)) {
+    *what = "a number with a leading zero (JSON allows none)";
+    return p;
+  }
+  while (is_digit(q, end))
+    q++;
+  if (q < end && *q == '.') {
+    if (!is_digit(++q, end)) {
+      *what = "a number without a digit after its decimal point";
+      return p;
+    }
+    while (is_digit(q, end))
+      q++;
+  }
+  if (q < end && (*q == 'e' || *q == 'E')) {
+    q++;
+    if (q < end && (*q == '+' || *q == '-'))
+      q++;
+    if (!is_digit(q, end)) {
+      *what = "a number whose exponent has no digits";
+      return p;
+    }
+    while (is_digit(q, end))
+      q++;
+  }
+  return q;
+}
+
 /* What cJSON reads but JSON (RFC 8259) refuses, found before it parses, so
  * that glint is exactly as strict as the format: an escape other than \"
  * \\ \/ \b \f \n \r \t and \uXXXX (cJSON ends the string at a bad one,
  * silently cutting a name), \u0000 (no name can hold a NUL), a control
- * character inside a string, and a number with a leading zero (01). NULL
- * when the text is clean, else where the problem is and *what it is. */
+ * character inside a string, text that is not UTF-8 inside a string, and
+ * a number outside JSON's grammar (01, 1., .5, -.5, 1e). NULL when the text
+ * is clean, else where the problem is and *what it is. */
 static const char *grammar_problem(const char *data, size_t size,
                                    const char **what) {
   const char *p = data, *end = data + size;
@@ -1088,6 +1134,13 @@ static const char *grammar_problem(const char *data, size_t size,
         *what = "a control character inside a string (write it as an "
                 "escape such as \\n)";
         return p;
+      } else if (c >= 0x80) {
+        int n = utf8_length(p);
+        if (n == 0 || p + n > end) {
+          *what = "a string that is not UTF-8 text";
+          return p;
+        }
+        p += n - 1;
       } else if (c == '\\') {
         if (p + 1 >= end || !strchr("\"\\/bfnrtu", p[1]) || p[1] == '\0') {
           *what = "an invalid escape sequence in a string";
@@ -1110,14 +1163,16 @@ static const char *grammar_problem(const char *data, size_t size,
       }
     } else if (c == '"') {
       in_string = 1;
+    } else if (c == '.') {
+      *what = "a number without a digit before its decimal point";
+      return p;
     } else if ((c == '-' || (c >= '0' && c <= '9')) &&
-               (p == data || !(isalnum((unsigned char)p[-1]) || p[-1] == '.' ||
-                               p[-1] == '-' || p[-1] == '+'))) {
-      const char *q = c == '-' ? p + 1 : p;
-      if (q + 1 < end && q[0] == '0' && q[1] >= '0' && q[1] <= '9') {
-        *what = "a number with a leading zero (JSON allows none)";
-        return p;
-      }
+               (p == data || !(isalnum((unsigned char)p[-1]) || p[-1] == '-' ||
+                               p[-1] == '+'))) {
+      const char *q = number_problem(p, end, what);
+      if (*what)
+        return q;
+      p = q - 1; /* on past the number */
     }
   }
   return NULL;
