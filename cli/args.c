@@ -1,5 +1,6 @@
 #include "args.h"
 
+#include <ctype.h>
 #include <errno.h>
 #include <math.h>
 #include <stdarg.h>
@@ -62,7 +63,9 @@ int parse_int(const char *option, const char *text, long min, long max,
   char *end;
   errno = 0;
   long v = strtol(text, &end, 10);
-  if (end == text || *end != '\0' || errno == ERANGE) {
+  /* strtol skips leading blanks; a trailing one is refused, so both are */
+  if (end == text || *end != '\0' || errno == ERANGE ||
+      isspace((unsigned char)*text)) {
     cli_error("%s: '%s' is not a whole number", option, text);
     return -1;
   }
@@ -130,21 +133,20 @@ int parse_gamma(const char *option, const char *text, double *out) {
 }
 
 int split_list(char *text, char **items, int max) {
+  if (!*text)
+    return 0;
   int n = 0;
-  for (char *p = text; *p;) {
+  for (char *p = text;;) {
     char *comma = strchr(p, ',');
     if (comma)
       *comma = '\0';
-    if (*p) {
-      if (n == max)
-        return -1;
-      items[n++] = p;
-    }
+    if (n == max)
+      return -1;
+    items[n++] = p; /* an empty one too (1,,2), for the caller to refuse */
     if (!comma)
-      break;
+      return n;
     p = comma + 1;
   }
-  return n;
 }
 
 int arg_text(arg_cursor *c, const char *short_name, const char *long_name,

@@ -83,8 +83,9 @@ void cli_error(const char *format, ...)
 #endif
     ;
 
-/* Splits a comma-separated list in place; returns the item count or -1 if
- * there are more than max. */
+/* Splits a comma-separated list in place, empty items included (the
+ * caller's parsing refuses them); returns the item count or -1 if there are
+ * more than max. */
 int split_list(char *text, char **items, int max);
 
 #endif

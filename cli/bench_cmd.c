@@ -438,6 +438,13 @@ int cmd_bench(int argc, char **argv) {
   if (status >= 0)
     return status;
   glint_render_settings rs = o.settings;
+  int modes = (o.frames > 0) + o.time_to_image + (o.view_frames > 0) +
+              (o.mesh_dir != NULL) + (o.spd_dir != NULL);
+  if (modes > 1) {
+    cli_error("--frames, --time-to-image, --view, --meshes and --spd are "
+              "benchmarks of their own: choose one");
+    return EXIT_USAGE;
+  }
   if (o.plot_dir && check_plot_dir(o.plot_dir))
     return EXIT_USAGE;
   if (o.mesh_dir)

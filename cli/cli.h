@@ -20,6 +20,7 @@ typedef struct render_options {
   int frames, first_frame, last_frame; /* --frames A[-B] */
   int resume;                          /* --resume */
   glint_png_compression png_compression;
+  int png_compression_given;
   glint_image_format stream_format; /* with -o - */
   glint_render_settings settings;
 } render_options;

@@ -64,7 +64,8 @@ static void render_usage(FILE *f) {
       "      --frames A[-B]   the scene's animation, frames A to B (or A\n"
       "                       alone), a file each: -o with a printf-style\n"
       "                       number (frame%04d.png), or a number is put\n"
-      "                       before the extension (default: SCENE0001.png)\n"
+      "                       before the extension (default: SCENE0001.png);\n"
+      "                       missing folders of the path are made\n"
       "      --resume         with --frames: keep frames already written\n"
       "  -q, --quiet          no progress bar and no summary line\n"
       "      --stats          detailed statistics after rendering\n"
@@ -470,6 +471,7 @@ int render_parse(int argc, char **argv, render_options *o) {
     } else if (arg_is(&c, NULL, "--png-compression")) {
       if (!(v = arg_value(&c, "--png-compression")))
         return EXIT_USAGE;
+      o->png_compression_given = 1;
       if (strcmp(v, "fast") == 0)
         o->png_compression = GLINT_PNG_FAST;
       else if (strcmp(v, "smallest") == 0)
@@ -519,6 +521,14 @@ int render_parse(int argc, char **argv, render_options *o) {
   }
   if (o->resume && !o->frames) {
     cli_error("--resume applies to --frames");
+    return EXIT_USAGE;
+  }
+  if (o->png_compression_given &&
+      (o->to_stdout ? o->stream_format != GLINT_FORMAT_PNG
+                    : o->output && glint_image_format_from_path(o->output) !=
+                                       GLINT_FORMAT_PNG)) {
+    cli_error("--png-compression applies to PNG images, and %s is not one",
+              o->to_stdout ? "the stream" : o->output);
     return EXIT_USAGE;
   }
   return -1;

@@ -153,6 +153,12 @@ static void usage_errors(void **state) {
                      "--gamma", "1e308");
   EXPECT_USAGE_ERROR("--gamma: 1e-308 is outside 0.01..100", "view", "--gamma",
                      "1e-308");
+  EXPECT_USAGE_ERROR("--png-compression applies to PNG images, and x.ppm is "
+                     "not one",
+                     "render", "--png-compression", "smallest", "-o", "x.ppm");
+  EXPECT_USAGE_ERROR("--png-compression applies to PNG images, and the stream",
+                     "render", "--png-compression", "fast", "-o", "-",
+                     "--format", "bmp");
 }
 
 static void size_errors(void **state) {
@@ -163,6 +169,8 @@ static void size_errors(void **state) {
   EXPECT_USAGE_ERROR("--width: 'abc' is not a whole number", "render", "-W",
                      "abc");
   EXPECT_USAGE_ERROR("--width: '64x' is not a whole number", "render", "-W64x");
+  EXPECT_USAGE_ERROR("--width: ' 64' is not a whole number", "render", "-W",
+                     " 64");
   EXPECT_USAGE_ERROR("--height: 100000 is outside", "render", "-H", "100000");
   EXPECT_USAGE_ERROR("--width: '99999999999999999999' is not a whole number",
                      "render", "-W", "99999999999999999999");
@@ -474,6 +482,11 @@ static void bench_errors(void **state) {
                      "--meshes", "/nonexistent");
   EXPECT_USAGE_ERROR("--plot: cannot create the folder /proc/glint", "bench",
                      "--plot", "/proc/glint");
+  EXPECT_USAGE_ERROR("--depths: '' is not a whole number", "bench", "--depths",
+                     "1,,2");
+  EXPECT_USAGE_ERROR("unknown scene ''", "bench", "--scenes", "whitted,");
+  EXPECT_USAGE_ERROR("benchmarks of their own: choose one", "bench",
+                     "--time-to-image", "--frames", "2");
   EXPECT_USAGE_ERROR("--csv: /nonexistent/b.csv: cannot write here", "bench",
                      "--csv", "/nonexistent/b.csv", "--depths", "1", "--scenes",
                      "whitted", "--backends", "scalar-float", "-W", "8", "-H",
