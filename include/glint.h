@@ -547,7 +547,10 @@ glint_status glint_isa_cap_check(glint_error *error);
 /* ------------------------------------------------------------------------ */
 
 /* Linear RGB as the renderer computes it, before any clamp or gamma: each
- * pixel is the average of its samples, and may exceed 1 (a highlight). */
+ * pixel is the average of its samples, and may exceed 1 (a highlight). It is
+ * always finite: a value beyond single precision (materials near the limits
+ * of GLINT_MAX_COLOR, many bounces deep) is stored as FLT_MAX, an undefined
+ * one as 0. */
 typedef struct glint_film glint_film;
 
 glint_status glint_film_create(int width, int height, glint_film **film,

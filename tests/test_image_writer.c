@@ -360,6 +360,14 @@ static void refuses_bad_tiles(void **state) {
   assert_int_equal(glint_image_writer_put(writer, &negative, &e),
                    GLINT_E_ARGUMENT);
   assert_int_equal(glint_image_writer_put(writer, NULL, &e), GLINT_E_ARGUMENT);
+  glint_tile no_pixels = {0, 0, 4, 4, NULL, W * 3};
+  assert_int_equal(glint_image_writer_put(writer, &no_pixels, &e),
+                   GLINT_E_ARGUMENT);
+  assert_non_null(strstr(e.message, "tile's pixels is NULL"));
+  glint_tile narrow = {0, 0, 4, 4, glint_film_pixels_const(film), 3};
+  assert_int_equal(glint_image_writer_put(writer, &narrow, &e),
+                   GLINT_E_ARGUMENT);
+  assert_non_null(strstr(e.message, "stride 3 is less than its 12 floats"));
   assert_int_equal(glint_image_writer_finish(writer, &e), GLINT_E_ARGUMENT);
   assert_non_null(strstr(e.message, "outside the image or repeated"));
 

@@ -12,6 +12,7 @@
 #include "test_util.h"
 
 #include <limits.h>
+#include <float.h>
 #include <math.h>
 #include <pthread.h>
 #include <stdio.h>
@@ -121,6 +122,52 @@ static void frames_equal_glint_render(void **state) {
 
 /* Editing or destroying the scene after the commit changes nothing; the
  * world outlives glint_world_destroy while its renderer holds it. */
+/* Materials within glint.h's limits can still overflow single precision
+ * (kr = kt = 1e6, two nested spheres, five bounces: about 1e30 a bounce);
+ * every backend's film stays finite, an overflow held at FLT_MAX. */
+static void films_stay_finite(void **state) {
+  (void)state;
+  glint_scene *s;
+  ASSERT_OK(glint_scene_create(&s, &e_));
+  glint_material m;
+  glint_material_default(&m);
+  m.ks = 0;
+  m.kr = m.kt = 1e6;
+  m.ior = 1.5;
+  uint32_t id;
+  ASSERT_OK(glint_scene_add_material(s, &m, &id, &e_));
+  ASSERT_OK(glint_scene_set_ambient(s, (glint_vec3){0.1, 0.1, 0.1}, &e_));
+  ASSERT_OK(glint_scene_add_light(s, (glint_vec3){3, 5, 5},
+                                  (glint_vec3){1, 1, 1}, &e_));
+  ASSERT_OK(glint_scene_add_sphere(s, (glint_vec3){0, 0, 0}, 2, id, &e_));
+  ASSERT_OK(glint_scene_add_sphere(s, (glint_vec3){0, 0, 0}, 1, id, &e_));
+  for (int b = GLINT_BACKEND_SCALAR_FLOAT; b < GLINT_BACKEND_COUNT; b++) {
+    if (b == GLINT_BACKEND_STREAM || backend_missing(b))
+      continue;
+    glint_render_settings rs = settings_for(b);
+    rs.max_depth = 5;
+    glint_world *world;
+    glint_renderer *renderer;
+    glint_film *film;
+    ASSERT_OK(glint_world_commit(s, &world, NULL, &e_));
+    ASSERT_OK(glint_renderer_create(world, &rs, &renderer, &e_));
+    ASSERT_OK(glint_film_create(W, H, &film, &e_));
+    ASSERT_OK(glint_renderer_render(renderer, NULL, film, NULL, &e_));
+    const float *px = glint_film_pixels_const(film);
+    int overflowed = 0;
+    for (int i = 0; i < W * H * 3; i++) {
+      if (!isfinite(px[i]))
+        fail_msg("%s: film value %d is %g", glint_backend_name(b), i, px[i]);
+      overflowed += px[i] == FLT_MAX;
+    }
+    assert_true(overflowed > 0); /* the case this test is about */
+    glint_film_destroy(film);
+    glint_renderer_destroy(renderer);
+    glint_world_destroy(world);
+  }
+  glint_scene_destroy(s);
+}
+
 static void worlds_are_independent_of_their_scene(void **state) {
   (void)state;
   glint_scene *scene = whitted();
@@ -414,6 +461,7 @@ static void auto_picks_streams_where_rays_scatter(void **state) {
 int main(void) {
   const struct CMUnitTest tests[] = {
       cmocka_unit_test(frames_equal_glint_render),
+      cmocka_unit_test(films_stay_finite),
       cmocka_unit_test(worlds_are_independent_of_their_scene),
       cmocka_unit_test(tiles_cover_the_frame_once),
       cmocka_unit_test(renderers_share_a_world),

@@ -103,6 +103,15 @@ static void null_and_overflowing_arguments_are_refused(void **state) {
   glint_backend b;
   EXPECT_ERR(glint_scene_create(NULL, &e_), GLINT_E_ARGUMENT,
              "glint_scene_create: scene is NULL");
+  /* The functions that cannot fail answer NULL with nothing. */
+  glint_material_default(NULL);
+  glint_render_settings_default(NULL);
+  glint_frame_settings_default(NULL);
+  glint_transform_identity(NULL);
+  glint_camera_key key = {0, {{0, 0, 5}, {0, 0, 0}, {0, 1, 0}, 40}};
+  EXPECT_ERR(
+      glint_scene_set_camera_keys(NULL, &key, 1, GLINT_INTERPOLATE_LINEAR, &e_),
+      GLINT_E_ARGUMENT, "glint_scene_set_camera_keys: scene is NULL");
   EXPECT_ERR(glint_scene_set_camera(s, NULL, &e_), GLINT_E_ARGUMENT,
              "glint_scene_set_camera: camera is NULL");
   EXPECT_ERR(glint_scene_add_material(s, NULL, NULL, &e_), GLINT_E_ARGUMENT,
@@ -313,6 +322,7 @@ static void render_refuses_bad_settings(void **state) {
   CASE(gamma, GLINT_MAX_GAMMA * 1.01, "gamma")
   CASE(gamma, GLINT_MIN_GAMMA * 0.99, "gamma")
   CASE(backend, (glint_backend)99, "backend")
+  CASE(rcp_newton, 5, "rcp_newton 5 is neither 0 nor 1")
 #undef CASE
   glint_scene_destroy(s);
 }

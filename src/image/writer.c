@@ -246,8 +246,14 @@ glint_status glint_image_writer_open_memory(glint_image_format format,
 glint_status glint_image_writer_put(glint_image_writer *w,
                                     const glint_tile *tile,
                                     glint_error *error) {
-  if (!w || !tile)
-    return gli_fail(error, GLINT_E_ARGUMENT, "no writer or no tile");
+  GLI_NOT_NULL(w, "writer", error);
+  GLI_NOT_NULL(tile, "tile", error);
+  GLI_NOT_NULL(tile->pixels, "tile's pixels", error);
+  if (tile->width > 0 && tile->stride < (size_t)tile->width * 3)
+    return gli_fail(error, GLINT_E_ARGUMENT,
+                    "%s: the tile's stride %zu is less than its %d floats a "
+                    "row",
+                    w->file.path, tile->stride, tile->width * 3);
   if (tile->x < 0 || tile->y < 0 || tile->width < 1 || tile->height < 1 ||
       tile->width > w->width - tile->x || tile->height > w->height - tile->y) {
     pthread_mutex_lock(&w->lock);

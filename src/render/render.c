@@ -11,6 +11,8 @@
 #include <string.h>
 
 void glint_render_settings_default(glint_render_settings *s) {
+  if (!s)
+    return;
   memset(s, 0, sizeof *s);
   s->max_depth = 5;
   s->spp = 5;

@@ -18,6 +18,7 @@
 #include "render/world.h"
 #include "scene/scene.h"
 
+#include <float.h>
 #include <math.h>
 #include <pthread.h>
 #include <stdatomic.h>
@@ -116,6 +117,9 @@ glint_status gli_render_settings_check(const glint_render_settings *s,
   if ((unsigned)s->math >= GLINT_MATH_COUNT)
     return gli_fail(e, GLINT_E_ARGUMENT, "unknown math variant %d",
                     (int)s->math);
+  if (s->rcp_newton != 0 && s->rcp_newton != 1)
+    return gli_fail(e, GLINT_E_ARGUMENT, "rcp_newton %d is neither 0 nor 1",
+                    s->rcp_newton);
   if ((unsigned)s->accel >= GLINT_ACCEL_COUNT)
     return gli_fail(e, GLINT_E_ARGUMENT, "unknown acceleration %d",
                     (int)s->accel);
@@ -263,7 +267,8 @@ void glint_renderer_destroy(glint_renderer *r) {
 }
 
 void glint_frame_settings_default(glint_frame_settings *frame) {
-  memset(frame, 0, sizeof *frame);
+  if (frame)
+    memset(frame, 0, sizeof *frame);
 }
 
 /* ---- the workers --------------------------------------------------------- */
@@ -292,6 +297,17 @@ static void denormals_restore(unsigned saved) {
 }
 
 /* Copies a finished tile into the film and the 8-bit image. */
+/* A tile's values made finite before anyone sees them: within the limits
+ * of glint.h a pixel can still overflow single precision (kr = kt = 1e6
+ * for five bounces), and a film of infinities, or of NaN where one met a
+ * zero weight, poisons whatever reads it (.pfm, .exr, a compositor). The
+ * largest float stands for an overflow, 0 for NaN. */
+static void keep_finite(float *rgb, size_t n) {
+  for (size_t i = 0; i < n; i++)
+    if (!(rgb[i] <= FLT_MAX))
+      rgb[i] = rgb[i] > 0 ? FLT_MAX : 0;
+}
+
 static void store_tile(const frame_job *job, const tile_rect *t,
                        const float *rgb) {
   size_t tw = (size_t)(t->x1 - t->x0);
@@ -361,6 +377,7 @@ static void work(void *arg, int index) {
     }
     r->ops->render_tile(r->view, &job->params, &t, w->scratch, w->rgb,
                         &w->stats);
+    keep_finite(w->rgb, (size_t)(t.x1 - t.x0) * (size_t)(t.y1 - t.y0) * 3);
     store_tile(job, &t, w->rgb);
     report_tile(job, &t, w->rgb);
   }

@@ -178,7 +178,8 @@ glint_status glint_scene_set_camera_keys(glint_scene *s,
                                          size_t count,
                                          glint_interpolation interpolation,
                                          glint_error *error) {
-  if (!s || !keys || count == 0)
+  GLI_NOT_NULL(s, "scene", error);
+  if (!keys || count == 0)
     return gli_fail(error, GLINT_E_ARGUMENT, "camera keys: none given");
   for (size_t i = 0; i < count; i++) {
     glint_status st = gli_camera_check(&keys[i].camera, error);
@@ -263,6 +264,8 @@ glint_status glint_scene_camera_at(const glint_scene *s, double time,
  */
 
 void glint_transform_identity(glint_transform *t) {
+  if (!t)
+    return;
   memset(t, 0, sizeof *t);
   t->scale = 1;
 }
@@ -277,7 +280,8 @@ glint_status glint_scene_set_object_motion(glint_scene *s, uint32_t object,
                                            size_t count,
                                            glint_interpolation interpolation,
                                            glint_error *error) {
-  if (!s || !keys || count == 0)
+  GLI_NOT_NULL(s, "scene", error);
+  if (!keys || count == 0)
     return gli_fail(error, GLINT_E_ARGUMENT, "object motion: no keys given");
   if (object >= s->object_count)
     return gli_fail(error, GLINT_E_ARGUMENT,

@@ -36,6 +36,8 @@ static glint_vec3 vcross(glint_vec3 a, glint_vec3 b) {
 }
 
 void glint_material_default(glint_material *m) {
+  if (!m)
+    return;
   memset(m, 0, sizeof *m);
   m->color = (glint_vec3){1, 1, 1};
   m->checker_odd = (glint_vec3){1, 1, 1};
