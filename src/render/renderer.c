@@ -303,6 +303,18 @@ static void denormals_restore(unsigned saved) {
  * zero weight, poisons whatever reads it (.pfm, .exr, a compositor). The
  * largest float stands for an overflow, 0 for NaN. */
 static void keep_finite(float *rgb, size_t n) {
+  /* First whether any value is infinite or NaN (exponent bits all set): a
+   * loop the compiler vectorises, so that finite tiles, nearly all, cost
+   * about a tenth of what testing and fixing each value in one loop did
+   * (2% of a small render). */
+  uint32_t any = 0;
+  for (size_t i = 0; i < n; i++) {
+    uint32_t bits;
+    memcpy(&bits, &rgb[i], sizeof bits);
+    any |= (bits & 0x7f800000u) == 0x7f800000u;
+  }
+  if (!any)
+    return;
   for (size_t i = 0; i < n; i++)
     if (!(rgb[i] <= FLT_MAX))
       rgb[i] = rgb[i] > 0 ? FLT_MAX : 0;
