@@ -162,6 +162,17 @@ static void bad_paths_are_refused(void **state) {
   glint_image_destroy(a);
 }
 
+/* The file at p holds the eight bytes "original", as the test wrote it. */
+static void assert_still_original(const char *p) {
+  char buf[64] = {0};
+  FILE *f = fopen(p, "rb");
+  assert_non_null(f);
+  size_t n = fread(buf, 1, sizeof buf - 1, f);
+  fclose(f);
+  assert_int_equal(n, 8);
+  assert_string_equal(buf, "original");
+}
+
 /* A write that fails part-way (here: the file-size limit is hit) leaves the
  * existing image byte for byte as it was, and no temporary file. */
 static void failed_write_keeps_existing_file(void **state) {
@@ -186,12 +197,7 @@ static void failed_write_keeps_existing_file(void **state) {
   int status;
   waitpid(pid, &status, 0);
   assert_true(WIFEXITED(status) && WEXITSTATUS(status) == 0);
-  char buf[64] = {0};
-  f = fopen(p, "rb");
-  size_t n = fread(buf, 1, sizeof buf - 1, f);
-  fclose(f);
-  assert_int_equal(n, 8);
-  assert_string_equal(buf, "original");
+  assert_still_original(p);
   assert_int_equal(files_in_dir(), before + 1);
   /* And a successful write replaces it completely. */
   glint_image *small = pattern(3, 3), *back;
@@ -256,12 +262,7 @@ static void read_only_file_is_kept(void **state) {
   waitpid(pid, &status, 0);
   chmod(dir, 0700);
   assert_true(WIFEXITED(status) && WEXITSTATUS(status) == 0);
-  char buf[64] = {0};
-  f = fopen(p, "rb");
-  size_t n = fread(buf, 1, sizeof buf - 1, f);
-  fclose(f);
-  assert_int_equal(n, 8);
-  assert_string_equal(buf, "original");
+  assert_still_original(p);
   unlink(p);
 }
 

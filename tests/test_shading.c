@@ -77,14 +77,20 @@ static glint_scene *wall(const glint_material *m, V ambient) {
   return s;
 }
 
-/* Light straight ahead: N·L = 1. I = C (ka Ia + kd) = C (0.1 + 0.5). */
-static void diffuse_only(void **state) {
-  (void)state;
+/* A matte material: colour (0.8, 0.6, 0.4), ka 0.2, kd 0.5. */
+static glint_material matte_material(void) {
   glint_material m;
   glint_material_default(&m);
   m.color = (V){0.8, 0.6, 0.4};
   m.ka = 0.2;
   m.kd = 0.5;
+  return m;
+}
+
+/* Light straight ahead: N·L = 1. I = C (ka Ia + kd) = C (0.1 + 0.5). */
+static void diffuse_only(void **state) {
+  (void)state;
+  glint_material m = matte_material();
   glint_scene *s = wall(&m, (V){0.5, 0.5, 0.5});
   ASSERT_OK(glint_scene_add_light(s, (V){0, 0, 10}, (V){1, 1, 1}, &e_));
   expect_pixel(s, 5, 0.8 * 0.6, 0.6 * 0.6, 0.4 * 0.6);
@@ -96,11 +102,7 @@ static void diffuse_only(void **state) {
  * to normalise the zero vector and light nothing). */
 static void zero_vertex_normals_shade_flat(void **state) {
   (void)state;
-  glint_material m;
-  glint_material_default(&m);
-  m.color = (V){0.8, 0.6, 0.4};
-  m.ka = 0.2;
-  m.kd = 0.5;
+  glint_material m = matte_material();
   glint_scene *s =
       new_scene((V){0, 0, 5}, (V){0, 0, 0}, (V){0, 1, 0}, (V){0, 0, 0});
   ASSERT_OK(glint_scene_set_ambient(s, (V){0.5, 0.5, 0.5}, &e_));
