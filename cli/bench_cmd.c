@@ -112,7 +112,8 @@ static int parse_range_list(const char *option, char *text, long lo, long hi,
   }
   for (int i = 0; i < n; i++) {
     int a, b;
-    char *dash = strchr(items[i] + 1, '-'); /* not a leading minus sign */
+    /* not a leading minus sign (nor past an empty item's end) */
+    char *dash = items[i][0] ? strchr(items[i] + 1, '-') : NULL;
     if (dash) {
       *dash = '\0';
       if (parse_int(option, items[i], lo, hi, &a) ||
