@@ -229,10 +229,22 @@ static void writes_through_a_link(void **state) {
   ASSERT_OK(glint_image_read(target, &back, &e_));
   assert_memory_equal(glint_image_pixels_const(small),
                       glint_image_pixels_const(back), 27);
-  glint_image_destroy(small);
   glint_image_destroy(back);
   unlink(link);
   unlink(target);
+  /* A link to something other than a regular file is refused, and stays:
+   * the rename would have replaced /dev/null. */
+  assert_int_equal(symlink("/dev/null", link), 0);
+  glint_error e;
+  assert_int_equal(glint_image_write(small, link, &e), GLINT_E_IO);
+  assert_non_null(strstr(e.message, "/dev/null: not a regular file"));
+  struct stat null_sb;
+  assert_int_equal(stat("/dev/null", &null_sb), 0);
+  assert_true(S_ISCHR(null_sb.st_mode));
+  assert_int_equal(lstat(link, &sb), 0);
+  assert_true(S_ISLNK(sb.st_mode));
+  unlink(link);
+  glint_image_destroy(small);
 }
 
 /* A file its user may not write is refused, not replaced by the rename

@@ -143,6 +143,12 @@ static int open_temp(const char *path, char **temp, glint_error *error) {
     gli_fail(error, GLINT_E_IO, "%s: is a directory", path);
     return -1;
   }
+  /* Only a regular file is replaced: the rename would put a file in the
+   * place of a device or a pipe (of /dev/null through a link to it). */
+  if (stat(path, &sb) == 0 && !S_ISREG(sb.st_mode)) {
+    gli_fail(error, GLINT_E_IO, "%s: not a regular file", path);
+    return -1;
+  }
   /* A file the user may not write is not replaced behind its back by the
    * rename, which asks only the folder. */
   if (stat(path, &sb) == 0 && access(path, W_OK) != 0) {
