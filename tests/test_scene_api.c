@@ -112,6 +112,16 @@ static void null_and_overflowing_arguments_are_refused(void **state) {
   EXPECT_ERR(
       glint_scene_set_camera_keys(NULL, &key, 1, GLINT_INTERPOLATE_LINEAR, &e_),
       GLINT_E_ARGUMENT, "glint_scene_set_camera_keys: scene is NULL");
+  EXPECT_ERR(glint_scene_set_animation(s, NULL, &e_), GLINT_E_ARGUMENT,
+             "glint_scene_set_animation: animation is NULL");
+  EXPECT_ERR(glint_scene_load_memory("{}", 2, NULL, &out, &e_),
+             GLINT_E_ARGUMENT, "glint_scene_load_memory: name is NULL");
+  EXPECT_ERR(glint_scene_load_packed(NULL, 8, &out, &e_), GLINT_E_ARGUMENT,
+             "glint_scene_load_packed: packed is NULL");
+  EXPECT_ERR(glint_world_commit_at(NULL, 0, NULL, NULL, NULL, &e_),
+             GLINT_E_ARGUMENT, "glint_world_commit_at: scene is NULL");
+  EXPECT_ERR(glint_image_write_encoded(NULL, "x", 1, &e_), GLINT_E_ARGUMENT,
+             "glint_image_write_encoded: path is NULL");
   EXPECT_ERR(glint_scene_set_camera(s, NULL, &e_), GLINT_E_ARGUMENT,
              "glint_scene_set_camera: camera is NULL");
   EXPECT_ERR(glint_scene_add_material(s, NULL, NULL, &e_), GLINT_E_ARGUMENT,

@@ -285,8 +285,9 @@ static int write_span(const void *data, FILE *f) {
 
 glint_status glint_image_write_encoded(const char *path, const void *bytes,
                                        size_t size, glint_error *error) {
-  if (!path || (!bytes && size))
-    return gli_fail(error, GLINT_E_ARGUMENT, "no path or no bytes");
+  GLI_NOT_NULL(path, "path", error);
+  if (!bytes && size)
+    return gli_fail(error, GLINT_E_ARGUMENT, "%s: bytes is NULL", __func__);
   if (glint_image_format_from_path(path) == GLINT_FORMAT_UNKNOWN)
     return unknown_format(path, error);
   byte_span span = {bytes, size};
@@ -320,8 +321,8 @@ glint_status glint_image_write_stream(const glint_image *im, FILE *stream,
                                       glint_image_format format,
                                       glint_png_compression compression,
                                       glint_error *error) {
-  if (!im || !stream)
-    return gli_fail(error, GLINT_E_ARGUMENT, "no image or no stream");
+  GLI_NOT_NULL(im, "image", error);
+  GLI_NOT_NULL(stream, "stream", error);
   if (format != GLINT_FORMAT_PNG && format != GLINT_FORMAT_BMP &&
       format != GLINT_FORMAT_PPM)
     return gli_fail(error, GLINT_E_ARGUMENT, "unknown image format %d",

@@ -350,8 +350,7 @@ static glint_status incomplete(const glint_image_writer *w,
 
 glint_status glint_image_writer_finish(glint_image_writer *w,
                                        glint_error *error) {
-  if (!w)
-    return gli_fail(error, GLINT_E_ARGUMENT, "no writer");
+  GLI_NOT_NULL(w, "writer", error);
   if (w->in_memory) {
     glint_image_writer_discard(w);
     return gli_fail(error, GLINT_E_ARGUMENT,
@@ -375,7 +374,10 @@ glint_status glint_image_writer_finish_memory(glint_image_writer *w,
                                               glint_error *error) {
   if (!w || !bytes || !size) {
     glint_image_writer_discard(w);
-    return gli_fail(error, GLINT_E_ARGUMENT, "no writer or no place for it");
+    return gli_fail(error, GLINT_E_ARGUMENT, "%s: %s is NULL", __func__,
+                    !w       ? "writer"
+                    : !bytes ? "bytes"
+                             : "size");
   }
   if (!w->in_memory) {
     glint_image_writer_discard(w);

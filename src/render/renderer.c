@@ -229,8 +229,8 @@ glint_status glint_renderer_create(glint_world *world,
 
 glint_status glint_renderer_set_world(glint_renderer *r, glint_world *world,
                                       glint_error *error) {
-  if (!r || !world)
-    return gli_fail(error, GLINT_E_ARGUMENT, "no renderer or no world");
+  GLI_NOT_NULL(r, "renderer", error);
+  GLI_NOT_NULL(world, "world", error);
   const void *data = NULL;
   const gli_bvh *bvh = &r->no_bvh;
   void *view = NULL;
@@ -544,10 +544,10 @@ glint_status glint_renderer_render(glint_renderer *r,
                                    const glint_frame_settings *frame,
                                    glint_film *film, glint_stats *stats,
                                    glint_error *error) {
-  if (!r || (!film && !(frame && frame->tile)))
+  GLI_NOT_NULL(r, "renderer", error);
+  if (!film && !(frame && frame->tile))
     return gli_fail(error, GLINT_E_ARGUMENT,
-                    r ? "no film to render into and no tile callback"
-                      : "no renderer");
+                    "no film to render into and no tile callback");
   frame_output out = {film, NULL, 1, 0, 0};
   return gli_renderer_render(r, frame, &out, stats, error);
 }

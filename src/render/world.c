@@ -142,8 +142,8 @@ glint_status glint_world_commit_at(const glint_scene *scene, double time,
                                    const glint_world *previous,
                                    glint_world **out, glint_stats *stats,
                                    glint_error *error) {
-  if (!scene || !out)
-    return gli_fail(error, GLINT_E_ARGUMENT, "no scene to commit");
+  GLI_NOT_NULL(scene, "scene", error);
+  GLI_NOT_NULL(out, "world", error);
   glint_scene *still;
   glint_status st = glint_scene_at_time(scene, time, &still, error);
   if (st)

@@ -148,8 +148,8 @@ void gli_animation_free(gli_animation *a) {
 
 glint_status glint_scene_set_animation(glint_scene *s, const glint_animation *a,
                                        glint_error *error) {
-  if (!s || !a)
-    return gli_fail(error, GLINT_E_ARGUMENT, "no scene or no animation");
+  GLI_NOT_NULL(s, "scene", error);
+  GLI_NOT_NULL(a, "animation", error);
   if (!(a->fps > 0) || !isfinite(a->fps) || a->fps > 1e6)
     return gli_fail(error, GLINT_E_ARGUMENT,
                     "animation: fps %g is not a positive number", a->fps);

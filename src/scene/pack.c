@@ -131,8 +131,9 @@ static uint64_t get_le(const unsigned char *p, int bytes) {
 
 glint_status glint_scene_pack(const char *path, void **packed, size_t *size,
                               glint_error *error) {
-  if (!path || !packed || !size)
-    return gli_fail(error, GLINT_E_ARGUMENT, "scene pack: missing argument");
+  GLI_NOT_NULL(path, "path", error);
+  GLI_NOT_NULL(packed, "packed", error);
+  GLI_NOT_NULL(size, "size", error);
   file_list files = {NULL, 0, 0};
   gli_file_source source = {read_and_keep, &files};
   glint_scene *scene;
@@ -178,8 +179,9 @@ static glint_status damaged(glint_error *error, const char *what) {
 
 glint_status glint_scene_load_packed(const void *packed, size_t size,
                                      glint_scene **scene, glint_error *error) {
-  if ((!packed && size) || !scene)
-    return gli_fail(error, GLINT_E_ARGUMENT, "packed scene: missing argument");
+  if (!packed && size)
+    return gli_fail(error, GLINT_E_ARGUMENT, "%s: packed is NULL", __func__);
+  GLI_NOT_NULL(scene, "scene", error);
   const unsigned char *p = packed, *end = p + size;
   if (size < sizeof magic + 4 || memcmp(p, magic, sizeof magic) != 0)
     return damaged(error, "not a packed glint scene");
