@@ -138,22 +138,25 @@ static int create_exclusive(char *name) {
 
 /* Creates the temporary file beside `path`; returns its descriptor. */
 static int open_temp(const char *path, char **temp, glint_error *error) {
+  /* What is there already: only a regular file the user may write is
+   * replaced. The rename asks only the folder, and would put a file in the
+   * place of a device or a pipe (of /dev/null through a link to it) or of
+   * a file the user may not write. */
   struct stat sb;
-  if (stat(path, &sb) == 0 && S_ISDIR(sb.st_mode)) {
-    gli_fail(error, GLINT_E_IO, "%s: is a directory", path);
-    return -1;
-  }
-  /* Only a regular file is replaced: the rename would put a file in the
-   * place of a device or a pipe (of /dev/null through a link to it). */
-  if (stat(path, &sb) == 0 && !S_ISREG(sb.st_mode)) {
-    gli_fail(error, GLINT_E_IO, "%s: not a regular file", path);
-    return -1;
-  }
-  /* A file the user may not write is not replaced behind its back by the
-   * rename, which asks only the folder. */
-  if (stat(path, &sb) == 0 && access(path, W_OK) != 0) {
-    gli_fail(error, GLINT_E_IO, "%s: cannot write: %s", path, strerror(errno));
-    return -1;
+  if (stat(path, &sb) == 0) {
+    if (S_ISDIR(sb.st_mode)) {
+      gli_fail(error, GLINT_E_IO, "%s: is a directory", path);
+      return -1;
+    }
+    if (!S_ISREG(sb.st_mode)) {
+      gli_fail(error, GLINT_E_IO, "%s: not a regular file", path);
+      return -1;
+    }
+    if (access(path, W_OK) != 0) {
+      gli_fail(error, GLINT_E_IO, "%s: cannot write: %s", path,
+               strerror(errno));
+      return -1;
+    }
   }
   const char *slash = strrchr(path, '/');
   if (strlen(slash ? slash + 1 : path) > NAME_MAX) {
