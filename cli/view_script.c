@@ -290,20 +290,35 @@ static void print_state(const viewer *v) {
   fflush(stdout);
 }
 
+/* Copies a regular file only: a device such as /dev/zero never ends and
+ * would fill the disk, a FIFO may block for ever. */
 static int copy_file(const view_script *s, const command *c) {
-  FILE *in = fopen(c->from, "rb"), *out = in ? fopen(c->to, "wb") : NULL;
+  FILE *in = fopen(c->from, "rb"), *out = NULL;
+  struct stat st;
+  const char *why = NULL;
+  if (!in)
+    why = strerror(errno);
+  else if (fstat(fileno(in), &st) != 0)
+    why = strerror(errno);
+  else if (!S_ISREG(st.st_mode))
+    why = "not a regular file";
+  else if (!(out = fopen(c->to, "wb")))
+    why = strerror(errno);
   char buf[8192];
   size_t n;
-  int bad = !out;
-  while (!bad && (n = fread(buf, 1, sizeof buf, in)) > 0)
-    bad = fwrite(buf, 1, n, out) != n;
-  if (out && fclose(out) != 0)
-    bad = 1;
+  while (!why && (n = fread(buf, 1, sizeof buf, in)) > 0)
+    if (fwrite(buf, 1, n, out) != n)
+      why = strerror(errno);
+  if (!why && ferror(in))
+    why = strerror(errno);
+  if (out && fclose(out) != 0 && !why)
+    why = strerror(errno);
   if (in)
     fclose(in);
-  if (bad)
-    cli_error("%s:%d: cannot copy %s to %s", s->path, c->line, c->from, c->to);
-  return bad ? -1 : 0;
+  if (why)
+    cli_error("%s:%d: cannot copy %s to %s: %s", s->path, c->line, c->from,
+              c->to, why);
+  return why ? -1 : 0;
 }
 
 int view_script_step(view_script *s, viewer *v) {

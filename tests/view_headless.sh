@@ -170,4 +170,12 @@ script_refused folder "--script folder: not a regular file"
 script_refused fifo "--script fifo: not a regular file"
 script_refused nul.txt "nul.txt:2: a NUL byte"
 script_refused control.txt "control.txt:1: no key is named '\x01\x1b[31mred'"
+# copy takes regular files only: /dev/zero never ends (it filled the disk).
+printf 'copy /dev/zero zero.json\nquit\n' >copy-device.txt
+timeout 20 "$glint" view scene.json --script copy-device.txt >out.txt 2>err.txt
+rc=$?
+[ $rc -eq 2 ] || fail "copy /dev/zero: exit status $rc, want 2"
+grep -qF "copy-device.txt:1: cannot copy /dev/zero to zero.json: not a regular file" err.txt ||
+  fail "copy /dev/zero: no message"
+[ ! -e zero.json ] || fail "copy /dev/zero made zero.json"
 echo "view_headless: PASSED"
