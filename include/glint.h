@@ -592,7 +592,10 @@ glint_status glint_film_check_writable(const char *path, glint_error *error);
  *    its own, so a world lives until its last renderer is destroyed;
  *  - a renderer renders one frame at a time: calls on one renderer must not
  *    overlap, while different renderers (of one world or several) may render
- *    at the same time on different threads. */
+ *    at the same time on different threads. A render or set_world call that
+ *    overlaps another on the same renderer (from a second thread, or from
+ *    the frame's own tile or progress callback) fails with GLINT_E_ARGUMENT
+ *    and changes nothing; glint_renderer_destroy must not overlap any. */
 typedef struct glint_world glint_world;
 
 /* Converts the scene and builds its BVH (the cost of a render that does not

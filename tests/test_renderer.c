@@ -458,6 +458,106 @@ static void auto_picks_streams_where_rays_scatter(void **state) {
   glint_scene_destroy(b);
 }
 
+/* Calls that overlap on one renderer are refused, not left to hang on its
+ * threads or to overwrite the frame being rendered: from the frame's own
+ * tile callback, and from a second thread. */
+typedef struct reentry {
+  glint_renderer *renderer;
+  glint_world *world;
+  glint_film *other;
+  glint_status render, set_world;
+  char message[sizeof((glint_error *)0)->message];
+} reentry;
+
+static int reenter(void *user, const glint_tile *t) {
+  (void)t;
+  reentry *r = user;
+  glint_error e;
+  glint_frame_settings small;
+  glint_frame_settings_default(&small);
+  small.width = small.height = 8;
+  r->render = glint_renderer_render(r->renderer, &small, r->other, NULL, &e);
+  snprintf(r->message, sizeof r->message, "%s", e.message);
+  r->set_world = glint_renderer_set_world(r->renderer, r->world, &e);
+  return 0;
+}
+
+typedef struct shared_renderer {
+  glint_renderer *renderer;
+  glint_film *film;
+  int rendered, refused, other;
+} shared_renderer;
+
+static void *render_shared(void *arg) {
+  shared_renderer *job = arg;
+  glint_error e;
+  for (int f = 0; f < 20; f++) {
+    glint_status st =
+        glint_renderer_render(job->renderer, NULL, job->film, NULL, &e);
+    if (st == GLINT_OK && glint_film_pixels(job->film))
+      job->rendered++;
+    else if (st == GLINT_E_ARGUMENT && strstr(e.message, "busy"))
+      job->refused++;
+    else
+      job->other++;
+  }
+  return NULL;
+}
+
+static void overlapping_calls_are_refused(void **state) {
+  (void)state;
+  glint_scene *scene = whitted();
+  glint_world *world;
+  ASSERT_OK(glint_world_commit(scene, &world, NULL, &e_));
+  glint_render_settings rs = settings_for(GLINT_BACKEND_AUTO);
+  glint_image *want;
+  ASSERT_OK(glint_render(scene, &rs, &want, NULL, &e_));
+  glint_renderer *renderer;
+  ASSERT_OK(glint_renderer_create(world, &rs, &renderer, &e_));
+
+  reentry r = {renderer, world, NULL, GLINT_OK, GLINT_OK, ""};
+  glint_film *film;
+  ASSERT_OK(glint_film_create(W, H, &film, &e_));
+  ASSERT_OK(glint_film_create(8, 8, &r.other, &e_));
+  glint_frame_settings fs;
+  glint_frame_settings_default(&fs);
+  fs.tile = reenter;
+  fs.tile_user = &r;
+  ASSERT_OK(glint_renderer_render(renderer, &fs, film, NULL, &e_));
+  assert_int_equal(r.render, GLINT_E_ARGUMENT);
+  assert_non_null(strstr(r.message, "glint_renderer_render: the renderer is "
+                                    "busy with another call"));
+  assert_int_equal(r.set_world, GLINT_E_ARGUMENT);
+  assert_film_is_image(film, want); /* the frame is whole */
+  ASSERT_OK(glint_renderer_render(renderer, NULL, film, NULL, &e_));
+
+  /* Two threads on one renderer: each call renders its frame whole or is
+   * refused; none hangs. */
+  shared_renderer jobs[2];
+  pthread_t threads[2];
+  for (int i = 0; i < 2; i++) {
+    jobs[i] = (shared_renderer){renderer, NULL, 0, 0, 0};
+    ASSERT_OK(glint_film_create(W, H, &jobs[i].film, &e_));
+    assert_int_equal(pthread_create(&threads[i], NULL, render_shared, &jobs[i]),
+                     0);
+  }
+  for (int i = 0; i < 2; i++) {
+    pthread_join(threads[i], NULL);
+    assert_int_equal(jobs[i].other, 0);
+    assert_int_equal(jobs[i].rendered + jobs[i].refused, 20);
+    if (jobs[i].rendered)
+      assert_film_is_image(jobs[i].film, want);
+    glint_film_destroy(jobs[i].film);
+  }
+  assert_true(jobs[0].rendered + jobs[1].rendered > 0);
+  glint_film_destroy(r.other);
+  glint_film_destroy(film);
+  glint_image_destroy(want);
+  glint_renderer_destroy(renderer);
+  glint_world_destroy(world);
+  glint_scene_destroy(scene);
+}
+
 int main(void) {
   const struct CMUnitTest tests[] = {
       cmocka_unit_test(frames_equal_glint_render),
@@ -465,6 +565,7 @@ int main(void) {
       cmocka_unit_test(worlds_are_independent_of_their_scene),
       cmocka_unit_test(tiles_cover_the_frame_once),
       cmocka_unit_test(renderers_share_a_world),
+      cmocka_unit_test(overlapping_calls_are_refused),
       cmocka_unit_test(bad_arguments_are_refused),
       cmocka_unit_test(auto_picks_streams_where_rays_scatter),
   };

@@ -71,7 +71,27 @@ struct glint_renderer {
    * after calloc), kept while frames keep their gamma. */
   gli_byte_encoding encoding;
   frame_job job;
+  /* Set while a frame renders or the world changes: a call that overlaps
+   * one (from another thread, or from a tile callback) is refused rather
+   * than left to hang on the pool or overwrite the frame's job. */
+  atomic_int busy;
 };
+
+/* Claims the renderer for one call, or says why it cannot. */
+static glint_status claim(glint_renderer *r, const char *what, glint_error *e) {
+  if (atomic_exchange(&r->busy, 1))
+    return gli_fail(e, GLINT_E_ARGUMENT,
+                    "%s: the renderer is busy with another call (calls on "
+                    "one renderer must not overlap; a tile or progress "
+                    "callback must not call its own renderer)",
+                    what);
+  return GLINT_OK;
+}
+
+static glint_status release(glint_renderer *r, glint_status st) {
+  atomic_store(&r->busy, 0);
+  return st;
+}
 
 /* ---- validation ---------------------------------------------------------- */
 
@@ -227,10 +247,8 @@ glint_status glint_renderer_create(glint_world *world,
   return GLINT_OK;
 }
 
-glint_status glint_renderer_set_world(glint_renderer *r, glint_world *world,
-                                      glint_error *error) {
-  GLI_NOT_NULL(r, "renderer", error);
-  GLI_NOT_NULL(world, "world", error);
+static glint_status set_world(glint_renderer *r, glint_world *world,
+                              glint_error *error) {
   const void *data = NULL;
   const gli_bvh *bvh = &r->no_bvh;
   void *view = NULL;
@@ -247,6 +265,14 @@ glint_status glint_renderer_set_world(glint_renderer *r, glint_world *world,
   gli_world_release(r->world);
   r->world = world;
   return GLINT_OK;
+}
+
+glint_status glint_renderer_set_world(glint_renderer *r, glint_world *world,
+                                      glint_error *error) {
+  GLI_NOT_NULL(r, "renderer", error);
+  GLI_NOT_NULL(world, "world", error);
+  glint_status st = claim(r, "glint_renderer_set_world", error);
+  return st ? st : release(r, set_world(r, world, error));
 }
 
 void glint_renderer_destroy(glint_renderer *r) {
@@ -426,7 +452,7 @@ static int pick(int frame_value, int renderer_value) {
   return frame_value ? frame_value : renderer_value;
 }
 
-glint_status gli_renderer_render(glint_renderer *r,
+static glint_status render_frame(glint_renderer *r,
                                  const glint_frame_settings *frame,
                                  frame_output *out, glint_stats *stats_out,
                                  glint_error *error) {
@@ -538,6 +564,14 @@ glint_status gli_renderer_render(glint_renderer *r,
     *stats_out = stats;
   }
   return GLINT_OK;
+}
+
+glint_status gli_renderer_render(glint_renderer *r,
+                                 const glint_frame_settings *frame,
+                                 frame_output *out, glint_stats *stats_out,
+                                 glint_error *error) {
+  glint_status st = claim(r, "glint_renderer_render", error);
+  return st ? st : release(r, render_frame(r, frame, out, stats_out, error));
 }
 
 glint_status glint_renderer_render(glint_renderer *r,
