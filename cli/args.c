@@ -7,6 +7,7 @@
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
+#include <sys/stat.h>
 
 void cli_error(const char *format, ...) {
   va_list args;
@@ -237,4 +238,10 @@ int arg_scene_operand(arg_cursor *c, const char *command, const char **scene) {
   *scene = a;
   c->i++;
   return ARG_TAKEN;
+}
+
+int same_file(const char *a, const char *b) {
+  struct stat sa, sb;
+  return stat(a, &sa) == 0 && stat(b, &sb) == 0 && sa.st_dev == sb.st_dev &&
+         sa.st_ino == sb.st_ino;
 }

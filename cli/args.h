@@ -83,6 +83,9 @@ void cli_error(const char *format, ...)
 #endif
     ;
 
+/* Whether paths a and b name one existing file (through links or not). */
+int same_file(const char *a, const char *b);
+
 /* Splits a comma-separated list in place, empty items included (the
  * caller's parsing refuses them); returns the item count or -1 if there are
  * more than max. */

@@ -372,15 +372,18 @@ static int create_beside(const char *path, char *temp, size_t size) {
 /* Whether the CSV can be written (checked before anything is measured) and
  * is none of the scene files the benchmark reads. */
 static int check_csv_path(const char *path, char **scenes, int nscenes) {
-  struct stat csv_sb, scene_sb;
+  struct stat csv_sb;
+  if (!*path) {
+    cli_error("--csv: the file name is empty");
+    return -1;
+  }
   if (stat(path, &csv_sb) == 0) {
     if (S_ISDIR(csv_sb.st_mode)) {
       cli_error("--csv: %s is a folder", path);
       return -1;
     }
     for (int i = 0; i < nscenes; i++)
-      if (stat(scenes[i], &scene_sb) == 0 && scene_sb.st_dev == csv_sb.st_dev &&
-          scene_sb.st_ino == csv_sb.st_ino) {
+      if (same_file(scenes[i], path)) {
         cli_error("--csv: %s is a scene of this benchmark", path);
         return -1;
       }

@@ -112,6 +112,12 @@ int cmd_compare(int argc, char **argv) {
     cli_error("%s", err.message);
     return EXIT_USAGE;
   }
+  for (int i = 0; diff_path && i < 2; i++)
+    if (same_file(files[i], diff_path)) {
+      cli_error("--diff %s: that is %s, an image being compared", diff_path,
+                files[i]);
+      return EXIT_USAGE;
+    }
   if (glint_image_read(files[0], &a, &err) ||
       glint_image_read(files[1], &b, &err)) {
     cli_error("%s", err.message);

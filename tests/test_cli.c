@@ -740,6 +740,9 @@ static void bench_csv_keeps_files_on_error(void **state) {
   free(kept);
   EXPECT_USAGE_ERROR_KEEPING("--csv: . is a folder", "bench", "--scenes",
                              "s.nff", "--csv", ".");
+  EXPECT_USAGE_ERROR_KEEPING("--csv: the file name is empty", "bench",
+                             "--scenes", "s.nff", "--csv", "");
+  assert_string_equal(out, ""); /* refused before measuring */
   assert_int_equal(remove_in_folder("keep.csv"), 0);
   assert_int_equal(remove_in_folder("s.nff"), 0);
   assert_true(folder_is_empty());
@@ -1055,6 +1058,26 @@ static void compare_threshold_and_difference(void **state) {
       run("compare", "a.png", "b.png", "--diff", "no/such/d.png", NULL), 2);
   assert_non_null(strstr(err, "no/such/d.png: cannot write here"));
   assert_string_equal(out, "");
+  /* ...and so does a --diff that is one of the images, by name or through
+   * a link (it was overwritten by the difference). */
+  long before_n, after_n;
+  char *before = file_bytes("a.png", &before_n);
+  EXPECT_USAGE_ERROR_KEEPING("--diff a.png: that is a.png, an image being "
+                             "compared",
+                             "compare", "a.png", "b.png", "--diff", "a.png");
+  char link_path[600];
+  snprintf(link_path, sizeof link_path, "%s/link.png", dir);
+  char target[600];
+  snprintf(target, sizeof target, "%s/a.png", dir);
+  assert_int_equal(symlink(target, link_path), 0);
+  EXPECT_USAGE_ERROR_KEEPING("--diff link.png: that is a.png, an image being "
+                             "compared",
+                             "compare", "b.png", "a.png", "--diff", "link.png");
+  char *after = file_bytes("a.png", &after_n);
+  assert_true(before_n == after_n && memcmp(before, after, before_n) == 0);
+  free(before);
+  free(after);
+  assert_int_equal(remove_in_folder("link.png"), 0);
   char cmd[256];
   snprintf(cmd, sizeof cmd, "rm -f '%s'/*.png '%s'/*.ppm", dir, dir);
   assert_int_equal(system(cmd), 0);
