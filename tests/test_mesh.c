@@ -1121,6 +1121,23 @@ static void gzip_damage_is_an_error(void **state) {
   expect_fail_path(write_bytes(f, "damaged.obj.gz", gz, size), GLINT_E_PARSE,
                    "damaged.obj.gz: damaged compressed file", NULL);
   free(gz);
+
+  /* 300 MiB of blanks in a few hundred kilobytes: refused once it unpacks
+   * past 32 times its size, not held whole (up to 4 GiB) for the parser. */
+  const char *bomb = path_of(f, "blanks.obj.gz");
+  gzFile out = gzopen(bomb, "wb9");
+  assert_non_null(out);
+  char *blanks = malloc(1 << 20);
+  assert_non_null(blanks);
+  memset(blanks, ' ', 1 << 20);
+  for (int i = 0; i < 300; i++)
+    assert_int_equal(gzwrite(out, blanks, 1 << 20), 1 << 20);
+  assert_int_equal(gzclose(out), Z_OK);
+  free(blanks);
+  expect_fail_path(bomb, GLINT_E_PARSE,
+                   "blanks.obj.gz: unpacks to more than 32 times its "
+                   "compressed size",
+                   NULL);
 }
 
 /* ------------------------------------------------------------------------ */

@@ -26,6 +26,15 @@ static glint_status too_large(glint_error *e, const char *path,
   return gli_fail(e, GLINT_E_IO, "%s: larger than %zu bytes", path, max_bytes);
 }
 
+/* A compressed file may unpack to at most this many times its own size
+ * beyond the first UNPACK_FREE bytes. Scenes and meshes unpack to 2-10
+ * times theirs (numbers are dense: the SPD dragon's PLY 3.3 times); a file
+ * of little but repetition, such as a gigabyte of blanks in a few
+ * megabytes, would otherwise be held whole in memory up to max_bytes before
+ * its parser could refuse it. */
+#define UNPACK_RATIO 32
+#define UNPACK_FREE ((size_t)256 << 20)
+
 glint_status gli_file_read_all(const char *path, size_t max_bytes, char **out,
                                size_t *out_size, glint_error *e) {
   struct stat sb;
@@ -75,6 +84,15 @@ glint_status gli_file_read_all(const char *path, size_t max_bytes, char **out,
       gzclose(f);
       free(data);
       return too_large(e, path, max_bytes);
+    }
+    if (size > UNPACK_FREE && size / UNPACK_RATIO > (size_t)sb.st_size &&
+        !gzdirect(f)) {
+      gzclose(f);
+      free(data);
+      return gli_fail(e, GLINT_E_PARSE,
+                      "%s: unpacks to more than %d times its compressed size "
+                      "(%lld bytes): too repetitive for a scene or mesh",
+                      path, UNPACK_RATIO, (long long)sb.st_size);
     }
     if (n == 0)
       break;
