@@ -123,9 +123,35 @@ int cli_world_at(const glint_scene *scene, double time,
   return st ? -1 : 0;
 }
 
-int frame_file_written(const char *path) {
+int frame_file_kept(const char *path, int frame, int width, int height,
+                    int quiet) {
   struct stat sb;
-  return stat(path, &sb) == 0 && S_ISREG(sb.st_mode) && sb.st_size > 0;
+  if (stat(path, &sb) != 0)
+    return 0;
+  /* Frames are written whole (a temporary file renamed), but what is under
+   * the name may be another run's size, another program's file or damaged:
+   * only an image of this frame's size counts as done. */
+  glint_image *image = NULL;
+  glint_error err;
+  int kept = 0;
+  if (!S_ISREG(sb.st_mode))
+    snprintf(err.message, sizeof err.message, "%s: not a regular file", path);
+  else if (glint_image_read(path, &image, &err) == GLINT_OK) {
+    kept = glint_image_width(image) == width &&
+           glint_image_height(image) == height;
+    if (!kept)
+      snprintf(err.message, sizeof err.message, "%s: a %dx%d image", path,
+               glint_image_width(image), glint_image_height(image));
+    glint_image_destroy(image);
+  }
+  if (kept && !quiet)
+    printf("frame %d: %s is there, kept (--resume)\n", frame, path);
+  if (!kept)
+    fprintf(stderr,
+            "glint: frame %d: %s, not a finished %dx%d frame: rendered "
+            "again (--resume)\n",
+            frame, err.message, width, height);
+  return kept;
 }
 
 /* Every frame's camera and objects, before any is rendered: a spline can

@@ -48,8 +48,11 @@ int frame_files_init(frame_files *files, const struct glint_scene *scene,
  * after a message when the name is too long or the folder cannot be made. */
 int frame_files_path(const frame_files *files, int frame, char *path,
                      size_t size);
-/* Whether `path` is a complete frame already (--resume keeps it). */
-int frame_file_written(const char *path);
+/* Whether `path` holds a finished frame already (--resume keeps it): an
+ * image glint reads, of the frame's size; says which, or why a file there
+ * is rendered again. */
+int frame_file_kept(const char *path, int frame, int width, int height,
+                    int quiet);
 /* Commits `scene` at `time` and gives the renderer that world: for
  * animations whose objects move. `*last` is the last frame's world (NULL at
  * first), whose BVH is refitted; it is replaced by this frame's, which the

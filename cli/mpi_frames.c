@@ -159,10 +159,8 @@ static int plan(frame_job *j, int *kept) {
     char path[4096];
     if (frame_files_path(&j->files, f, path, sizeof path))
       return -1;
-    if (o->resume && frame_file_written(path)) {
+    if (o->resume && frame_file_kept(path, f, j->width, j->height, o->quiet)) {
       (*kept)++;
-      if (!o->quiet)
-        printf("frame %d: %s is there, kept (--resume)\n", f, path);
       continue;
     }
     j->frames[n++] = f;

@@ -62,10 +62,8 @@ int render_frames(glint_scene *scene, const render_options *o,
       status = EXIT_USAGE;
       break;
     }
-    if (o->resume && frame_file_written(path)) {
+    if (o->resume && frame_file_kept(path, f, w, h, o->quiet)) {
       kept++;
-      if (!o->quiet)
-        printf("frame %d: %s is there, kept (--resume)\n", f, path);
       continue;
     }
     double t0 = cli_now(), time = (double)(f - anim.first_frame) / anim.fps;

@@ -824,17 +824,39 @@ static void frames_of_an_animation(void **state) {
                    0);
   assert_true(exists("p%3.png"));
 
-  /* --resume keeps what is there (here a stand-in) and renders the rest. */
-  put_text("f02.png", "kept");
+  /* --resume keeps the frames there (here f02.png a stand-in: the still
+   * image, of the frame's size) and renders the rest, and again what is
+   * not an image of the frame's size (it kept any file that was not
+   * empty). */
+  long nstill;
+  char *still_png = file_bytes("still.png", &nstill);
+  char f02[600];
+  snprintf(f02, sizeof f02, "%s/f02.png", dir);
+  FILE *stand_in = fopen(f02, "wb");
+  assert_non_null(stand_in);
+  assert_int_equal(fwrite(still_png, 1, (size_t)nstill, stand_in), nstill);
+  fclose(stand_in);
+  put_text("f03.png", "junk");
   assert_int_equal(run("render", "anim.json", "--frames", "1-4", "-o",
                        "f%02d.png", "--resume", NULL),
                    0);
   assert_non_null(strstr(out, "frame 2: f02.png is there, kept (--resume)"));
-  assert_non_null(strstr(out, "1 frame written, 3 kept (--resume)"));
-  char kept[16];
-  slurp(strcat(strcpy(still, dir), "/f02.png"), kept, sizeof kept);
-  assert_string_equal(kept, "kept");
+  assert_non_null(strstr(err, "frame 3: f03.png: not a valid PNG file"));
+  assert_non_null(strstr(err, "not a finished 32x24 frame: rendered again"));
+  assert_non_null(strstr(out, "2 frames written, 2 kept (--resume)"));
+  long n02;
+  char *kept = file_bytes("f02.png", &n02);
+  assert_true(n02 == nstill && memcmp(kept, still_png, (size_t)nstill) == 0);
+  free(kept);
+  free(still_png);
   assert_true(exists("f04.png"));
+  /* At another size, every frame is rendered again. */
+  assert_int_equal(run("render", "anim.json", "--frames", "1-2", "-o",
+                       "f%02d.png", "--resume", "-W", "16", "-H", "12", "-q",
+                       NULL),
+                   0);
+  assert_non_null(strstr(err, "frame 2: f02.png: a 32x24 image, not a "
+                              "finished 16x12 frame: rendered again"));
 
   /* The mistakes, with the scene beside the (then empty) test folder: an
    * error writes nothing. */
