@@ -1070,6 +1070,12 @@ static void compare_threshold_and_difference(void **state) {
   /* (the folder holds the images now: no EXPECT_USAGE_ERROR) */
   assert_int_equal(run("compare", "a.png", "missing.png", NULL), 2);
   assert_non_null(strstr(err, "glint: missing.png: No such file"));
+  char folder[600];
+  snprintf(folder, sizeof folder, "%s/folder.png", dir);
+  assert_int_equal(mkdir(folder, 0755), 0);
+  assert_int_equal(run("compare", "a.png", "folder.png", NULL), 2);
+  assert_non_null(strstr(err, "glint: folder.png: a folder, not an image"));
+  assert_int_equal(rmdir(folder), 0);
   assert_int_equal(run("compare", "a.png", "b.png", "--min-psnr", "x", NULL),
                    2);
   assert_non_null(strstr(err, "--min-psnr: 'x' is not a number"));

@@ -751,13 +751,17 @@ static void syntax_errors_give_line_and_column(void **state) {
   load_fails(path, GLINT_E_PARSE, ":2:5: a NUL byte");
   write_bytes(f, "utf16.json", "\xff\xfe{\0}\0", 6, path, sizeof path);
   load_fails(path, GLINT_E_PARSE, ": UTF-16 text");
-  /* Nesting deeper than cJSON takes is refused, not a crash. */
-  char deep[4002];
-  memset(deep, '[', 2000);
-  memset(deep + 2000, ']', 2000);
-  deep[4000] = '\0';
-  write_bytes(f, "deep.json", deep, 4000, path, sizeof path);
-  load_fails(path, GLINT_E_PARSE, ":1:");
+  /* Nesting deeper than cJSON takes is refused, not a crash, and named
+   * (it was "found '['"); a string's brackets do not count. */
+  char deep[4012];
+  memcpy(deep, "[\"[[[[\",", 8);
+  memset(deep + 8, '[', 2000);
+  memset(deep + 2008, ']', 2001);
+  deep[4009] = '\0';
+  write_bytes(f, "deep.json", deep, 4009, path, sizeof path);
+  load_fails(path, GLINT_E_PARSE,
+             ":1:1008: JSON syntax error: arrays and objects nested deeper "
+             "than 1000 levels");
 }
 
 static void structure_errors_give_the_json_path(void **state) {

@@ -353,6 +353,15 @@ glint_status glint_image_read(const char *path, glint_image **out,
   glint_image_format fmt = glint_image_format_from_path(path);
   if (fmt == GLINT_FORMAT_UNKNOWN)
     return unknown_format(path, error);
+  /* Asked first: a folder opens and reads as a damaged image, a FIFO
+   * without a writer blocks the open. */
+  struct stat sb;
+  if (stat(path, &sb) != 0)
+    return gli_fail(error, GLINT_E_IO, "%s: %s", path, strerror(errno));
+  if (!S_ISREG(sb.st_mode))
+    return gli_fail(error, GLINT_E_IO, "%s: %s", path,
+                    S_ISDIR(sb.st_mode) ? "a folder, not an image"
+                                        : "not a regular file");
   FILE *f = fopen(path, "rb");
   if (!f)
     return gli_fail(error, GLINT_E_IO, "%s: %s", path, strerror(errno));

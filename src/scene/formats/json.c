@@ -1117,12 +1117,19 @@ static const char *number_problem(const char *p, const char *end,
  * \\ \/ \b \f \n \r \t and \uXXXX (cJSON ends the string at a bad one,
  * silently cutting a name), \u0000 (no name can hold a NUL), a control
  * character inside a string, text that is not UTF-8 inside a string, and
- * a number outside JSON's grammar (01, 1., .5, -.5, 1e). NULL when the text
+ * a number outside JSON's grammar (01, 1., .5, -.5, 1e); and nesting
+ * deeper than cJSON's limit, which it reports as a syntax error at the
+ * bracket. NULL when the text
  * is clean, else where the problem is and *what it is. */
+#define TEXT_OF_(x) #x
+#define TEXT_OF(x) TEXT_OF_(x)
+#define NESTING_LIMIT_TEXT TEXT_OF(CJSON_NESTING_LIMIT)
+
 static const char *grammar_problem(const char *data, size_t size,
                                    const char **what) {
   const char *p = data, *end = data + size;
   int in_string = 0;
+  long depth = 0;
   for (; p < end; p++) {
     unsigned char c = (unsigned char)*p;
     if (in_string) {
@@ -1163,6 +1170,14 @@ static const char *grammar_problem(const char *data, size_t size,
       }
     } else if (c == '"') {
       in_string = 1;
+    } else if (c == '[' || c == '{') {
+      if (++depth > CJSON_NESTING_LIMIT) {
+        *what = "arrays and objects nested deeper than " NESTING_LIMIT_TEXT
+                " levels";
+        return p;
+      }
+    } else if (c == ']' || c == '}') {
+      depth--;
     } else if (c == '.') {
       *what = "a number without a digit before its decimal point";
       return p;
