@@ -1112,19 +1112,19 @@ static const char *number_problem(const char *p, const char *end,
   return q;
 }
 
+#define TEXT_OF_(x) #x
+#define TEXT_OF(x) TEXT_OF_(x)
+#define NESTING_LIMIT_TEXT TEXT_OF(CJSON_NESTING_LIMIT)
+
 /* What cJSON reads but JSON (RFC 8259) refuses, found before it parses, so
  * that glint is exactly as strict as the format: an escape other than \"
  * \\ \/ \b \f \n \r \t and \uXXXX (cJSON ends the string at a bad one,
  * silently cutting a name), \u0000 (no name can hold a NUL), a control
  * character inside a string, text that is not UTF-8 inside a string, and
  * a number outside JSON's grammar (01, 1., .5, -.5, 1e); and nesting
- * deeper than cJSON's limit, which it reports as a syntax error at the
- * bracket. NULL when the text
- * is clean, else where the problem is and *what it is. */
-#define TEXT_OF_(x) #x
-#define TEXT_OF(x) TEXT_OF_(x)
-#define NESTING_LIMIT_TEXT TEXT_OF(CJSON_NESTING_LIMIT)
-
+ * deeper than cJSON's limit, which cJSON reports as a bare syntax error at
+ * the bracket. NULL when the text is clean, else where the problem is and
+ * *what it is. */
 static const char *grammar_problem(const char *data, size_t size,
                                    const char **what) {
   const char *p = data, *end = data + size;
