@@ -290,8 +290,9 @@ static void print_state(const viewer *v) {
   fflush(stdout);
 }
 
-/* Copies a regular file only: a device such as /dev/zero never ends and
- * would fill the disk, a FIFO may block for ever. */
+/* Copies a regular file onto a regular file (or a new one): a device such
+ * as /dev/zero never ends and would fill the disk, a FIFO may block for
+ * ever, and a file copied onto itself would be emptied by the open. */
 static int copy_file(const view_script *s, const command *c) {
   FILE *in = fopen(c->from, "rb"), *out = NULL;
   struct stat st;
@@ -302,6 +303,10 @@ static int copy_file(const view_script *s, const command *c) {
     why = strerror(errno);
   else if (!S_ISREG(st.st_mode))
     why = "not a regular file";
+  else if (stat(c->to, &st) == 0 && !S_ISREG(st.st_mode))
+    why = "the destination is not a regular file";
+  else if (same_file(c->from, c->to))
+    why = "they are the same file";
   else if (!(out = fopen(c->to, "wb")))
     why = strerror(errno);
   char buf[8192];

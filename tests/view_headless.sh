@@ -178,4 +178,18 @@ rc=$?
 grep -qF "copy-device.txt:1: cannot copy /dev/zero to zero.json: not a regular file" err.txt ||
   fail "copy /dev/zero: no message"
 [ ! -e zero.json ] || fail "copy /dev/zero made zero.json"
+# ...onto a regular file that is not itself (it was emptied), and not onto
+# a FIFO (it blocked for ever).
+cp good.json same.json
+ln -s same.json same-link.json
+printf 'copy same-link.json same.json\nquit\n' >copy-same.txt
+timeout 20 "$glint" view scene.json --script copy-same.txt >out.txt 2>err.txt
+[ $? -eq 2 ] || fail "copy onto itself: exit status"
+grep -qF "cannot copy same-link.json to same.json: they are the same file" err.txt ||
+  fail "copy onto itself: no message"
+cmp -s same.json good.json || fail "copy onto itself emptied the file"
+printf 'copy same.json fifo\nquit\n' >copy-fifo.txt
+timeout 20 "$glint" view scene.json --script copy-fifo.txt >out.txt 2>err.txt
+[ $? -eq 2 ] || fail "copy onto a FIFO: exit status"
+grep -qF "the destination is not a regular file" err.txt || fail "copy onto a FIFO: no message"
 echo "view_headless: PASSED"
