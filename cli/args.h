@@ -83,6 +83,12 @@ void cli_error(const char *format, ...)
 #endif
     ;
 
+/* Writes that cannot be done fail with an error glint reports (and its
+ * temporary file removed) instead of a signal killing it: EPIPE for a
+ * reader that went away (glint render -o - | head), EFBIG for a file past
+ * the size limit (ulimit -f). Called first by every program. */
+void cli_write_errors_not_signals(void);
+
 /* Whether paths a and b name one existing file (through links or not). */
 int same_file(const char *a, const char *b);
 

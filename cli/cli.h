@@ -109,9 +109,11 @@ int cli_tile_to_writer(void *user, const glint_tile *tile);
 /* Whether `path` names a linear film (.pfm, .exr) rather than an 8-bit
  * image. */
 int cli_is_film_path(const char *path);
-/* Whether `path`'s extension names something glint render writes: an
- * 8-bit image or a film. Otherwise fills `err` with the choices. */
-glint_status cli_check_output_format(const char *path, glint_error *err);
+/* Whether `path`'s extension names something glint render writes (an
+ * 8-bit image or a film) and it is not the file `scene` (NULL: none).
+ * Otherwise fills `err` with the choices or the problem. */
+glint_status cli_check_output_format(const char *path, const char *scene,
+                                     glint_error *err);
 
 /* SIGINT, SIGTERM and SIGHUP only take note from then on; cli_stopped says
  * whether one came (cancel, say so, exit 130). */

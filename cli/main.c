@@ -4,7 +4,6 @@
 
 #include <glint.h>
 
-#include <signal.h>
 #include <stdio.h>
 #include <string.h>
 
@@ -34,9 +33,7 @@ static void usage(FILE *f) {
 }
 
 int main(int argc, char **argv) {
-  /* A reader that goes away (glint render -o - | head) makes writes fail
-   * with EPIPE, which glint reports, rather than kill it with SIGPIPE. */
-  signal(SIGPIPE, SIG_IGN);
+  cli_write_errors_not_signals();
   if (argc < 2) {
     usage(stderr);
     return EXIT_USAGE;

@@ -389,6 +389,7 @@ static int run(mpi_world *w, int argc, char **argv) {
 
 int main(int argc, char **argv) {
   double start = cli_now();
+  cli_write_errors_not_signals();
   /* --help needs no MPI job: it works outside mpirun, at once. */
   for (int i = 1; i < argc && strcmp(argv[i], "--"); i++)
     if (strcmp(argv[i], "-h") == 0 || strcmp(argv[i], "--help") == 0) {

@@ -138,7 +138,7 @@ int mpi_render_tiles(const mpi_world *w, const mpi_options *o,
   glint_error err = {0};
   glint_status st = GLINT_OK;
   if (w->rank == 0) {
-    if (cli_check_output_format(output, &err))
+    if (cli_check_output_format(output, o->render.scene, &err))
       st = GLINT_E_ARGUMENT;
     else if (film_output && rs->gamma != 1)
       st = GLINT_E_ARGUMENT,

@@ -317,10 +317,19 @@ int cli_is_film_path(const char *path) {
   return dot && (strcasecmp(dot, ".pfm") == 0 || strcasecmp(dot, ".exr") == 0);
 }
 
-glint_status cli_check_output_format(const char *path, glint_error *err) {
+glint_status cli_check_output_format(const char *path, const char *scene,
+                                     glint_error *err) {
   if (cli_is_film_path(path) ||
-      glint_image_format_from_path(path) != GLINT_FORMAT_UNKNOWN)
-    return GLINT_OK;
+      glint_image_format_from_path(path) != GLINT_FORMAT_UNKNOWN) {
+    /* Images are written through links: one to the scene would replace
+     * it. */
+    if (!scene || !same_file(scene, path))
+      return GLINT_OK;
+    err->status = GLINT_E_ARGUMENT;
+    snprintf(err->message, sizeof err->message, "%s: that is the scene file %s",
+             path, scene);
+    return GLINT_E_ARGUMENT;
+  }
   err->status = GLINT_E_ARGUMENT;
   if (!*path)
     snprintf(err->message, sizeof err->message,
@@ -576,7 +585,7 @@ int cmd_render(int argc, char **argv) {
   }
   /* Refuse a bad output path before a long render, not after. */
   int film_output = !to_stdout && cli_is_film_path(output);
-  if (!to_stdout && cli_check_output_format(output, &err)) {
+  if (!to_stdout && cli_check_output_format(output, scene_arg, &err)) {
     cli_error("%s", err.message);
     glint_scene_destroy(scene);
     return EXIT_USAGE;

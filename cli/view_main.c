@@ -6,6 +6,7 @@
 #include <glint.h>
 
 int main(int argc, char **argv) {
+  cli_write_errors_not_signals();
   glint_error err;
   if (glint_isa_cap_check(&err)) {
     cli_error("%s", err.message);

@@ -654,6 +654,38 @@ static void a_closed_pipe_is_an_error(void **state) {
   assert_int_equal(WEXITSTATUS(status), 2);
 }
 
+/* A file past the size limit (ulimit -f) is a write error glint reports,
+ * the old file kept and no temporary file left: SIGXFSZ killed it mid-write
+ * with the temporary file in the folder. */
+static void a_file_past_the_size_limit_is_an_error(void **state) {
+  (void)state;
+  put_text("limited.png", "old");
+  pid_t pid = fork();
+  assert_true(pid >= 0);
+  if (pid == 0) {
+    struct rlimit limit = {20 * 1024, 20 * 1024};
+    int null = open("/dev/null", O_WRONLY);
+    if (setrlimit(RLIMIT_FSIZE, &limit) != 0 || chdir(dir) != 0 || null < 0 ||
+        dup2(null, 2) < 0)
+      _exit(99);
+    execl(GLINT_EXE, "glint", "render", "whitted", "-t", "1", "-q", "-o",
+          "limited.png", (char *)NULL);
+    _exit(98);
+  }
+  int status;
+  assert_int_equal(waitpid(pid, &status, 0), pid);
+  if (!WIFEXITED(status))
+    fail_msg("glint was killed by signal %d", WTERMSIG(status));
+  assert_int_equal(WEXITSTATUS(status), 2);
+  char kept[16];
+  char path[600];
+  snprintf(path, sizeof path, "%s/limited.png", dir);
+  slurp(path, kept, sizeof kept);
+  assert_string_equal(kept, "old");
+  assert_int_equal(remove_in_folder("limited.png"), 0);
+  assert_true(folder_is_empty()); /* no temporary file */
+}
+
 /* Memory that cannot be had is exit status 1 (glint --help), from every
  * place that asks for it: the image, a scene's meshes. (Not under
  * AddressSanitizer, which reserves terabytes of address space.) */
@@ -745,6 +777,28 @@ static void bench_csv_keeps_files_on_error(void **state) {
   assert_string_equal(out, ""); /* refused before measuring */
   assert_int_equal(remove_in_folder("keep.csv"), 0);
   assert_int_equal(remove_in_folder("s.nff"), 0);
+  assert_true(folder_is_empty());
+}
+
+/* An output linked to the scene would replace it (images are written
+ * through links): refused, the scene kept. */
+static void output_linked_to_the_scene(void **state) {
+  (void)state;
+  put_text("linked.nff", "v\nfrom 0 0 -5\nat 0 0 0\nup 0 1 0\nangle 40\n"
+                         "hither 0.001\nresolution 8 8\n"
+                         "f 1 1 1 1 0 0 0 1\ns 0 0 0 1\n");
+  char scene_file[600], link_file[600];
+  snprintf(scene_file, sizeof scene_file, "%s/linked.nff", dir);
+  snprintf(link_file, sizeof link_file, "%s/linked.png", dir);
+  assert_int_equal(symlink(scene_file, link_file), 0);
+  EXPECT_USAGE_ERROR_KEEPING("linked.png: that is the scene file linked.nff",
+                             "render", "linked.nff", "-o", "linked.png");
+  long n_scene;
+  char *kept_scene = file_bytes("linked.nff", &n_scene);
+  assert_true(n_scene > 8 && memcmp(kept_scene, "v\nfrom", 6) == 0);
+  free(kept_scene);
+  assert_int_equal(remove_in_folder("linked.png"), 0);
+  assert_int_equal(remove_in_folder("linked.nff"), 0);
   assert_true(folder_is_empty());
 }
 
@@ -1124,9 +1178,11 @@ int main(void) {
       cmocka_unit_test(defaults_quiet_and_stats),
       cmocka_unit_test(bench_runs_and_writes_csv),
       cmocka_unit_test(bench_csv_keeps_files_on_error),
+      cmocka_unit_test(output_linked_to_the_scene),
       cmocka_unit_test(bench_time_to_image),
       cmocka_unit_test(bench_errors),
       cmocka_unit_test(a_closed_pipe_is_an_error),
+      cmocka_unit_test(a_file_past_the_size_limit_is_an_error),
       cmocka_unit_test(written_files_keep_their_permissions),
       cmocka_unit_test(out_of_memory_exits_1),
       cmocka_unit_test(bench_plot_names_are_not_commands),
