@@ -56,19 +56,42 @@ static glint_vec3 swing(const glint_camera *c, glint_vec3 v, double yaw,
   return rotate(v, right_axis(c, v), target - elevation);
 }
 
+/* A move that would take the camera out of the range glint renders
+ * (GLINT_MAX_COORDINATE, finite) is not made: scrolling out for long must
+ * leave the view where it was, not end the viewer with an error. */
+static int within_range(glint_vec3 p) {
+  return fabs(p.x) <= GLINT_MAX_COORDINATE &&
+         fabs(p.y) <= GLINT_MAX_COORDINATE && fabs(p.z) <= GLINT_MAX_COORDINATE;
+}
+
+static int renderable(const glint_camera *c) {
+  return within_range(c->from) && within_range(c->at) &&
+         length(sub(c->at, c->from)) > 0;
+}
+
+static void keep_renderable(glint_camera *c, const glint_camera *before) {
+  if (!renderable(c))
+    *c = *before;
+}
+
 void view_orbit(glint_camera *c, double yaw, double pitch) {
+  glint_camera before = *c;
   /* The eye moves on the sphere around at: swing the vector at -> from the
    * other way, so that dragging right turns the scene right. */
   glint_vec3 back = sub(c->from, c->at);
   c->from = add(c->at, swing(c, back, -yaw, -pitch));
+  keep_renderable(c, &before);
 }
 
 void view_turn(glint_camera *c, double yaw, double pitch) {
+  glint_camera before = *c;
   glint_vec3 view = sub(c->at, c->from);
   c->at = add(c->from, swing(c, view, yaw, pitch));
+  keep_renderable(c, &before);
 }
 
 void view_pan(glint_camera *c, double dx, double dy, double aspect) {
+  glint_camera before = *c;
   glint_vec3 view = sub(c->at, c->from);
   double distance = length(view);
   double half_width = distance * tan(0.5 * c->fov_x_degrees * degrees);
@@ -78,23 +101,28 @@ void view_pan(glint_camera *c, double dx, double dy, double aspect) {
                         scale(up, -dy * 2 * half_width / aspect));
   c->from = add(c->from, move);
   c->at = add(c->at, move);
+  keep_renderable(c, &before);
 }
 
 void view_dolly(glint_camera *c, double factor) {
+  glint_camera before = *c;
   glint_vec3 back = sub(c->from, c->at);
   double distance = length(back) * factor;
   if (distance < 1e-3)
     distance = 1e-3;
   c->from = add(c->at, scale(normalise(back), distance));
+  keep_renderable(c, &before);
 }
 
 void view_fly(glint_camera *c, double forward, double right, double up) {
+  glint_camera before = *c;
   glint_vec3 view = normalise(sub(c->at, c->from));
   glint_vec3 move =
       add(add(scale(view, forward), scale(right_axis(c, view), right)),
           scale(normalise(c->up), up));
   c->from = add(c->from, move);
   c->at = add(c->at, move);
+  keep_renderable(c, &before);
 }
 
 void view_camera_json(const glint_camera *c, char *buf, unsigned long size) {

@@ -83,6 +83,24 @@ static void turn_pan_fly_and_dolly(void **state) {
   assert_vec(c.at, start.at, 0);
   view_dolly(&c, 1e-9);
   assert_true(dist(c.from, c.at) > 0);
+
+  /* No move leaves the range glint renders: scrolled, panned or flown out
+   * for long, the camera stops at its last renderable place (it ended the
+   * viewer with "coordinates must be finite numbers of magnitude at most
+   * 1e15"). */
+  c = start;
+  for (int i = 0; i < 400; i++)
+    view_dolly(&c, 1.25);
+  for (int i = 0; i < 400; i++)
+    view_pan(&c, 1e3, 1e3, 4.0 / 3.0);
+  for (int i = 0; i < 400; i++)
+    view_fly(&c, 1e14, 1e14, 1e14);
+  const glint_vec3 ends[2] = {c.from, c.at};
+  for (int i = 0; i < 2; i++)
+    assert_true(fabs(ends[i].x) <= GLINT_MAX_COORDINATE &&
+                fabs(ends[i].y) <= GLINT_MAX_COORDINATE &&
+                fabs(ends[i].z) <= GLINT_MAX_COORDINATE);
+  assert_true(dist(c.from, c.at) > 1e13); /* it did move far */
 }
 
 static void camera_json_pastes_into_a_scene(void **state) {
