@@ -10,13 +10,29 @@
 #include <string.h>
 #include <sys/stat.h>
 
+/* What it quotes (a file name, an option's value) may hold control
+ * characters: an escape sequence would reach the terminal as a command, so
+ * each is shown as '?' (line breaks stay: some messages quote a failed
+ * program's output). */
 void cli_error(const char *format, ...) {
-  va_list args;
+  va_list args, again;
   va_start(args, format);
-  fputs("glint: ", stderr);
-  vfprintf(stderr, format, args);
-  fputc('\n', stderr);
+  va_copy(again, args);
+  char line[1024], *text = line;
+  int n = vsnprintf(line, sizeof line, format, args);
+  if (n >= (int)sizeof line && (text = malloc((size_t)n + 1)))
+    vsnprintf(text, (size_t)n + 1, format, again);
+  else if (!text)
+    text = line; /* cut, rather than nothing */
+  va_end(again);
   va_end(args);
+  fputs("glint: ", stderr);
+  for (const unsigned char *p = (const unsigned char *)text; *p; p++)
+    fputc((*p < 0x20 && *p != '\n' && *p != '\t') || *p == 0x7f ? '?' : *p,
+          stderr);
+  fputc('\n', stderr);
+  if (text != line)
+    free(text);
 }
 
 void cli_unsupported_backend(const char *name) {

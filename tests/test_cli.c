@@ -142,6 +142,10 @@ static void usage_errors(void **state) {
   EXPECT_USAGE_ERROR("unknown command 'paint'", "paint");
   EXPECT_USAGE_ERROR("unknown scene 'cornell'", "render", "cornell");
   EXPECT_USAGE_ERROR("unknown backend 'gpu'", "render", "-b", "gpu");
+  /* What a message quotes reaches the terminal without its control
+   * characters (an escape sequence is a terminal command). */
+  EXPECT_USAGE_ERROR("unknown backend 'gpu?[31m'", "render", "-b",
+                     "gpu\033[31m");
   EXPECT_USAGE_ERROR("unknown option '--fast'", "render", "--fast");
   EXPECT_USAGE_ERROR("more than one scene", "render", "whitted", "giza");
   EXPECT_USAGE_ERROR("--output needs a value", "render", "-o");

@@ -93,6 +93,28 @@ static void info_bounds_every_shape(void **state) {
  * name and the argument's (it crashed before: glint_render rendered the
  * whole frame first); the functions that cannot fail answer NULL with
  * nothing. And counts whose products would wrap are refused before use. */
+/* A message is one line whatever it quotes: control characters in a file
+ * name are shown as '?', and a name longer than the message keeps the
+ * message's end, where the problem is said. */
+static void messages_are_one_clean_line(void **state) {
+  (void)state;
+  glint_scene *s = NULL;
+  glint_error e;
+  assert_int_equal(glint_scene_load("no\033[31m\nsuch.nff", &s, &e),
+                   GLINT_E_IO);
+  assert_string_equal(e.message, "no?[31m?such.nff: No such file or directory");
+  char path[5008];
+  for (int i = 0; i < 2500; i++)
+    memcpy(path + 2 * i, "./", 2);
+  memcpy(path + 5000, "x.nff", 6);
+  assert_int_equal(glint_scene_load(path, &s, &e), GLINT_E_IO);
+  assert_int_equal(strlen(e.message), sizeof e.message - 1);
+  assert_memory_equal(e.message, "././", 4);
+  const char *end = "./x.nff: File name too long";
+  assert_string_equal(e.message + strlen(e.message) - strlen(end), end);
+  assert_non_null(strstr(e.message, "..."));
+}
+
 static void null_and_overflowing_arguments_are_refused(void **state) {
   (void)state;
   uint32_t m;
@@ -495,6 +517,7 @@ int main(void) {
       cmocka_unit_test(primitives_refuse_bad_numbers),
       cmocka_unit_test(info_bounds_every_shape),
       cmocka_unit_test(null_and_overflowing_arguments_are_refused),
+      cmocka_unit_test(messages_are_one_clean_line),
       cmocka_unit_test(coordinates_stay_within_the_limit),
       cmocka_unit_test(materials_refuse_bad_values),
       cmocka_unit_test(camera_refuses_degenerate_views),
