@@ -54,7 +54,10 @@ typedef enum glint_status {
   GLINT_E_CANCELLED    /* the progress callback asked to stop */
 } glint_status;
 
-/* Filled by a failing call when the caller passes one; never required. */
+/* Filled by a failing call when the caller passes one; never required. The
+ * message is one line naming the file, line and problem where there is
+ * one (control characters it quotes shown as '?'; a message too long for
+ * the buffer keeps its start and its end). */
 typedef struct glint_error {
   glint_status status;
   char message[1024];

@@ -129,6 +129,12 @@ static void malformed_files(void **state) {
               "inf.nff:8: the background colour is 'inf', not a finite number");
   EXPECT_FAIL("unknown.nff", VIEW "torus 0 0 0 1 2\n", GLINT_E_PARSE,
               "unknown.nff:8: unknown entity 'torus'");
+  /* the angle's own line, not the view's (it said line 1) */
+  EXPECT_FAIL("angle.nff",
+              "v\nfrom 0 0 10\nat 0 0 0\nup 0 1 0\nangle 180\nhither 0.01\n"
+              "resolution 64 48\n",
+              GLINT_E_PARSE,
+              "angle.nff:5: view angle 180 is not between 0 and 180");
   EXPECT_FAIL(
       "trunc.nff", VIEW "f 1 1 1 1 0 1 0 1\np 4\n0 0 0\n1 0 0\n1 1 0\n",
       GLINT_E_PARSE,

@@ -88,8 +88,10 @@ static glint_status read_view(nff_reader *r, glint_error *e) {
       (st = expect_word(r, "up", e)) ||
       (st = gli_text_vec3(&r->t, "'up'", &cam.up, e)) ||
       (st = expect_word(r, "angle", e)) ||
-      (st = gli_text_number(&r->t, "the view angle", &angle, e)) ||
-      (st = expect_word(r, "hither", e)) ||
+      (st = gli_text_number(&r->t, "the view angle", &angle, e)))
+    return st;
+  int angle_line = r->t.token_line;
+  if ((st = expect_word(r, "hither", e)) ||
       (st = gli_text_number(&r->t, "hither", &hither, e)) ||
       (st = expect_word(r, "resolution", e)) ||
       (st = gli_text_int(&r->t, "the horizontal resolution", 1,
@@ -100,7 +102,7 @@ static glint_status read_view(nff_reader *r, glint_error *e) {
   if (!(angle > 0 && angle < 180))
     return gli_fail(e, GLINT_E_PARSE,
                     "%s:%d: view angle %g is not between 0 and 180", r->t.path,
-                    line, angle);
+                    angle_line, angle);
   double half = tan(angle * 3.14159265358979323846 / 360.0);
   if (w > 1)
     half *= (double)w / (double)(w - 1);
