@@ -125,7 +125,9 @@ int parse_double(const char *option, const char *text, double min,
   char *end;
   errno = 0;
   double v = strtod(text, &end);
-  if (end == text || *end != '\0' || !isfinite(v)) {
+  /* strtod skips leading blanks; refused as parse_int refuses them */
+  if (end == text || *end != '\0' || !isfinite(v) ||
+      isspace((unsigned char)*text)) {
     cli_error("%s: '%s' is not a number", option, text);
     return -1;
   }
