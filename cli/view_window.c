@@ -91,14 +91,14 @@ static int size_buffers(viewer *v, int rw, int rh) {
       glint_image_create(rw, rh, &v->image, &err) ||
       !(v->screen = malloc((size_t)v->win_w * v->win_h * 3))) {
     cli_error("view: out of memory for a %dx%d frame", rw, rh);
-    return -1;
+    return EXIT_MEMORY;
   }
   v->texture =
       SDL_CreateTexture(v->sdl, SDL_PIXELFORMAT_RGB24,
                         SDL_TEXTUREACCESS_STREAMING, v->win_w, v->win_h);
   if (!v->texture) {
     cli_error("view: %s", SDL_GetError());
-    return -1;
+    return EXIT_USAGE;
   }
   return 0;
 }
@@ -108,14 +108,16 @@ static double scale_now(const viewer *v) {
 }
 
 /* One pass: sample 0 while moving (starting over), else the next sample of
- * the pattern, summed in. Returns -1 on failure. */
+ * the pattern, summed in. Returns 0, or the exit status of its failure
+ * (EXIT_MEMORY where memory ran out). */
 static int render_pass(viewer *v) {
   double scale = scale_now(v);
   int rw = (int)(v->win_w * scale + 0.5), rh = (int)(v->win_h * scale + 0.5);
   rw = rw < 1 ? 1 : rw;
   rh = rh < 1 ? 1 : rh;
-  if (size_buffers(v, rw, rh))
-    return -1;
+  int failed = size_buffers(v, rw, rh);
+  if (failed)
+    return failed;
   if (v->moving)
     v->samples = 0;
   /* The field of view spans the width: rendering the window's aspect at a
@@ -137,7 +139,7 @@ static int render_pass(viewer *v) {
   if (glint_renderer_render(v->renderer, &frame,
                             v->samples == 0 ? v->sum : v->pass, &st, &err)) {
     cli_error("view: %s", err.message);
-    return -1;
+    return cli_exit_code(err.status);
   }
   size_t n = (size_t)rw * rh * 3;
   const float *p = glint_film_pixels(v->pass);
@@ -409,9 +411,10 @@ static int run_benchmark(viewer *v) {
     view_orbit(&v->camera, 360.0 * i / n, 0);
     v->moving = 1;
     double t0 = cli_now();
-    if (render_pass(v)) {
+    int failed = render_pass(v);
+    if (failed) {
       free(frames);
-      return EXIT_USAGE;
+      return failed;
     }
     present(v);
     frames[i].ms = (cli_now() - t0) * 1e3;
@@ -597,8 +600,9 @@ static int run_interactive(viewer *v) {
       continue;
     }
     int was_moving = v->moving;
-    if (render_pass(v))
-      return EXIT_USAGE;
+    int failed = render_pass(v);
+    if (failed)
+      return failed;
     double end = cli_now();
     v->fps = end > v->last_frame_end ? 1.0 / (end - v->last_frame_end) : 0;
     v->last_frame_end = end;

@@ -192,4 +192,16 @@ printf 'copy same.json fifo\nquit\n' >copy-fifo.txt
 timeout 20 "$glint" view scene.json --script copy-fifo.txt >out.txt 2>err.txt
 [ $? -eq 2 ] || fail "copy onto a FIFO: exit status"
 grep -qF "the destination is not a regular file" err.txt || fail "copy onto a FIFO: no message"
+# A window resized past the memory there is: exit status 1 (out of memory,
+# as glint --help says), not 2. (Not under AddressSanitizer, which cannot
+# start under a limit on address space.)
+if [ -z "${ASAN_OPTIONS:-}" ]; then
+  printf 'resize 16384 16384\nwait\nquit\n' >huge.txt
+  (ulimit -v 3000000; timeout 60 "$glint" view scene.json -s 1 --script huge.txt) \
+    >out.txt 2>err.txt
+  rc=$?
+  [ $rc -eq 1 ] || fail "a window past memory: exit status $rc, want 1"
+  grep -qF "out of memory for a 16384x16384 frame" err.txt ||
+    fail "a window past memory: no message"
+fi
 echo "view_headless: PASSED"
