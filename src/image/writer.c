@@ -180,8 +180,9 @@ static glint_status start_encoder(glint_image_writer *w, const char *label,
                                           w->gamma, w->compression));
   else if (w->format == GLINT_FORMAT_PPM)
     header_bad = gli_ppm_header(w->file.f, w->width, w->height);
+  int thread_err = 0;
   if (!own_label || header_bad ||
-      pthread_create(&w->encoder, NULL, encode_loop, w) != 0) {
+      (thread_err = pthread_create(&w->encoder, NULL, encode_loop, w)) != 0) {
     if (w->in_memory) {
       fclose(w->file.f);
       free(w->memory);
@@ -190,6 +191,10 @@ static glint_status start_encoder(glint_image_writer *w, const char *label,
     }
     free(own_label);
     writer_free(w);
+    if (thread_err)
+      return gli_fail(error, GLINT_E_MEMORY,
+                      "%s: cannot start the thread that encodes it: %s", label,
+                      strerror(thread_err));
     return gli_fail(error, GLINT_E_MEMORY, "%s: cannot start writing", label);
   }
   w->file.path = own_label;
