@@ -106,7 +106,9 @@ typedef struct glint_material {
   glint_vec3 absorb;    /* Beer's law absorbance per unit length, per channel */
 } glint_material;
 
-/* White opaque matte: C = 1, ka = 0.1, kd = 0.9, everything else 0, ior 1. */
+/* White opaque matte: C = 1, ka = 0.1, kd = 0.9, h = 1, ior = 1, no
+ * texture (a checker, if one is set, of size 1, odd squares white and even
+ * ones black); everything else 0. */
 void glint_material_default(glint_material *material);
 
 /* An empty scene: the default camera (from 0,0,10 at the origin, fov 60),
@@ -386,7 +388,8 @@ typedef enum glint_backend {
 const char *glint_backend_name(glint_backend backend);
 glint_status glint_backend_parse(const char *name, glint_backend *backend,
                                  glint_error *error);
-/* Whether this CPU (and this build) can run it. */
+/* Whether this CPU (and this build) can run it: for AUTO, some backend;
+ * for STREAM, some stream backend. */
 int glint_backend_supported(glint_backend backend);
 /* AUTO and STREAM to the concrete backend they stand for on this CPU,
  * without a scene: AUTO is the widest beams. */
@@ -672,9 +675,12 @@ typedef struct glint_frame_settings {
   int max_depth; /* 0: the renderer's */
   int spp;       /* 0: the renderer's */
   /* Progressive rendering: only samples [sample_first, sample_first +
-   * sample_count) of the spp-sample pattern (docs/specification.md §5),
-   * averaged into the film; sample_count = 0: the rest (all from 0). The
-   * passes over all spp samples average to the spp-sample image. */
+   * sample_count) of the spp-sample pattern (docs/specification.md §5);
+   * sample_count = 0: the rest (all from 0). The film receives the mean of
+   * this call's samples (it replaces what the film held): the caller
+   * accumulates passes, weighting each by its sample count, and the passes
+   * over all spp samples then average to the spp-sample image (glint view
+   * keeps such a sum). */
   int sample_first, sample_count;
   glint_progress_fn progress; /* NULL: the renderer's */
   void *progress_user;

@@ -527,6 +527,9 @@ static void missing_instruction_sets(void **state) {
   extra_env = "GLINT_ISA=none";
   EXPECT_USAGE_ERROR("backend 'sse' is not available with GLINT_ISA=none",
                      "render", "-b", "sse");
+  /* "the widest stream backend": there is none (it rendered scalar-float) */
+  EXPECT_USAGE_ERROR("backend 'stream' is not available with GLINT_ISA=none",
+                     "render", "-b", "stream");
   assert_int_equal(run("render", "-W", "8", "-H", "8", "-o", "a.png", NULL), 0);
   assert_non_null(strstr(out, ", scalar-float,"));
   unlink(p);

@@ -418,6 +418,11 @@ static void refuses_bad_opens(void **state) {
   (void)state;
   expect_open_error(in_folder("x.tiff"), W, H, 1, 0, "unknown image format");
   expect_open_error(NULL, W, H, 1, 0, "glint_image_writer_open: path is NULL");
+  /* named as the caller called it (it said glint_image_write_with) */
+  glint_error null_e;
+  assert_int_equal(glint_image_write(NULL, in_folder("n.png"), &null_e),
+                   GLINT_E_ARGUMENT);
+  assert_string_equal(null_e.message, "glint_image_write: image is NULL");
   expect_open_error("/nonexistent-folder/x.png", W, H, 1, 0,
                     "cannot write here");
   expect_open_error(folder, W, H, 1, 0, "unknown image format");

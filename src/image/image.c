@@ -343,6 +343,8 @@ glint_status glint_image_write_stream(const glint_image *im, FILE *stream,
 
 glint_status glint_image_write(const glint_image *im, const char *path,
                                glint_error *error) {
+  GLI_NOT_NULL(im, "image", error); /* named as the caller called it */
+  GLI_NOT_NULL(path, "path", error);
   return glint_image_write_with(im, path, GLINT_PNG_FAST, error);
 }
 

@@ -61,8 +61,10 @@ const char *glint_backend_name(glint_backend b) {
 int glint_backend_supported(glint_backend b) {
   if ((unsigned)b >= GLINT_BACKEND_COUNT)
     return 0;
-  if (b == GLINT_BACKEND_AUTO || b == GLINT_BACKEND_STREAM)
+  if (b == GLINT_BACKEND_AUTO)
     return glint_backend_supported(glint_backend_resolve(b));
+  if (b == GLINT_BACKEND_STREAM) /* some stream backend, not a stand-in */
+    return glint_backend_resolve(b) != GLINT_BACKEND_SCALAR_FLOAT;
   gli_cpu_features f;
   gli_cpu_detect(&f);
   return backends[b].ops != NULL && backends[b].cpu_has(&f);
