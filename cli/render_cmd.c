@@ -215,13 +215,19 @@ glint_scene *cli_load_animation(const char *arg, char *stem,
     *exit_code = cli_exit_code(st);
     return NULL;
   }
-  /* The stem: the file's base name without its extension. */
+  /* The stem: the file's base name without its extension, and without
+   * .gz before it (scene.json.gz: scene, as for scene.json). */
   const char *base = strrchr(arg, '/');
   base = base ? base + 1 : arg;
   snprintf(stem, stem_size, "%s", base);
-  char *dot = strrchr(stem, '.');
-  if (dot && dot != stem)
-    *dot = '\0';
+  for (int cut = 0; cut < 2; cut++) {
+    char *dot = strrchr(stem, '.');
+    int gz = dot && strcmp(dot, ".gz") == 0;
+    if (dot && dot != stem)
+      *dot = '\0';
+    if (!gz)
+      break;
+  }
   return scene;
 }
 

@@ -811,6 +811,23 @@ static void output_linked_to_the_scene(void **state) {
   assert_true(folder_is_empty());
 }
 
+/* Without -o, the image is named after the scene: its base name without
+ * the extension, and without .gz (it wrote s.json.png for s.json.gz). */
+static void default_output_is_named_after_the_scene(void **state) {
+  (void)state;
+  put_text("s.nff", "v\nfrom 0 0 -5\nat 0 0 0\nup 0 1 0\nangle 40\n"
+                    "hither 0.001\nresolution 8 8\n"
+                    "f 1 1 1 1 0 0 0 1\ns 0 0 0 1\n");
+  char cmd[700];
+  snprintf(cmd, sizeof cmd, "gzip '%s/s.nff'", dir);
+  assert_int_equal(system(cmd), 0);
+  assert_int_equal(run("render", "s.nff.gz", "-q", NULL), 0);
+  assert_true(exists("s.png"));
+  assert_int_equal(remove_in_folder("s.png"), 0);
+  assert_int_equal(remove_in_folder("s.nff.gz"), 0);
+  assert_true(folder_is_empty());
+}
+
 static const char orbit_scene[] =
     "{\"camera\": {\"from\": [0, 2, 6], \"at\": [0, 1, 0]},\n"
     " \"image\": {\"width\": 32, \"height\": 24},\n"
@@ -1188,6 +1205,7 @@ int main(void) {
       cmocka_unit_test(bench_runs_and_writes_csv),
       cmocka_unit_test(bench_csv_keeps_files_on_error),
       cmocka_unit_test(output_linked_to_the_scene),
+      cmocka_unit_test(default_output_is_named_after_the_scene),
       cmocka_unit_test(bench_time_to_image),
       cmocka_unit_test(bench_errors),
       cmocka_unit_test(a_closed_pipe_is_an_error),
