@@ -82,9 +82,12 @@ int parse_int(const char *option, const char *text, long min, long max,
   errno = 0;
   long v = strtol(text, &end, 10);
   /* strtol skips leading blanks; a trailing one is refused, so both are */
-  if (end == text || *end != '\0' || errno == ERANGE ||
-      isspace((unsigned char)*text)) {
+  if (end == text || *end != '\0' || isspace((unsigned char)*text)) {
     cli_error("%s: '%s' is not a whole number", option, text);
+    return -1;
+  }
+  if (errno == ERANGE) { /* a whole number, past any limit */
+    cli_error("%s: %s is outside %ld..%ld", option, text, min, max);
     return -1;
   }
   if (v < min || v > max) {

@@ -318,6 +318,9 @@ static void json_mistakes_are_named(void **state) {
   static const bad_case cases[] = {
       {"{\"animation\": {\"fps\": 0, \"frames\": [0, 1]}}",
        "anim.json: animation.fps: fps 0 is not in (0, 1e6]"},
+      /* shown with the digits that put it past 1e6 (it read 1e+06) */
+      {"{\"animation\": {\"fps\": 1.000001e6, \"frames\": [0, 1]}}",
+       "animation.fps: fps 1000001 is not in (0, 1e6]"},
       {"{\"animation\": {\"fps\": 24}}", "animation: missing \"frames\""},
       {"{\"animation\": {\"frames\": [5, 2]}}",
        "animation.frames: the last frame 2 comes before the first 5"},

@@ -876,7 +876,7 @@ static glint_status read_animation(json_reader *r, const cJSON *v) {
     return st;
   if (!(a.fps > 0) || a.fps > 1e6) {
     path_key(r, "fps");
-    return fail(r, GLINT_E_PARSE, "fps %g is not in (0, 1e6]", a.fps);
+    return fail(r, GLINT_E_PARSE, "fps %.9g is not in (0, 1e6]", a.fps);
   }
   const cJSON *frames = cJSON_GetObjectItemCaseSensitive(v, "frames");
   if (!frames)
