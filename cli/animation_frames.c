@@ -147,10 +147,9 @@ int frame_file_kept(const char *path, int frame, int width, int height,
   if (kept && !quiet)
     printf("frame %d: %s is there, kept (--resume)\n", frame, path);
   if (!kept)
-    fprintf(stderr,
-            "glint: frame %d: %s, not a finished %dx%d frame: rendered "
-            "again (--resume)\n",
-            frame, err.message, width, height);
+    cli_error("frame %d: %s, not a finished %dx%d frame: rendered again "
+              "(--resume)",
+              frame, err.message, width, height);
   return kept;
 }
 
