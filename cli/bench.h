@@ -40,6 +40,13 @@ uint64_t bench_rays(const glint_stats *stats);
  * scalar backends). */
 double bench_lane_use(const glint_stats *stats, glint_backend backend);
 int bench_have_program(const char *name);
+/* The -W and -H of a child glint's command line, each only where `rs` sets
+ * it (one alone was passed as 0, or dropped): out[0..3], NULL-padded; the
+ * numbers are written into width and height. */
+void bench_size_args(const glint_render_settings *rs, char width[16],
+                     char height[16], char *out[4]);
+/* Whether `path` is one of the SPD scenes that --spd DIR reads. */
+int bench_spd_scene_at(const char *dir, const char *path);
 int bench_run_capture(char *const argv[], char *buf, size_t size);
 void bench_csv_row(FILE *csv, const char *scene, int depth,
                    const bench_column *col, const glint_stats *st,

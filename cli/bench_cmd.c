@@ -1,3 +1,4 @@
+#define _DEFAULT_SOURCE /* realpath */
 /* glint bench: renders scenes x depths x backends (x thread counts) and
  * prints tables shaped like the thesis's A.1–A.3 (seconds per depth and
  * backend), with Mrays/s, speed-ups, SIMD lane utilisation, the stream
@@ -84,10 +85,29 @@ static int cmp_double(const void *a, const void *b) {
 }
 
 double bench_median(const double *v, int n) {
-  double tmp[256];
+  /* n is up to --frames' 100000: the sorted copy is the heap's. */
+  double *tmp = malloc(sizeof *v * (size_t)n);
+  if (!tmp || n <= 0) {
+    free(tmp);
+    return NAN;
+  }
   memcpy(tmp, v, sizeof *v * (size_t)n);
   qsort(tmp, (size_t)n, sizeof *tmp, cmp_double);
-  return n % 2 ? tmp[n / 2] : 0.5 * (tmp[n / 2 - 1] + tmp[n / 2]);
+  double median = n % 2 ? tmp[n / 2] : 0.5 * (tmp[n / 2 - 1] + tmp[n / 2]);
+  free(tmp);
+  return median;
+}
+
+void bench_size_args(const glint_render_settings *rs, char width[16],
+                     char height[16], char *out[4]) {
+  int k = 0;
+  out[0] = out[1] = out[2] = out[3] = NULL;
+  snprintf(width, 16, "%d", rs->width);
+  snprintf(height, 16, "%d", rs->height);
+  if (rs->width)
+    out[k++] = "-W", out[k++] = width;
+  if (rs->height)
+    out[k++] = "-H", out[k++] = height;
 }
 
 uint64_t bench_rays(const glint_stats *s) {
@@ -370,8 +390,10 @@ static int create_beside(const char *path, char *temp, size_t size) {
 }
 
 /* Whether the CSV can be written (checked before anything is measured) and
- * is none of the scene files the benchmark reads. */
-static int check_csv_path(const char *path, char **scenes, int nscenes) {
+ * is none of the scene files the benchmark reads (`scenes`, or the SPD
+ * scenes of spd_dir). */
+static int check_csv_path(const char *path, char **scenes, int nscenes,
+                          const char *spd_dir) {
   struct stat csv_sb;
   if (!*path) {
     cli_error("--csv: the file name is empty");
@@ -382,11 +404,13 @@ static int check_csv_path(const char *path, char **scenes, int nscenes) {
       cli_error("--csv: %s is a folder", path);
       return -1;
     }
-    for (int i = 0; i < nscenes; i++)
-      if (same_file(scenes[i], path)) {
-        cli_error("--csv: %s is a scene of this benchmark", path);
-        return -1;
-      }
+    int scene = spd_dir && bench_spd_scene_at(spd_dir, path);
+    for (int i = 0; i < nscenes && !scene; i++)
+      scene = same_file(scenes[i], path);
+    if (scene) {
+      cli_error("--csv: %s is a scene of this benchmark", path);
+      return -1;
+    }
   }
   char temp[PATH_MAX + 32];
   int fd = create_beside(path, temp, sizeof temp);
@@ -408,6 +432,13 @@ static int write_csv(const char *path, const char *text, size_t size) {
   sigaddset(&stops, SIGTERM);
   sigaddset(&stops, SIGHUP);
   sigprocmask(SIG_BLOCK, &stops, &before);
+  /* Through a link to the file it names, as images are written: renamed
+   * over, the link itself was replaced. */
+  char target[PATH_MAX];
+  const char *label = path;
+  struct stat sb;
+  if (lstat(path, &sb) == 0 && S_ISLNK(sb.st_mode) && realpath(path, target))
+    path = target;
   char temp[PATH_MAX + 32];
   int fd = create_beside(path, temp, sizeof temp);
   int saved = fd < 0 ? errno : 0;
@@ -430,7 +461,7 @@ static int write_csv(const char *path, const char *text, size_t size) {
   }
   sigprocmask(SIG_SETMASK, &before, NULL);
   if (saved) {
-    cli_error("%s: writing the CSV file failed: %s", path, strerror(saved));
+    cli_error("%s: writing the CSV file failed: %s", label, strerror(saved));
     return -1;
   }
   return 0;
@@ -447,6 +478,15 @@ int cmd_bench(int argc, char **argv) {
   if (modes > 1) {
     cli_error("--frames, --time-to-image, --view, --meshes and --spd are "
               "benchmarks of their own: choose one");
+    return EXIT_USAGE;
+  }
+  /* Only the scene benchmark (and --spd, for --csv) writes them: given to
+   * another they were ignored, an empty --plot folder made. */
+  int csv_ignored = o.csv_path && modes && !o.spd_dir;
+  if (csv_ignored || (o.plot_dir && modes)) {
+    cli_error("%s is written by the scene benchmark%s only",
+              csv_ignored ? "--csv" : "--plot",
+              csv_ignored ? " and --spd" : "");
     return EXIT_USAGE;
   }
   if (o.plot_dir && check_plot_dir(o.plot_dir))
@@ -470,7 +510,8 @@ int cmd_bench(int argc, char **argv) {
   char *csv_text = NULL;
   size_t csv_size = 0;
   if (o.csv_path) {
-    if (check_csv_path(o.csv_path, o.scenes, o.spd_dir ? 0 : o.nscenes))
+    if (check_csv_path(o.csv_path, o.scenes, o.spd_dir ? 0 : o.nscenes,
+                       o.spd_dir))
       return EXIT_USAGE;
     if (!(csv = open_memstream(&csv_text, &csv_size))) {
       cli_error("out of memory");

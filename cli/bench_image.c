@@ -50,8 +50,8 @@ int bench_time_to_image(char **scenes, int nscenes,
   snprintf(depth, sizeof depth, "%d", base->max_depth);
   snprintf(spp, sizeof spp, "%d", base->spp);
   snprintf(threads, sizeof threads, "%d", base->threads);
-  snprintf(width, sizeof width, "%d", base->width);
-  snprintf(height, sizeof height, "%d", base->height);
+  char *size[4];
+  bench_size_args(base, width, height, size);
   /* (auto stays auto: each scene's process chooses as glint_render does) */
   glint_backend backend = base->backend;
 
@@ -88,10 +88,10 @@ int bench_time_to_image(char **scenes, int nscenes,
                     "--stats",
                     "-o",
                     png,
-                    base->width ? "-W" : NULL,
-                    width,
-                    "-H",
-                    height,
+                    size[0],
+                    size[1],
+                    size[2],
+                    size[3],
                     NULL};
     /* One untimed round first: page cache, the dynamic loader's. */
     for (int r = -1; r < runs && status == 0; r++) {

@@ -27,6 +27,16 @@ static const char *const spd_scenes[] = {"balls-s4", "gears-s4",  "mount-s6",
                                          "tree-s4"};
 #define SPD_COUNT (sizeof spd_scenes / sizeof *spd_scenes)
 
+int bench_spd_scene_at(const char *dir, const char *path) {
+  for (size_t i = 0; i < SPD_COUNT; i++) {
+    char scene[4096];
+    snprintf(scene, sizeof scene, "%s/%s.nff", dir, spd_scenes[i]);
+    if (same_file(scene, path))
+      return 1;
+  }
+  return 0;
+}
+
 int bench_have_program(const char *name) {
   char cmd[256];
   snprintf(cmd, sizeof cmd, "command -v %s >/dev/null 2>&1", name);

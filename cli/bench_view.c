@@ -16,8 +16,8 @@ int bench_view(char **scenes, int nscenes, const glint_render_settings *base,
   snprintf(nframes, sizeof nframes, "%d", frames);
   snprintf(depth, sizeof depth, "%d", base->max_depth);
   snprintf(threads, sizeof threads, "%d", base->threads);
-  snprintf(width, sizeof width, "%d", base->width);
-  snprintf(height, sizeof height, "%d", base->height);
+  char *size[4];
+  bench_size_args(base, width, height, size);
   static char output[1 << 14];
   int status = 0;
   for (int s = 0; s < nscenes; s++) {
@@ -32,10 +32,10 @@ int bench_view(char **scenes, int nscenes, const glint_render_settings *base,
                     depth,
                     "-t",
                     threads,
-                    base->width ? "-W" : NULL,
-                    width,
-                    "-H",
-                    height,
+                    size[0],
+                    size[1],
+                    size[2],
+                    size[3],
                     NULL};
     int rc = bench_run_capture(argv, output, sizeof output);
     if (rc != 0) {

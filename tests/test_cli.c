@@ -828,6 +828,64 @@ static void default_output_is_named_after_the_scene(void **state) {
   assert_true(folder_is_empty());
 }
 
+/* The benchmark modes besides the scene benchmark: --frames past 256
+ * frames (a median of a fixed 256 crashed it), -W alone for a child glint
+ * (passed as -H 0), --csv and --plot where they are not written (ignored,
+ * an empty --plot folder made), --spd's scenes as the CSV (overwritten),
+ * and the CSV through a link (the link was replaced). */
+static void bench_modes_and_their_files(void **state) {
+  (void)state;
+  assert_int_equal(run("bench", "--frames", "300", "--scenes", "whitted", "-W",
+                       "8", "-H", "8", "-s", "1", "--depths", "1", "--backends",
+                       "scalar-float", "-t", "1", NULL),
+                   0);
+  assert_non_null(strstr(out, "one renderer"));
+  assert_int_equal(run("bench", "--time-to-image", "--scenes", "whitted", "-W",
+                       "16", "-s", "1", "--runs", "1", "--backends",
+                       "scalar-float", NULL),
+                   0);
+  assert_non_null(strstr(out, "\nwhitted "));
+  EXPECT_USAGE_ERROR("--csv is written by the scene benchmark and --spd only",
+                     "bench", "--frames", "3", "--scenes", "whitted", "--csv",
+                     "f.csv");
+  EXPECT_USAGE_ERROR("--plot is written by the scene benchmark only", "bench",
+                     "--view", "2", "--plot", "plots");
+  char spd[600];
+  snprintf(spd, sizeof spd, "%s/spd", dir);
+  assert_int_equal(mkdir(spd, 0755), 0);
+  put_text("spd/balls-s4.nff", "v\nfrom 0 0 -5\nat 0 0 0\nup 0 1 0\n"
+                               "angle 40\nhither 0.001\nresolution 8 8\n"
+                               "f 1 1 1 1 0 0 0 1\ns 0 0 0 1\n");
+  EXPECT_USAGE_ERROR_KEEPING("--csv: spd/balls-s4.nff is a scene of this "
+                             "benchmark",
+                             "bench", "--spd", "spd", "--csv",
+                             "spd/balls-s4.nff");
+  long n;
+  char *kept = file_bytes("spd/balls-s4.nff", &n);
+  assert_true(n > 8 && memcmp(kept, "v\nfrom", 6) == 0);
+  free(kept);
+  assert_int_equal(remove_in_folder("spd/balls-s4.nff"), 0);
+  assert_int_equal(rmdir(spd), 0);
+  put_text("target.csv", "old");
+  char target[600], link_path[600];
+  snprintf(target, sizeof target, "%s/target.csv", dir);
+  snprintf(link_path, sizeof link_path, "%s/link.csv", dir);
+  assert_int_equal(symlink(target, link_path), 0);
+  assert_int_equal(run("bench", "--scenes", "whitted", "-W", "8", "-H", "8",
+                       "-s", "1", "--depths", "1", "--backends", "scalar-float",
+                       "--runs", "1", "--csv", "link.csv", NULL),
+                   0);
+  struct stat sb;
+  assert_int_equal(lstat(link_path, &sb), 0);
+  assert_true(S_ISLNK(sb.st_mode));
+  kept = file_bytes("target.csv", &n);
+  assert_true(n > 10 && memcmp(kept, "scene,depth", 11) == 0);
+  free(kept);
+  assert_int_equal(remove_in_folder("link.csv"), 0);
+  assert_int_equal(remove_in_folder("target.csv"), 0);
+  assert_true(folder_is_empty());
+}
+
 static const char orbit_scene[] =
     "{\"camera\": {\"from\": [0, 2, 6], \"at\": [0, 1, 0]},\n"
     " \"image\": {\"width\": 32, \"height\": 24},\n"
@@ -1206,6 +1264,7 @@ int main(void) {
       cmocka_unit_test(bench_csv_keeps_files_on_error),
       cmocka_unit_test(output_linked_to_the_scene),
       cmocka_unit_test(default_output_is_named_after_the_scene),
+      cmocka_unit_test(bench_modes_and_their_files),
       cmocka_unit_test(bench_time_to_image),
       cmocka_unit_test(bench_errors),
       cmocka_unit_test(a_closed_pipe_is_an_error),
