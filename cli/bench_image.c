@@ -44,6 +44,8 @@ int bench_time_to_image(char **scenes, int nscenes,
     cli_error("%s: cannot make a folder for the images", folder);
     return EXIT_USAGE;
   }
+  /* Ctrl-C ends the runs and still removes the folder (it was left). */
+  cli_catch_stop_signals();
   snprintf(png, sizeof png, "%s/image.png", folder);
   snprintf(ppm, sizeof ppm, "%s/image.ppm", folder);
   char depth[16], spp[16], threads[16], width[16], height[16];
@@ -94,7 +96,7 @@ int bench_time_to_image(char **scenes, int nscenes,
                     size[3],
                     NULL};
     /* One untimed round first: page cache, the dynamic loader's. */
-    for (int r = -1; r < runs && status == 0; r++) {
+    for (int r = -1; r < runs && status == 0 && !cli_stopped(); r++) {
       glint_image *image;
       glint_stats st;
       glint_error err;
@@ -104,6 +106,8 @@ int bench_time_to_image(char **scenes, int nscenes,
         break;
       }
       glint_image_destroy(image);
+      if (cli_stopped())
+        break;
       double own, own_ppm;
       argv[13] = png;
       double t_png = time_child(argv, &own);
@@ -119,6 +123,10 @@ int bench_time_to_image(char **scenes, int nscenes,
       }
     }
     glint_scene_destroy(scene);
+    if (cli_stopped()) {
+      cli_error("interrupted: %s and the scenes after it not measured", stem);
+      status = EXIT_INTERRUPTED;
+    }
     if (status)
       break;
     double m[SERIES];

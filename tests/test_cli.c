@@ -1188,6 +1188,41 @@ static void an_endless_render_stops_within_the_grace(void **state) {
   assert_non_null(strstr(err, "did not stop within 2 s"));
 }
 
+/* Ctrl-C during bench --time-to-image: exit 130, said so, and the folder
+ * of its images removed (it was left in TMPDIR). */
+static void interrupted_time_to_image_leaves_nothing(void **state) {
+  (void)state;
+  char tmp[600], env_tmp[640], err_path[600];
+  snprintf(tmp, sizeof tmp, "%s/tmp", dir);
+  snprintf(env_tmp, sizeof env_tmp, "TMPDIR=%s", tmp);
+  snprintf(err_path, sizeof err_path, "%s/.stderr", dir);
+  assert_int_equal(mkdir(tmp, 0755), 0);
+  char *argv[] = {"glint",    "bench",    "--time-to-image",
+                  "--scenes", "billiard", "--runs",
+                  "255",      "-s",       "16",
+                  "-t",       "1",        NULL};
+  char *envp[] = {env_tmp, NULL};
+  posix_spawn_file_actions_t fa;
+  posix_spawn_file_actions_init(&fa);
+  posix_spawn_file_actions_addopen(&fa, 1, "/dev/null", O_WRONLY, 0);
+  posix_spawn_file_actions_addopen(&fa, 2, err_path,
+                                   O_WRONLY | O_CREAT | O_TRUNC, 0644);
+  pid_t pid;
+  assert_int_equal(posix_spawn(&pid, GLINT_EXE, &fa, NULL, argv, envp), 0);
+  posix_spawn_file_actions_destroy(&fa);
+  usleep(500 * 1000); /* minutes from the end of 255 runs at 16 spp */
+  kill(pid, SIGINT);
+  int status;
+  assert_int_equal(waitpid(pid, &status, 0), pid);
+  slurp(err_path, err, sizeof err);
+  unlink(err_path);
+  assert_true(WIFEXITED(status));
+  assert_int_equal(WEXITSTATUS(status), 130);
+  assert_non_null(strstr(err, "interrupted: billiard"));
+  assert_int_equal(rmdir(tmp), 0); /* empty: the images' folder is gone */
+  assert_true(folder_is_empty());
+}
+
 static void compare_threshold_and_difference(void **state) {
   (void)state;
   assert_int_equal(
@@ -1280,6 +1315,7 @@ int main(void) {
       cmocka_unit_test(frames_with_moving_objects),
       cmocka_unit_test(interrupt_keeps_the_old_file),
       cmocka_unit_test(an_endless_render_stops_within_the_grace),
+      cmocka_unit_test(interrupted_time_to_image_leaves_nothing),
       cmocka_unit_test(compare_threshold_and_difference),
   };
   return cmocka_run_group_tests(tests, setup, teardown);
