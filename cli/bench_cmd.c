@@ -303,6 +303,15 @@ int bench_parse(int argc, char **argv, bench_options *o) {
     return EXIT_USAGE;
   }
 
+  /* An empty name would read as the root folder ("/balls-s4.nff") or the
+   * current one. */
+  const char *named[] = {"--spd", o->spd_dir,  "--meshes", o->mesh_dir,
+                         "--csv", o->csv_path, "--plot",   o->plot_dir};
+  for (int i = 0; i < 8; i += 2)
+    if (named[i + 1] && !*named[i + 1]) {
+      cli_error("%s: the name is empty", named[i]);
+      return EXIT_USAGE;
+    }
   o->depths_given = depth_list != NULL;
   o->ndepths =
       parse_range_list("--depths", depth_list ? depth_list : depth_list_default,
@@ -395,10 +404,6 @@ static int create_beside(const char *path, char *temp, size_t size) {
 static int check_csv_path(const char *path, char **scenes, int nscenes,
                           const char *spd_dir) {
   struct stat csv_sb;
-  if (!*path) {
-    cli_error("--csv: the file name is empty");
-    return -1;
-  }
   if (stat(path, &csv_sb) == 0) {
     if (S_ISDIR(csv_sb.st_mode)) {
       cli_error("--csv: %s is a folder", path);

@@ -781,8 +781,11 @@ static void bench_csv_keeps_files_on_error(void **state) {
   free(kept);
   EXPECT_USAGE_ERROR_KEEPING("--csv: . is a folder", "bench", "--scenes",
                              "s.nff", "--csv", ".");
-  EXPECT_USAGE_ERROR_KEEPING("--csv: the file name is empty", "bench",
-                             "--scenes", "s.nff", "--csv", "");
+  EXPECT_USAGE_ERROR_KEEPING("--csv: the name is empty", "bench", "--scenes",
+                             "s.nff", "--csv", "");
+  EXPECT_USAGE_ERROR_KEEPING("--spd: the name is empty", "bench", "--spd", "");
+  EXPECT_USAGE_ERROR_KEEPING("--meshes: the name is empty", "bench", "--meshes",
+                             "");
   assert_string_equal(out, ""); /* refused before measuring */
   assert_int_equal(remove_in_folder("keep.csv"), 0);
   assert_int_equal(remove_in_folder("s.nff"), 0);
