@@ -613,6 +613,12 @@ static void put_text(const char *name, const char *text) {
   fclose(f);
 }
 
+/* A sphere in front of the camera, 8x8: the smallest scene file a test
+ * needs to be there (the start "v\nfrom" tells that it was kept). */
+static const char small_nff[] = "v\nfrom 0 0 -5\nat 0 0 0\nup 0 1 0\nangle 40\n"
+                                "hither 0.001\nresolution 8 8\n"
+                                "f 1 1 1 1 0 0 0 1\ns 0 0 0 1\n";
+
 /* bench --plot runs gnuplot without a shell and quotes names inside its
  * script: a scene or folder named with quotes and a command stays a name
  * (it ran the command through system() before). */
@@ -765,9 +771,7 @@ static void bench_csv_keeps_files_on_error(void **state) {
   put_text("keep.csv", "precious");
   EXPECT_USAGE_ERROR_KEEPING("unknown scene 'atlantis'", "bench", "--scenes",
                              "whitted,atlantis", "--csv", "keep.csv");
-  put_text("s.nff", "v\nfrom 0 0 -5\nat 0 0 0\nup 0 1 0\nangle 40\n"
-                    "hither 0.001\nresolution 8 8\n"
-                    "f 1 1 1 1 0 0 0 1\ns 0 0 0 1\n");
+  put_text("s.nff", small_nff);
   EXPECT_USAGE_ERROR_KEEPING("--csv: s.nff is a scene of this benchmark",
                              "bench", "--scenes", "s.nff", "--depths", "1",
                              "--runs", "1", "--backends", "scalar-float",
@@ -796,9 +800,7 @@ static void bench_csv_keeps_files_on_error(void **state) {
  * through links): refused, the scene kept. */
 static void output_linked_to_the_scene(void **state) {
   (void)state;
-  put_text("linked.nff", "v\nfrom 0 0 -5\nat 0 0 0\nup 0 1 0\nangle 40\n"
-                         "hither 0.001\nresolution 8 8\n"
-                         "f 1 1 1 1 0 0 0 1\ns 0 0 0 1\n");
+  put_text("linked.nff", small_nff);
   char scene_file[600], link_file[600];
   snprintf(scene_file, sizeof scene_file, "%s/linked.nff", dir);
   snprintf(link_file, sizeof link_file, "%s/linked.png", dir);
@@ -818,9 +820,7 @@ static void output_linked_to_the_scene(void **state) {
  * the extension, and without .gz (it wrote s.json.png for s.json.gz). */
 static void default_output_is_named_after_the_scene(void **state) {
   (void)state;
-  put_text("s.nff", "v\nfrom 0 0 -5\nat 0 0 0\nup 0 1 0\nangle 40\n"
-                    "hither 0.001\nresolution 8 8\n"
-                    "f 1 1 1 1 0 0 0 1\ns 0 0 0 1\n");
+  put_text("s.nff", small_nff);
   char cmd[700];
   snprintf(cmd, sizeof cmd, "gzip '%s/s.nff'", dir);
   assert_int_equal(system(cmd), 0);
@@ -856,9 +856,7 @@ static void bench_modes_and_their_files(void **state) {
   char spd[600];
   snprintf(spd, sizeof spd, "%s/spd", dir);
   assert_int_equal(mkdir(spd, 0755), 0);
-  put_text("spd/balls-s4.nff", "v\nfrom 0 0 -5\nat 0 0 0\nup 0 1 0\n"
-                               "angle 40\nhither 0.001\nresolution 8 8\n"
-                               "f 1 1 1 1 0 0 0 1\ns 0 0 0 1\n");
+  put_text("spd/balls-s4.nff", small_nff);
   EXPECT_USAGE_ERROR_KEEPING("--csv: spd/balls-s4.nff is a scene of this "
                              "benchmark",
                              "bench", "--spd", "spd", "--csv",
