@@ -744,9 +744,12 @@ glint_status glint_image_writer_finish(glint_image_writer *writer,
 /* Abandons the file (an existing one stays untouched) and frees the writer. */
 void glint_image_writer_discard(glint_image_writer *writer);
 /* The temporary file beside the path that the writer fills until
- * glint_image_writer_finish renames it into place (NULL for a writer into
- * memory). For a program that may have to leave at once, from a signal,
- * without the writer: removing this file is then all that is left to do. */
+ * glint_image_writer_finish renames it into place. For a program that may
+ * have to leave at once, from a signal, without the writer: removing this
+ * file is then all that is left to do. NULL for a writer into memory, and
+ * where the temporary file has no name until it is finished (Linux's
+ * O_TMPFILE, used wherever the folder's file system has it): then a process
+ * ended by any means, SIGKILL included, leaves nothing behind. */
 const char *glint_image_writer_temp_path(const glint_image_writer *writer);
 
 /* The same encoder into memory, for a file to be written elsewhere (by

@@ -5,6 +5,7 @@
 #define _GNU_SOURCE
 #include "test_util.h"
 
+#include <dirent.h>
 #include <sched.h>
 #include <signal.h>
 
@@ -1224,6 +1225,62 @@ static void interrupted_time_to_image_leaves_nothing(void **state) {
   assert_true(folder_is_empty());
 }
 
+/* Whether process `pid` has a file open in the test's folder (readlink of
+ * /proc/PID/fd: "/dir/#123 (deleted)" for an unnamed one). */
+static int writes_in_folder(pid_t pid) {
+  char fds[32], link[64], to[700];
+  snprintf(fds, sizeof fds, "/proc/%d/fd", (int)pid);
+  DIR *d = opendir(fds);
+  if (!d)
+    return 0;
+  int found = 0;
+  for (struct dirent *e; !found && (e = readdir(d));) {
+    snprintf(link, sizeof link, "%s/%.16s", fds, e->d_name);
+    ssize_t n = readlink(link, to, sizeof to - 1);
+    if (n > 0) {
+      to[n] = 0;
+      found = strncmp(to, dir, strlen(dir)) == 0 && to[strlen(dir)] == '/';
+    }
+  }
+  closedir(d);
+  return found;
+}
+
+/* A render killed outright (SIGKILL, the out-of-memory killer, a batch
+ * system's hard stop) has no handler to run, and still leaves nothing
+ * behind: the image being written has no name until it is complete. */
+static void a_killed_render_leaves_no_file(void **state) {
+  (void)state;
+  int probe = open(dir, O_TMPFILE | O_WRONLY, 0600);
+  if (probe < 0)
+    skip(); /* this folder's file system has no unnamed files */
+  close(probe);
+  char keep[600];
+  snprintf(keep, sizeof keep, "%s/keep.png", dir);
+  put_text("keep.png", "precious");
+  char *argv[] = {"glint", "render", "billiard", "-d", "64", "-s", "4096", "-W",
+                  "1024",  "-H",     "1024",     "-q", "-o", keep, NULL};
+  posix_spawn_file_actions_t fa;
+  posix_spawn_file_actions_init(&fa);
+  posix_spawn_file_actions_addopen(&fa, 2, "/dev/null", O_WRONLY, 0);
+  pid_t pid;
+  assert_int_equal(posix_spawn(&pid, GLINT_EXE, &fa, NULL, argv, environ), 0);
+  posix_spawn_file_actions_destroy(&fa);
+  int tenths = 0; /* until the image file is open, at most 30 s */
+  while (!writes_in_folder(pid) && tenths++ < 300)
+    usleep(100 * 1000);
+  kill(pid, SIGKILL);
+  int status;
+  assert_int_equal(waitpid(pid, &status, 0), pid);
+  assert_true(tenths < 300);
+  assert_true(WIFSIGNALED(status));
+  char buf[32];
+  slurp(keep, buf, sizeof buf);
+  assert_string_equal(buf, "precious");
+  unlink(keep);
+  assert_true(folder_is_empty()); /* no temporary file */
+}
+
 static void compare_threshold_and_difference(void **state) {
   (void)state;
   assert_int_equal(
@@ -1317,6 +1374,7 @@ int main(void) {
       cmocka_unit_test(interrupt_keeps_the_old_file),
       cmocka_unit_test(an_endless_render_stops_within_the_grace),
       cmocka_unit_test(interrupted_time_to_image_leaves_nothing),
+      cmocka_unit_test(a_killed_render_leaves_no_file),
       cmocka_unit_test(compare_threshold_and_difference),
   };
   return cmocka_run_group_tests(tests, setup, teardown);

@@ -1,4 +1,4 @@
-#define _DEFAULT_SOURCE /* realpath */
+#define _GNU_SOURCE /* realpath, O_TMPFILE */
 /* Images in memory, format dispatch by extension, and the atomic write: the
  * encoder writes a temporary file in the destination folder, which is flushed,
  * synced and renamed over the destination only when complete. A failure or an
@@ -105,6 +105,25 @@ static char *temp_template(const char *path) {
   return t;
 }
 
+/* Replaces the last six characters of `name` (XXXXXX) with random ones. */
+static void randomise_suffix(char *name, int attempt) {
+  static const char letters[] =
+      "abcdefghijklmnopqrstuvwxyzABCDEFGHIJKLMNOPQRSTUVWXYZ0123456789";
+  char *x = name + strlen(name) - 6;
+  unsigned char r[6];
+  if (getrandom(r, sizeof r, 0) != (ssize_t)sizeof r) {
+    /* no entropy to be had: a mix of the clock and the attempt */
+    struct timespec ts;
+    clock_gettime(CLOCK_MONOTONIC, &ts);
+    uint64_t v = (uint64_t)ts.tv_nsec * 2654435761u + (uint64_t)attempt +
+                 (uint64_t)getpid() * 40503u;
+    for (int k = 0; k < 6; k++, v >>= 8)
+      r[k] = (unsigned char)v;
+  }
+  for (int k = 0; k < 6; k++)
+    x[k] = letters[r[k] % (sizeof letters - 1)];
+}
+
 /* Creates `name`, whose last six characters are XXXXXX, replaced by
  * random ones until no file has that name; returns its descriptor. Not
  * mkstemp: its 0600 would need the umask to be read, which only setting
@@ -112,22 +131,8 @@ static char *temp_template(const char *path) {
  * thread made meanwhile would get mode 0666). With mode 0666 here the
  * kernel applies the umask. */
 static int create_exclusive(char *name) {
-  static const char letters[] =
-      "abcdefghijklmnopqrstuvwxyzABCDEFGHIJKLMNOPQRSTUVWXYZ0123456789";
-  char *x = name + strlen(name) - 6;
   for (int attempt = 0; attempt < 1000; attempt++) {
-    unsigned char r[6];
-    if (getrandom(r, sizeof r, 0) != (ssize_t)sizeof r) {
-      /* no entropy to be had: a mix of the clock and the attempt */
-      struct timespec ts;
-      clock_gettime(CLOCK_MONOTONIC, &ts);
-      uint64_t v = (uint64_t)ts.tv_nsec * 2654435761u + (uint64_t)attempt +
-                   (uint64_t)getpid() * 40503u;
-      for (int k = 0; k < 6; k++, v >>= 8)
-        r[k] = (unsigned char)v;
-    }
-    for (int k = 0; k < 6; k++)
-      x[k] = letters[r[k] % (sizeof letters - 1)];
+    randomise_suffix(name, attempt);
     int fd = open(name, O_WRONLY | O_CREAT | O_EXCL | O_CLOEXEC, 0666);
     if (fd >= 0 || errno != EEXIST)
       return fd;
@@ -136,8 +141,48 @@ static int create_exclusive(char *name) {
   return -1;
 }
 
-/* Creates the temporary file beside `path`; returns its descriptor. */
-static int open_temp(const char *path, char **temp, glint_error *error) {
+/* Where the file system and /proc allow (Linux's O_TMPFILE, linked later
+ * through /proc/self/fd: open(2)), an unnamed file in the folder of
+ * `path`; else -1 and the caller names one. */
+static int create_unnamed(const char *path) {
+#ifdef O_TMPFILE
+  if (access("/proc/self/fd", X_OK) != 0)
+    return -1;
+  const char *slash = strrchr(path, '/');
+  char *folder =
+      slash ? strndup(path, (size_t)(slash - path) + 1) : strdup(".");
+  if (!folder)
+    return -1;
+  int fd = open(folder, O_TMPFILE | O_WRONLY | O_CLOEXEC, 0666);
+  free(folder);
+  return fd;
+#else
+  (void)path;
+  return -1;
+#endif
+}
+
+/* Gives create_unnamed's file the name `name` (XXXXXX replaced by random
+ * characters until no file has it); 0 on success, else -1 with errno. */
+static int link_unnamed(int fd, char *name) {
+  char proc[64];
+  snprintf(proc, sizeof proc, "/proc/self/fd/%d", fd);
+  for (int attempt = 0; attempt < 1000; attempt++) {
+    randomise_suffix(name, attempt);
+    if (linkat(AT_FDCWD, proc, AT_FDCWD, name, AT_SYMLINK_FOLLOW) == 0)
+      return 0;
+    if (errno != EEXIST)
+      return -1;
+  }
+  errno = EEXIST;
+  return -1;
+}
+
+/* Creates the temporary file beside `path`; returns its descriptor. With
+ * *unnamed set (the caller may pass NULL: a named file), the file has no
+ * name yet and *temp is the template that link_unnamed completes. */
+static int open_temp(const char *path, char **temp, int *unnamed,
+                     glint_error *error) {
   /* What is there already: only a regular file the user may write is
    * replaced. The rename asks only the folder, and would put a file in the
    * place of a device or a pipe (of /dev/null through a link to it) or of
@@ -170,7 +215,11 @@ static int open_temp(const char *path, char **temp, glint_error *error) {
     gli_fail(error, GLINT_E_MEMORY, "out of memory");
     return -1;
   }
-  int fd = create_exclusive(*temp);
+  int fd = unnamed ? create_unnamed(path) : -1;
+  if (unnamed)
+    *unnamed = fd >= 0;
+  if (fd < 0)
+    fd = create_exclusive(*temp);
   if (fd < 0) {
     gli_fail(error, GLINT_E_IO, "%s: cannot write here: %s", path,
              strerror(errno));
@@ -200,7 +249,7 @@ static char *link_target(const char *path) {
 glint_status gli_check_folder_writable(const char *path, glint_error *error) {
   char *target = link_target(path);
   char *temp;
-  int fd = open_temp(target ? target : path, &temp, error);
+  int fd = open_temp(target ? target : path, &temp, NULL, error);
   free(target);
   if (fd < 0)
     return error ? error->status : GLINT_E_IO;
@@ -214,7 +263,7 @@ glint_status gli_atomic_open(const char *path, gli_atomic_file *file,
                              glint_error *error) {
   file->target = link_target(path);
   const char *dest = file->target ? file->target : path;
-  int fd = open_temp(dest, &file->temp, error);
+  int fd = open_temp(dest, &file->temp, &file->unnamed, error);
   if (fd < 0) {
     free(file->target);
     return error ? error->status : GLINT_E_IO;
@@ -229,7 +278,8 @@ glint_status gli_atomic_open(const char *path, gli_atomic_file *file,
   if (!file->f) {
     int saved = errno;
     close(fd);
-    unlink(file->temp);
+    if (!file->unnamed)
+      unlink(file->temp);
     free(file->temp);
     free(file->target);
     return gli_fail(error, GLINT_E_IO, "%s: %s", path, strerror(saved));
@@ -244,11 +294,18 @@ glint_status gli_atomic_commit(gli_atomic_file *file, int failed,
     bad = 1, saved = errno;
   if (!bad && fsync(fileno(file->f)) != 0 && errno != EINVAL)
     bad = 1, saved = errno;
+  /* An unnamed file is named now, microseconds before the rename. */
+  if (!bad && file->unnamed) {
+    if (link_unnamed(fileno(file->f), file->temp) != 0)
+      bad = 1, saved = errno;
+    else
+      file->unnamed = 0;
+  }
   if (fclose(file->f) != 0 && !bad)
     bad = 1, saved = errno;
   if (!bad && rename(file->temp, file->target ? file->target : file->path) != 0)
     bad = 1, saved = errno;
-  if (bad)
+  if (bad && !file->unnamed)
     unlink(file->temp);
   free(file->temp);
   free(file->target);
@@ -260,7 +317,8 @@ glint_status gli_atomic_commit(gli_atomic_file *file, int failed,
 
 void gli_atomic_discard(gli_atomic_file *file) {
   fclose(file->f);
-  unlink(file->temp);
+  if (!file->unnamed)
+    unlink(file->temp);
   free(file->temp);
   free(file->target);
 }

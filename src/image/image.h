@@ -45,11 +45,15 @@ glint_status gli_write_atomically(const char *path, write_fn write,
 
 /* The same in steps, for files written while their pixels arrive: open the
  * temporary file, write to `f`, then commit (flush, sync, rename; `failed`
- * with its errno discards instead and reports the failure) or discard. */
+ * with its errno discards instead and reports the failure) or discard.
+ * Where the file system allows, the temporary file has no name until the
+ * commit links it (O_TMPFILE): a process killed before then leaves
+ * nothing behind. */
 typedef struct gli_atomic_file {
   const char *path;
   char *target; /* where path is a symbolic link, the file it names */
-  char *temp;
+  char *temp;   /* the temporary name, which `unnamed` has not taken yet */
+  int unnamed;
   FILE *f;
 } gli_atomic_file;
 glint_status gli_atomic_open(const char *path, gli_atomic_file *file,

@@ -407,7 +407,7 @@ glint_status glint_image_writer_finish_memory(glint_image_writer *w,
 }
 
 const char *glint_image_writer_temp_path(const glint_image_writer *w) {
-  return w && !w->in_memory ? w->file.temp : NULL;
+  return w && !w->in_memory && !w->file.unnamed ? w->file.temp : NULL;
 }
 
 void glint_image_writer_discard(glint_image_writer *w) {
