@@ -87,7 +87,7 @@ int gli_mesh_emit_face(mesh_data *m, int obj, int with_normals) {
       free(v);
     return 0;
   }
-  int r = gli_triangulate(v, n, emit_corners, &fe);
+  int r = gli_triangulate(v, n, emit_corners, &fe, m->ear_tests_left);
   if (v != small)
     free(v);
   return r;
@@ -235,6 +235,7 @@ static glint_status add_mesh_text(glint_scene *scene, const char *path,
   number_locale locale = gli_number_locale_begin();
   mesh_data m;
   memset(&m, 0, sizeof m);
+  m.ear_tests_left = &scene->ear_tests_left;
   glint_status st = read(path, lf ? lf : data, size, &m, error);
   gli_number_locale_end(locale);
   free(lf);

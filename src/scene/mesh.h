@@ -37,6 +37,7 @@ typedef struct mesh_data {
   int vertex_normals; /* PLY: nrm[i] belongs to pos[i] */
   corner *corners;    /* the face being read */
   size_t ncorners, corners_cap;
+  size_t *ear_tests_left; /* the scene's (scene/polygon.h) */
 } mesh_data;
 
 void gli_mesh_free(mesh_data *m);

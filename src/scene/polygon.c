@@ -82,11 +82,6 @@ static int bisect(const size_t *idx, size_t n, size_t *tmp,
   return bisect(tmp, n - k + 1, tmp + n - k + 1, emit, user);
 }
 
-/* Work allowed to ear clipping, in point-in-triangle tests: about a second.
- * Only inward corners are tested (see below), so this is reached only by
- * polygons with tens of thousands of them. */
-#define EAR_TEST_BUDGET (1u << 27)
-
 typedef struct ring {
   const glint_vec3 *v;
   glint_vec3 nrm;
@@ -134,7 +129,7 @@ static size_t first_vertex(const ring *g, size_t b, size_t m) {
 }
 
 int gli_triangulate(const glint_vec3 *v, size_t n, gli_polygon_emit emit,
-                    void *user) {
+                    void *user, size_t *tests_left) {
   if (n < 3)
     return GLI_TRIANGULATE_NO_MEMORY;
   if (n == 3)
@@ -218,11 +213,12 @@ int gli_triangulate(const glint_vec3 *v, size_t n, gli_polygon_emit emit,
         break;
       }
     }
-    if (tests > EAR_TEST_BUDGET) {
+    if (tests > *tests_left) { /* only inward corners are tested */
       r = GLI_TRIANGULATE_TOO_COMPLEX;
       break;
     }
   }
+  *tests_left -= tests < *tests_left ? tests : *tests_left;
   free(idx);
   free(reflex);
   return r;

@@ -4,6 +4,7 @@
 
 #include "core/error.h"
 #include "core/memory.h"
+#include "scene/polygon.h"
 
 #include <math.h>
 #include <stdlib.h>
@@ -58,6 +59,7 @@ glint_status glint_scene_create(glint_scene **out, glint_error *error) {
   s->width = 640;
   s->height = 480;
   s->ambient = (glint_vec3){1, 1, 1};
+  s->ear_tests_left = GLI_SCENE_EAR_TESTS;
   *out = s;
   return GLINT_OK;
 }

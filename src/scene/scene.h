@@ -121,6 +121,8 @@ struct glint_scene {
   size_t tri_normal_count, tri_normal_cap;
   gli_cone_prim *cones;
   size_t cone_count, cone_cap;
+
+  size_t ear_tests_left; /* of GLI_SCENE_EAR_TESTS (scene/polygon.h) */
 };
 
 /* Validation shared by the API and the file loaders. */

@@ -267,13 +267,14 @@ static glint_status read_polygon(nff_reader *r, int patch, glint_error *e) {
                                    e)))
     return at_line(r, line, st, e);
   polygon_emit pe = {r, patch, e};
-  int res = gli_triangulate(r->verts, (size_t)n, emit_triangle, &pe);
+  int res = gli_triangulate(r->verts, (size_t)n, emit_triangle, &pe,
+                            &r->scene->ear_tests_left);
   if (res == GLI_TRIANGULATE_NO_MEMORY)
     return gli_fail(e, GLINT_E_MEMORY, "%s:%d: out of memory", r->t.path, line);
   if (res == GLI_TRIANGULATE_TOO_COMPLEX)
     return gli_fail(e, GLINT_E_PARSE,
                     "%s:%d: %s: the polygon of %ld vertices has too many "
-                    "inward corners to triangulate",
+                    "inward corners to triangulate (" GLI_EAR_LIMIT_TEXT ")",
                     r->t.path, line, entity, n);
   if (res)
     return at_line(r, line, (glint_status)res, e);

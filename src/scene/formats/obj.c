@@ -239,7 +239,7 @@ static glint_status obj_face(obj_reader *r, glint_error *e) {
   case GLI_TRIANGULATE_TOO_COMPLEX:
     return gli_fail(e, GLINT_E_PARSE,
                     "%s:%zu: the face of %zu vertices has too many inward "
-                    "corners to triangulate",
+                    "corners to triangulate (" GLI_EAR_LIMIT_TEXT ")",
                     r->path, r->line, m->ncorners);
   default: return gli_mesh_oom(r->path, e);
   }

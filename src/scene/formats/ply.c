@@ -324,7 +324,7 @@ static glint_status ply_face(ply_reader *r, const ply_property *p, long long n,
   case GLI_TRIANGULATE_TOO_COMPLEX:
     return gli_fail(e, GLINT_E_PARSE,
                     "%s: the face of %zu vertices has too many inward "
-                    "corners to triangulate",
+                    "corners to triangulate (" GLI_EAR_LIMIT_TEXT ")",
                     ply_where(r, w, sizeof w), m->ncorners);
   default: return gli_mesh_oom(r->path, e);
   }
