@@ -141,6 +141,11 @@ double mpi_test_slowdown(int rank) {
 
 /* Takes glint-mpi's own options out of argv, and leaves glint render's. */
 static int parse(int argc, char **argv, mpi_options *o) {
+  glint_error err;
+  if (glint_isa_cap_check(&err)) { /* as glint render does */
+    cli_error("%s", err.message);
+    return EXIT_USAGE;
+  }
   o->dynamic = 1;
   o->tile_size = 64;
   o->timeout = 120;

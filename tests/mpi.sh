@@ -142,6 +142,11 @@ run 2 whitted --tile 24 >run.out 2>run.err
 [ $? -ne 0 ] || fail "a --tile off the renderer's grid: exit status 0"
 [ "$(grep -c "tile: 24 is not a multiple of 16" run.err)" -eq 1 ] ||
   fail "a --tile off the renderer's grid: not one message"
+GLINT_ISA=bogus run 2 whitted -W 8 -H 8 -o isa.png >run.out 2>run.err
+[ $? -ne 0 ] || fail "GLINT_ISA=bogus: exit status 0"
+[ "$(grep -c "GLINT_ISA='bogus' is not none, sse, avx2 or avx512" run.err)" -eq 1 ] ||
+  fail "GLINT_ISA=bogus: not one message"
+[ ! -e isa.png ] || fail "GLINT_ISA=bogus: an image was written"
 
 # The pid of rank $1 of the running job (ranks run in this test's folder).
 rank_pid() {
