@@ -766,7 +766,9 @@ glint_status glint_image_writer_finish_memory(glint_image_writer *writer,
                                               void **bytes, size_t *size,
                                               glint_error *error);
 /* Writes an encoded image file's `size` bytes to `path`, atomically as
- * glint_image_write does (path's extension must be .png, .bmp or .ppm). */
+ * glint_image_write does (path's extension must be .png, .bmp or .ppm).
+ * Bytes that do not begin as a file of that format does (its signature)
+ * are refused, and nothing is written. */
 glint_status glint_image_write_encoded(const char *path, const void *bytes,
                                        size_t size, glint_error *error);
 

@@ -256,6 +256,43 @@ static void memory_holds_the_file(void **state) {
                    GLINT_E_ARGUMENT);
   assert_int_equal(glint_image_write_encoded(in_folder("x.txt"), "a", 1, &e),
                    GLINT_E_ARGUMENT);
+  /* Bytes that are not a file of the extension's format (none, another
+   * format's, a damaged start) do not replace the file there. */
+  char kept[600], kbmp[600], kppm[600];
+  snprintf(kept, sizeof kept, "%s", in_folder("kept.png"));
+  snprintf(kbmp, sizeof kbmp, "%s", in_folder("k.bmp"));
+  snprintf(kppm, sizeof kppm, "%s", in_folder("k.ppm"));
+  FILE *f = fopen(kept, "wb");
+  fputs("the user's file", f);
+  fclose(f);
+  static const char bmp[] = "BM\x3e\0\0\0\0\0";
+  const struct {
+    const char *path, *bytes;
+    size_t size;
+    const char *want;
+  } bad[] = {
+      {kept, "", 0, "kept.png: the 0 bytes given are not a PNG file"},
+      {kept, bmp, 8, "kept.png: the 8 bytes given are not a PNG file"},
+      {kept, "\x89PNG\r\n\x1a", 7, "the 7 bytes given are not a PNG"},
+      {kbmp, "\x89PNG\r\n\x1a\n\0", 9, "not a BMP file"},
+      {kppm, "P3\n1 1\n", 7, "not a binary PPM file"},
+  };
+  for (size_t i = 0; i < sizeof bad / sizeof *bad; i++) {
+    assert_int_equal(
+        glint_image_write_encoded(bad[i].path, bad[i].bytes, bad[i].size, &e),
+        GLINT_E_ARGUMENT);
+    if (!strstr(e.message, bad[i].want))
+      fail_msg("'%s' lacks '%s'", e.message, bad[i].want);
+  }
+  assert_int_equal(glint_image_write_encoded(kept, NULL, 0, &e),
+                   GLINT_E_ARGUMENT);
+  assert_non_null(strstr(e.message, "bytes is NULL"));
+  char buf[32] = "";
+  f = fopen(kept, "rb");
+  assert_non_null(fgets(buf, sizeof buf, f));
+  fclose(f);
+  assert_string_equal(buf, "the user's file");
+  unlink(kept);
   assert_int_equal(leftovers(), 0);
   glint_film_destroy(film);
 }

@@ -344,13 +344,35 @@ static int write_span(const void *data, FILE *f) {
   return s->size && fwrite(s->bytes, 1, s->size, f) != s->size ? -1 : 0;
 }
 
+/* Whether `bytes` begin as a file of `format` does: its signature (PNG's
+ * eight bytes, BMP's "BM", binary PPM's "P6" and a blank). */
+static int starts_as(glint_image_format format, const unsigned char *bytes,
+                     size_t size) {
+  static const unsigned char png[8] = {0x89, 'P',  'N',  'G',
+                                       '\r', '\n', 0x1a, '\n'};
+  switch (format) {
+  case GLINT_FORMAT_PNG: return size > 8 && memcmp(bytes, png, 8) == 0;
+  case GLINT_FORMAT_BMP: return size > 2 && bytes[0] == 'B' && bytes[1] == 'M';
+  default:
+    return size > 3 && bytes[0] == 'P' && bytes[1] == '6' &&
+           strchr(" \t\r\n#", bytes[2]) && bytes[2];
+  }
+}
+
 glint_status glint_image_write_encoded(const char *path, const void *bytes,
                                        size_t size, glint_error *error) {
   GLI_NOT_NULL(path, "path", error);
-  if (!bytes && size)
-    return gli_fail(error, GLINT_E_ARGUMENT, "%s: bytes is NULL", __func__);
-  if (glint_image_format_from_path(path) == GLINT_FORMAT_UNKNOWN)
+  GLI_NOT_NULL(bytes, "bytes", error);
+  glint_image_format format = glint_image_format_from_path(path);
+  if (format == GLINT_FORMAT_UNKNOWN)
     return unknown_format(path, error);
+  /* A wrong or damaged buffer must not replace a good file. */
+  if (!starts_as(format, bytes, size))
+    return gli_fail(error, GLINT_E_ARGUMENT,
+                    "%s: the %zu bytes given are not a %s file", path, size,
+                    format == GLINT_FORMAT_PNG   ? "PNG"
+                    : format == GLINT_FORMAT_BMP ? "BMP"
+                                                 : "binary PPM");
   byte_span span = {bytes, size};
   return gli_write_atomically(path, write_span, &span, error);
 }
