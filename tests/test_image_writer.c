@@ -16,6 +16,7 @@
 #include "test_util.h"
 
 #include <dirent.h>
+#include <limits.h>
 #include <math.h>
 #include <stdio.h>
 #include <stdlib.h>
@@ -405,6 +406,10 @@ static void refuses_bad_tiles(void **state) {
   assert_int_equal(glint_image_writer_put(writer, &narrow, &e),
                    GLINT_E_ARGUMENT);
   assert_non_null(strstr(e.message, "stride 3 is less than its 12 floats"));
+  /* (its floats counted without overflow) */
+  glint_tile wide = {6, 0, INT_MAX, 2, glint_film_pixels_const(film), 6};
+  assert_int_equal(glint_image_writer_put(writer, &wide, &e), GLINT_E_ARGUMENT);
+  assert_non_null(strstr(e.message, "stride 6 is less than its 6442450941"));
   assert_int_equal(glint_image_writer_finish(writer, &e), GLINT_E_ARGUMENT);
   assert_non_null(strstr(e.message, "outside the image or repeated"));
 

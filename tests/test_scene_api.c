@@ -140,6 +140,10 @@ static void null_and_overflowing_arguments_are_refused(void **state) {
              GLINT_E_ARGUMENT, "glint_scene_load_memory: name is NULL");
   EXPECT_ERR(glint_scene_load_packed(NULL, 8, &out, &e_), GLINT_E_ARGUMENT,
              "glint_scene_load_packed: packed is NULL");
+  EXPECT_ERR(glint_scene_load_packed(NULL, 0, &out, &e_), GLINT_E_ARGUMENT,
+             "glint_scene_load_packed: packed is NULL");
+  EXPECT_ERR(glint_scene_load_packed("GLINTPK1", SIZE_MAX, &out, &e_),
+             GLINT_E_PARSE, "packed scene: damaged (size)");
   EXPECT_ERR(glint_world_commit_at(NULL, 0, NULL, NULL, NULL, &e_),
              GLINT_E_ARGUMENT, "glint_world_commit_at: scene is NULL");
   EXPECT_ERR(glint_image_write_encoded(NULL, "x", 1, &e_), GLINT_E_ARGUMENT,

@@ -256,9 +256,9 @@ glint_status glint_image_writer_put(glint_image_writer *w,
   GLI_NOT_NULL(tile->pixels, "tile's pixels", error);
   if (tile->width > 0 && tile->stride < (size_t)tile->width * 3)
     return gli_fail(error, GLINT_E_ARGUMENT,
-                    "%s: the tile's stride %zu is less than its %d floats a "
+                    "%s: the tile's stride %zu is less than its %zu floats a "
                     "row",
-                    w->file.path, tile->stride, tile->width * 3);
+                    w->file.path, tile->stride, (size_t)tile->width * 3);
   if (tile->x < 0 || tile->y < 0 || tile->width < 1 || tile->height < 1 ||
       tile->width > w->width - tile->x || tile->height > w->height - tile->y) {
     pthread_mutex_lock(&w->lock);

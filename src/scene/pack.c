@@ -16,6 +16,7 @@
 #include "scene/file.h"
 #include "scene/scene.h"
 
+#include <stddef.h>
 #include <stdint.h>
 #include <stdlib.h>
 #include <string.h>
@@ -179,9 +180,10 @@ static glint_status damaged(glint_error *error, const char *what) {
 
 glint_status glint_scene_load_packed(const void *packed, size_t size,
                                      glint_scene **scene, glint_error *error) {
-  if (!packed && size)
-    return gli_fail(error, GLINT_E_ARGUMENT, "%s: packed is NULL", __func__);
+  GLI_NOT_NULL(packed, "packed", error);
   GLI_NOT_NULL(scene, "scene", error);
+  if (size > PTRDIFF_MAX) /* no block is that large: a wrong size */
+    return damaged(error, "size");
   const unsigned char *p = packed, *end = p + size;
   if (size < sizeof magic + 4 || memcmp(p, magic, sizeof magic) != 0)
     return damaged(error, "not a packed glint scene");
