@@ -490,6 +490,10 @@ static const bad_case syntax_cases[] = {
     {"", ":1:1: JSON syntax error: the file is empty"},
     {"  \n\n ", ":3:2: JSON syntax error: the file is empty"},
     {"{} x", ":1:4: JSON syntax error: found 'x'"},
+    /* right after an empty object, not at its '}' */
+    {"{}]", ":1:3: JSON syntax error: found ']'"},
+    {"{ }x", ":1:4: JSON syntax error: found 'x'"},
+    {"{'a': {}]}", ":1:9: JSON syntax error: found ']'"},
     {"{'objects': [", ":1:14: JSON syntax error: the file ends early"},
     {"{objects: []}", ":1:2: JSON syntax error: found 'objects'"},
     {"{'a' 1}", ":1:6: JSON syntax error: found '1'"},

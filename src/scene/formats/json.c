@@ -1009,13 +1009,14 @@ static void syntax_hint(const char *data, const char **at, char *out,
    * what it found instead (its string reader fails past the character
    * that should have been the opening quote). After ',' the container may
    * be an array, so an opening bracket there is taken as found where it
-   * is. */
+   * is; after '{', a '}' closed an empty object, and what follows it is
+   * what was found. */
   if (p > data && !is_space(p[-1]) && p[-1] != '"') {
     const char *b = p - 1;
     while (b > data && is_space(b[-1]))
       b--;
-    if (b > data &&
-        (b[-1] == '{' || (b[-1] == ',' && p[-1] != '[' && p[-1] != '{')))
+    if (b > data && ((b[-1] == '{' && p[-1] != '}') ||
+                     (b[-1] == ',' && p[-1] != '[' && p[-1] != '{')))
       *at = p = p - 1;
   }
   if (!*p) {
