@@ -139,6 +139,27 @@ static void world_keeps_the_animation(void **state) {
       glint_scene_set_camera_keys(s, keys, 2, GLINT_INTERPOLATE_LINEAR, &e),
       GLINT_E_ARGUMENT);
   assert_non_null(strstr(e.message, "does not come after"));
+  /* Each message names what is wrong. */
+  keys[1].time = NAN;
+  assert_int_equal(
+      glint_scene_set_camera_keys(s, keys, 2, GLINT_INTERPOLATE_LINEAR, &e),
+      GLINT_E_ARGUMENT);
+  assert_non_null(strstr(e.message, "key 1's time nan is not a finite number"));
+  keys[1].time = 1;
+  keys[1].camera.fov_x_degrees = NAN;
+  assert_int_equal(
+      glint_scene_set_camera_keys(s, keys, 2, GLINT_INTERPOLATE_LINEAR, &e),
+      GLINT_E_ARGUMENT);
+  assert_non_null(strstr(e.message, "field of view is not a finite number"));
+  keys[1].camera.fov_x_degrees = 60;
+  assert_int_equal(
+      glint_scene_set_camera_keys(s, NULL, 5, GLINT_INTERPOLATE_LINEAR, &e),
+      GLINT_E_ARGUMENT);
+  assert_non_null(strstr(e.message, "keys is NULL"));
+  glint_animation fast = {1e300, 0, 2};
+  assert_int_equal(glint_scene_set_animation(s, &fast, &e), GLINT_E_ARGUMENT);
+  assert_non_null(strstr(e.message, "fps 1e+300 is not a number of frames a "
+                                    "second from above 0 to 1e6"));
   ASSERT_OK(glint_scene_set_camera_orbit(s, keys[0].camera.at, 2, 0, 360, &e_));
   glint_camera c;
   assert_int_equal(glint_scene_camera_at(s, 0, &c, &e), GLINT_E_ARGUMENT);

@@ -458,7 +458,9 @@ static void expect_open_error(const char *path, int w, int h, double gamma,
 
 static void refuses_bad_opens(void **state) {
   (void)state;
-  expect_open_error(in_folder("x.tiff"), W, H, 1, 0, "unknown image format");
+  /* (not the enum's number: the path's extension is the user's word) */
+  expect_open_error(in_folder("x.tiff"), W, H, 1, 0,
+                    "x.tiff: unknown image format (use .png, .bmp or .ppm)");
   expect_open_error(NULL, W, H, 1, 0, "glint_image_writer_open: path is NULL");
   /* named as the caller called it (it said glint_image_write_with) */
   glint_error null_e;

@@ -130,8 +130,7 @@ static glint_status writer_create(const char *label, glint_image_format format,
   if (format != GLINT_FORMAT_PNG && format != GLINT_FORMAT_BMP &&
       format != GLINT_FORMAT_PPM)
     return gli_fail(error, GLINT_E_ARGUMENT,
-                    "%s: unknown image format %d (use .png, .bmp or .ppm)",
-                    label ? label : "(no path)", (int)format);
+                    "%s: unknown image format (use .png, .bmp or .ppm)", label);
   if (width < 1 || height < 1 || width > GLINT_MAX_DIMENSION ||
       height > GLINT_MAX_DIMENSION)
     return gli_fail(error, GLINT_E_ARGUMENT,
@@ -231,6 +230,12 @@ glint_status glint_image_writer_open_memory(glint_image_format format,
                                             glint_image_writer **out,
                                             glint_error *error) {
   GLI_NOT_NULL(out, "writer", error);
+  if (format != GLINT_FORMAT_PNG && format != GLINT_FORMAT_BMP &&
+      format != GLINT_FORMAT_PPM)
+    return gli_fail(error, GLINT_E_ARGUMENT,
+                    "unknown image format %d (GLINT_FORMAT_PNG, "
+                    "GLINT_FORMAT_BMP or GLINT_FORMAT_PPM)",
+                    (int)format);
   static const char label[] = "image in memory";
   glint_image_writer *w = NULL;
   glint_status st = writer_create(label, format, width, height, gamma,

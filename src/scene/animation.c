@@ -61,7 +61,10 @@ static glint_status track_alloc(gli_track *t, size_t count, size_t width,
 /* Key times must be finite and increase. */
 static glint_status check_time(double time, size_t i, double before,
                                glint_error *error) {
-  if (!isfinite(time) || (i > 0 && !(time > before)))
+  if (!isfinite(time))
+    return gli_fail(error, GLINT_E_ARGUMENT,
+                    "key %zu's time %g is not a finite number", i, time);
+  if (i > 0 && !(time > before))
     return gli_fail(error, GLINT_E_ARGUMENT,
                     "key %zu's time %g does not come after the key before it",
                     i, time);
@@ -150,9 +153,11 @@ glint_status glint_scene_set_animation(glint_scene *s, const glint_animation *a,
                                        glint_error *error) {
   GLI_NOT_NULL(s, "scene", error);
   GLI_NOT_NULL(a, "animation", error);
-  if (!(a->fps > 0) || !isfinite(a->fps) || a->fps > 1e6)
+  if (!(a->fps > 0 && a->fps <= 1e6))
     return gli_fail(error, GLINT_E_ARGUMENT,
-                    "animation: fps %g is not a positive number", a->fps);
+                    "animation: fps %g is not a number of frames a second "
+                    "from above 0 to 1e6",
+                    a->fps);
   if (a->first_frame < 0 || a->last_frame < a->first_frame)
     return gli_fail(error, GLINT_E_ARGUMENT,
                     "animation: frames %d..%d are not a range of frame "
@@ -179,7 +184,8 @@ glint_status glint_scene_set_camera_keys(glint_scene *s,
                                          glint_interpolation interpolation,
                                          glint_error *error) {
   GLI_NOT_NULL(s, "scene", error);
-  if (!keys || count == 0)
+  GLI_NOT_NULL(keys, "keys", error);
+  if (count == 0)
     return gli_fail(error, GLINT_E_ARGUMENT, "camera keys: none given");
   for (size_t i = 0; i < count; i++) {
     glint_status st = gli_camera_check(&keys[i].camera, error);

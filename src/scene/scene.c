@@ -85,9 +85,12 @@ static glint_status oom(glint_error *error) {
 
 glint_status gli_camera_check(const glint_camera *c, glint_error *error) {
   if (!gli_vec3_in_range(c->from) || !gli_vec3_in_range(c->at) ||
-      !gli_vec3_in_range(c->up) || !isfinite(c->fov_x_degrees))
+      !gli_vec3_in_range(c->up))
     return gli_fail(error, GLINT_E_ARGUMENT,
                     "camera: coordinates must be " GLI_RANGE_TEXT);
+  if (!isfinite(c->fov_x_degrees))
+    return gli_fail(error, GLINT_E_ARGUMENT,
+                    "camera: the field of view is not a finite number");
   if (!(c->fov_x_degrees > 0 && c->fov_x_degrees < 180))
     return gli_fail(error, GLINT_E_ARGUMENT,
                     "camera: field of view %g is not between 0 and 180 "
