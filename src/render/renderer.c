@@ -484,9 +484,9 @@ static glint_status render_frame(glint_renderer *r,
                     first, spp, spp - 1);
   if (count < 0 || count > spp - first)
     return gli_fail(error, GLINT_E_ARGUMENT,
-                    "sample_count %d: samples %d.. of the %d of the pattern "
-                    "leave 0..%d",
-                    count, first, spp, spp - first);
+                    "sample_count %d is not 0..%d: the pattern has %d "
+                    "samples, and %d of them from sample_first %d",
+                    count, spp - first, spp, spp - first, first);
   if (count == 0)
     count = spp - first;
   if (!rw)
