@@ -115,7 +115,7 @@ int gli_text_parse_whole(const char **s, const char *end, long long *out) {
   long long v = 0;
   while (p < end && *p >= '0' && *p <= '9') {
     if (p - digits >= 18)
-      return -1;
+      return GLI_TEXT_TOO_LONG;
     v = v * 10 + (*p++ - '0');
   }
   if (p == digits)

@@ -50,7 +50,9 @@ const char *gli_text_quote(char *buf, size_t cap, const char *s, size_t len);
 /* White space within a line. */
 int gli_text_is_blank(char c);
 /* A whole number: optional sign and 1..18 digits (enough for any index,
- * and no overflow). Advances *s; -1 when there is none. */
+ * and no overflow). Advances *s; -1 when there is none, -2 when it has
+ * more digits (GLI_TEXT_TOO_LONG). */
+#define GLI_TEXT_TOO_LONG (-2)
 int gli_text_parse_whole(const char **s, const char *end, long long *out);
 
 #endif

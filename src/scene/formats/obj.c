@@ -206,6 +206,11 @@ static glint_status obj_face(obj_reader *r, glint_error *e) {
         bad = 1; /* "i/" */
       }
     }
+    if (bad == GLI_TEXT_TOO_LONG)
+      return gli_fail(e, GLINT_E_PARSE,
+                      "%s:%zu: face vertex '%s': an index of more than 18 "
+                      "digits, beyond any list",
+                      r->path, r->line, gli_text_quote(q, sizeof q, t, len));
     if (bad || s != end)
       return gli_fail(e, GLINT_E_PARSE,
                       "%s:%zu: bad face vertex '%s' (expected i, i/t, i//n "
