@@ -134,8 +134,9 @@ int parse_double(const char *option, const char *text, double min,
     cli_error("%s: '%s' is not a number", option, text);
     return -1;
   }
+  /* The user's own words: 1e-400 reads as 0 */
   if (!(v > min)) {
-    cli_error("%s: %g must be greater than %g", option, v, min);
+    cli_error("%s: %s must be greater than %g", option, text, min);
     return -1;
   }
   *out = v;
@@ -147,7 +148,7 @@ int parse_gamma(const char *option, const char *text, double *out) {
   if (parse_double(option, text, -INFINITY, &v))
     return -1;
   if (v < GLINT_MIN_GAMMA || v > GLINT_MAX_GAMMA) {
-    cli_error("%s: %g is outside %g..%g", option, v, GLINT_MIN_GAMMA,
+    cli_error("%s: %s is outside %g..%g", option, text, GLINT_MIN_GAMMA,
               GLINT_MAX_GAMMA);
     return -1;
   }

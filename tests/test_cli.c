@@ -156,10 +156,13 @@ static void usage_errors(void **state) {
                      "0");
   EXPECT_USAGE_ERROR("--gamma: ' 2' is not a number", "render", "--gamma",
                      " 2");
-  EXPECT_USAGE_ERROR("--gamma: 1e+308 is outside 0.01..100", "render",
-                     "--gamma", "1e308");
+  EXPECT_USAGE_ERROR("--gamma: 1e308 is outside 0.01..100", "render", "--gamma",
+                     "1e308");
   EXPECT_USAGE_ERROR("--gamma: 1e-308 is outside 0.01..100", "view", "--gamma",
                      "1e-308");
+  /* what was typed, not what it reads as (0) */
+  EXPECT_USAGE_ERROR("--gamma: 1e-400 is outside 0.01..100", "render",
+                     "--gamma", "1e-400");
   EXPECT_USAGE_ERROR("--png-compression applies to PNG images, and x.ppm is "
                      "not one",
                      "render", "--png-compression", "smallest", "-o", "x.ppm");
