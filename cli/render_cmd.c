@@ -455,8 +455,8 @@ int render_parse(int argc, char **argv, render_options *o) {
     if (arg_is(&c, NULL, "--frames")) {
       if (!(v = arg_value(&c, "--frames")))
         return EXIT_USAGE;
-      /* FIRST or FIRST-LAST, whole numbers 0..99999999 (as in a scene's
-       * "frames"), nothing else. */
+      /* FIRST or FIRST-LAST, whole numbers 0..GLINT_MAX_FRAME (as in a
+       * scene's "frames"), nothing else. */
       char *end;
       long first = -1, last = -1;
       if (v[0] >= '0' && v[0] <= '9') {
@@ -466,10 +466,10 @@ int render_parse(int argc, char **argv, render_options *o) {
         if (*end)
           first = -1;
       }
-      if (first < 0 || last < first || last > 99999999) {
+      if (first < 0 || last < first || last > GLINT_MAX_FRAME) {
         cli_error("--frames: '%s' is not a frame or a range FIRST-LAST of "
-                  "frames 0..99999999",
-                  v);
+                  "frames 0..%d",
+                  v, GLINT_MAX_FRAME);
         return EXIT_USAGE;
       }
       o->first_frame = (int)first;

@@ -225,7 +225,9 @@ void glint_scene_get_info(const glint_scene *scene, glint_scene_info *info);
 /* ---- Animation (docs/scene-format.md, "animation") ---------------------- */
 
 /* Frames first_frame..last_frame at fps frames a second: frame f shows the
- * scene at time (f - first_frame) / fps seconds. */
+ * scene at time (f - first_frame) / fps seconds. Frame numbers are
+ * 0..GLINT_MAX_FRAME (eight digits in a file name). */
+#define GLINT_MAX_FRAME 99999999
 typedef struct glint_animation {
   double fps;
   int first_frame, last_frame;

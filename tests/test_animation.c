@@ -14,6 +14,7 @@
 
 #include "scene/scene.h" /* to read the moved primitives back */
 
+#include <limits.h>
 #include <math.h>
 #include <string.h>
 
@@ -105,15 +106,14 @@ static void orbit(void **state) {
   at(s, 47.0 / 24, &c);
   near(c.from.x, 1 + 6 * sin(2 * pi * 47 / 48), "from.x at the last frame");
   glint_scene_destroy(s);
-  /* Frames up to INT_MAX through the API (JSON stops at 99999999): the
-   * span is counted without overflowing int (UBSan saw last - first + 1
-   * overflow) */
+  /* Frames up to GLINT_MAX_FRAME through the API, as in JSON (the API
+   * took INT_MAX, where last - first + 1 overflowed int) */
   s = load("{\"camera\": {\"from\": [0, 0, 5], \"at\": [0, 0, 0]}}");
-  glint_animation frames = {1, 0, 2147483647};
+  glint_animation frames = {1, 0, GLINT_MAX_FRAME};
   ASSERT_OK(glint_scene_set_animation(s, &frames, &e_));
   ASSERT_OK(
       glint_scene_set_camera_orbit(s, (glint_vec3){0, 0, 0}, 6, 0, 360, &e_));
-  at(s, 2147483648.0 / 2, &c); /* half-way round: the -z side */
+  at(s, (GLINT_MAX_FRAME + 1.0) / 2, &c); /* half-way round: the -z side */
   assert_true(fabs(c.from.z + 6) < 1e-6);
   glint_scene_destroy(s);
 }
@@ -156,6 +156,10 @@ static void world_keeps_the_animation(void **state) {
       glint_scene_set_camera_keys(s, NULL, 5, GLINT_INTERPOLATE_LINEAR, &e),
       GLINT_E_ARGUMENT);
   assert_non_null(strstr(e.message, "keys is NULL"));
+  glint_animation many = {24, 0, INT_MAX};
+  assert_int_equal(glint_scene_set_animation(s, &many, &e), GLINT_E_ARGUMENT);
+  assert_non_null(strstr(e.message, "frames 0..2147483647 are not a range of "
+                                    "frame numbers 0..99999999"));
   glint_animation fast = {1e300, 0, 2};
   assert_int_equal(glint_scene_set_animation(s, &fast, &e), GLINT_E_ARGUMENT);
   assert_non_null(strstr(e.message, "fps 1e+300 is not a number of frames a "

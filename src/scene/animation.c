@@ -158,11 +158,12 @@ glint_status glint_scene_set_animation(glint_scene *s, const glint_animation *a,
                     "animation: fps %g is not a number of frames a second "
                     "from above 0 to 1e6",
                     a->fps);
-  if (a->first_frame < 0 || a->last_frame < a->first_frame)
+  if (a->first_frame < 0 || a->last_frame < a->first_frame ||
+      a->last_frame > GLINT_MAX_FRAME)
     return gli_fail(error, GLINT_E_ARGUMENT,
                     "animation: frames %d..%d are not a range of frame "
-                    "numbers from 0",
-                    a->first_frame, a->last_frame);
+                    "numbers 0..%d",
+                    a->first_frame, a->last_frame, GLINT_MAX_FRAME);
   s->animation.present = 1;
   s->animation.frames = *a;
   return GLINT_OK;

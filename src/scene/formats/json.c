@@ -889,8 +889,8 @@ static glint_status read_animation(json_reader *r, const cJSON *v) {
   int range[2];
   for (int i = 0; i < 2; i++) {
     size_t m = path_index(r, (size_t)i);
-    if ((st =
-             get_int(r, cJSON_GetArrayItem(frames, i), 0, 99999999, &range[i])))
+    if ((st = get_int(r, cJSON_GetArrayItem(frames, i), 0, GLINT_MAX_FRAME,
+                      &range[i])))
       return st;
     path_pop(r, m);
   }
