@@ -250,6 +250,17 @@ int arg_backend(arg_cursor *c, glint_render_settings *rs) {
 
 int arg_scene_operand(arg_cursor *c, const char *command, const char **scene) {
   const char *a = c->argv[c->i];
+  if (strcmp(a, "--") == 0) { /* the rest are operands: a scene named -x */
+    c->i++;
+    if (c->i < c->argc && !*scene)
+      *scene = c->argv[c->i++];
+    if (c->i < c->argc) {
+      cli_error("more than one scene given ('%s' and '%s')", *scene,
+                c->argv[c->i]);
+      return ARG_BAD;
+    }
+    return ARG_TAKEN;
+  }
   if (a[0] == '-' && a[1] != '\0') {
     cli_error("unknown option '%s' (see glint %s --help)", a, command);
     return ARG_BAD;

@@ -64,7 +64,8 @@ int arg_int(arg_cursor *c, const char *short_name, const char *long_name,
 int arg_flag(arg_cursor *c, const char *short_name, const char *long_name,
              int *out);
 
-/* What is left when no option took argv[i]: an unknown option (an error
+/* What is left when no option took argv[i]: "--" (what follows it is the
+ * scene operand, even if it starts with '-'), an unknown option (an error
  * naming `command`'s --help), else the scene operand, once (a second one
  * is an error). Answers as arg_render_setting does. */
 int arg_scene_operand(arg_cursor *c, const char *command, const char **scene);

@@ -410,6 +410,12 @@ static int check_csv_path(const char *path, char **scenes, int nscenes,
       cli_error("--csv: %s is a folder", path);
       return -1;
     }
+    /* The rename would put a file in the place of a device or a pipe (of
+     * /dev/full through a link to it), as the images' writer refuses to */
+    if (!S_ISREG(csv_sb.st_mode)) {
+      cli_error("--csv: %s: not a regular file", path);
+      return -1;
+    }
     int scene = spd_dir && bench_spd_scene_at(spd_dir, path);
     for (int i = 0; i < nscenes && !scene; i++)
       scene = same_file(scenes[i], path);
@@ -576,6 +582,23 @@ void bench_csv_row(FILE *csv, const char *scene, int depth,
   fprintf(csv, "\n");
 }
 
+/* Whether --plot's files for `stem` can be written: each is absent or a
+ * regular file (gnuplot waited for ever on a pipe there, and a device
+ * took its plot without a word). */
+static int check_plot_files(const char *dir, const char *stem) {
+  static const char *const suffixes[] = {"dat", "gp", "png"};
+  for (int k = 0; k < 3; k++) {
+    char path[8192];
+    snprintf(path, sizeof path, "%s/%s.%s", dir, stem, suffixes[k]);
+    struct stat sb;
+    if (stat(path, &sb) == 0 && !S_ISREG(sb.st_mode)) {
+      cli_error("--plot: %s: not a regular file", path);
+      return -1;
+    }
+  }
+  return 0;
+}
+
 int bench_scenes(char **names, int nscenes, const int *depths, int ndepths,
                  const glint_render_settings *base, const bench_column *cols,
                  int ncols, int runs, FILE *csv, const char *plot_dir) {
@@ -584,6 +607,10 @@ int bench_scenes(char **names, int nscenes, const int *depths, int ndepths,
   for (int i = 0; i < nscenes; i++) {
     int code = EXIT_USAGE;
     scenes[i] = cli_load_scene(names[i], stems[i], sizeof stems[i], &code);
+    if (scenes[i] && plot_dir && check_plot_files(plot_dir, stems[i])) {
+      glint_scene_destroy(scenes[i]);
+      scenes[i] = NULL;
+    }
     if (!scenes[i]) {
       for (int k = 0; k < i; k++)
         glint_scene_destroy(scenes[k]);

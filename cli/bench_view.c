@@ -21,22 +21,24 @@ int bench_view(char **scenes, int nscenes, const glint_render_settings *base,
   static char output[1 << 14];
   int status = 0;
   for (int s = 0; s < nscenes; s++) {
-    char *argv[] = {"/proc/self/exe",
-                    "view",
-                    scenes[s],
-                    "--benchmark",
-                    nframes,
-                    "-b",
-                    (char *)glint_backend_name(base->backend),
-                    "-d",
-                    depth,
-                    "-t",
-                    threads,
-                    size[0],
-                    size[1],
-                    size[2],
-                    size[3],
-                    NULL};
+    /* The scene after "--": a name starting with '-' is a scene (it was
+     * taken as an option of glint view: --scenes --help printed its help) */
+    char *argv[16] = {"/proc/self/exe",
+                      "view",
+                      "--benchmark",
+                      nframes,
+                      "-b",
+                      (char *)glint_backend_name(base->backend),
+                      "-d",
+                      depth,
+                      "-t",
+                      threads};
+    int n = 10;
+    for (int k = 0; k < 4 && size[k]; k++)
+      argv[n++] = size[k];
+    argv[n++] = "--";
+    argv[n++] = scenes[s];
+    argv[n] = NULL;
     int rc = bench_run_capture(argv, output, sizeof output);
     if (rc != 0) {
       cli_error("'glint view %s --benchmark %d' failed:\n%s", scenes[s], frames,

@@ -422,7 +422,6 @@ int render_parse(int argc, char **argv, render_options *o) {
   glint_render_settings *rs = &o->settings;
   arg_cursor c = {argc, argv, 0, NULL};
   while (c.i < argc) {
-    const char *a = argv[c.i];
     if (arg_is_help(&c)) {
       render_usage(stdout);
       return 0;
@@ -439,17 +438,6 @@ int render_parse(int argc, char **argv, render_options *o) {
         (r = arg_flag(&c, NULL, "--stats", &o->stats))) {
       if (r == ARG_BAD)
         return EXIT_USAGE;
-      continue;
-    }
-    if (strcmp(a, "--") == 0) { /* the rest are operands: a scene named -x */
-      c.i++;
-      if (c.i < argc && !o->scene)
-        o->scene = argv[c.i++];
-      if (c.i < argc) {
-        cli_error("more than one scene given ('%s' and '%s')", o->scene,
-                  argv[c.i]);
-        return EXIT_USAGE;
-      }
       continue;
     }
     if (arg_is(&c, NULL, "--frames")) {

@@ -501,6 +501,10 @@ static void bench_errors(void **state) {
                      "--csv", "/nonexistent/b.csv", "--depths", "1", "--scenes",
                      "whitted", "--backends", "scalar-float", "-W", "8", "-H",
                      "8");
+  /* --view's scenes are scenes, never glint view's options (--scenes
+   * --help printed its help and exited 0) */
+  assert_int_equal(run("bench", "--scenes", "--help", "--view", "1", NULL), 2);
+  assert_null(strstr(out, "Usage"));
 }
 
 /* -t 1,2: every backend at each thread count, side by side. */
@@ -639,6 +643,18 @@ static void bench_plot_names_are_not_commands(void **state) {
                        "plots", NULL),
                    0);
   assert_false(exists("INJECTED"));
+  /* A pipe where a plot goes: refused before measuring (gnuplot waited on
+   * it for ever) */
+  char fifo[600];
+  snprintf(fifo, sizeof fifo, "%s/plots/s.png", dir);
+  assert_int_equal(mkfifo(fifo, 0644), 0);
+  put_text("s.nff", small_nff);
+  EXPECT_USAGE_ERROR_KEEPING("--plot: plots/s.png: not a regular file", "bench",
+                             "--scenes", "s.nff", "--depths", "1", "--runs",
+                             "1", "--backends", "scalar-float", "--plot",
+                             "plots");
+  remove_in_folder("plots/s.png");
+  remove_in_folder("s.nff");
   static const char *made[] = {"plots/x'; touch INJECTED; echo '.png",
                                "plots/x'; touch INJECTED; echo '.dat",
                                "plots/x'; touch INJECTED; echo '.gp", scene};
@@ -791,6 +807,22 @@ static void bench_csv_keeps_files_on_error(void **state) {
                              "s.nff", "--csv", ".");
   EXPECT_USAGE_ERROR_KEEPING("--csv: the name is empty", "bench", "--scenes",
                              "s.nff", "--csv", "");
+  /* A pipe (or a device) is not replaced by a file, directly or through a
+   * link (root's bench --csv /dev/full replaced the device) */
+  char fifo[600], link_to_fifo[600];
+  snprintf(fifo, sizeof fifo, "%s/pipe.csv", dir);
+  snprintf(link_to_fifo, sizeof link_to_fifo, "%s/link.csv", dir);
+  assert_int_equal(mkfifo(fifo, 0644), 0);
+  assert_int_equal(symlink(fifo, link_to_fifo), 0);
+  EXPECT_USAGE_ERROR_KEEPING("--csv: pipe.csv: not a regular file", "bench",
+                             "--scenes", "s.nff", "--csv", "pipe.csv");
+  EXPECT_USAGE_ERROR_KEEPING("--csv: link.csv: not a regular file", "bench",
+                             "--scenes", "s.nff", "--csv", "link.csv");
+  struct stat sb;
+  assert_int_equal(stat(fifo, &sb), 0);
+  assert_true(S_ISFIFO(sb.st_mode));
+  assert_int_equal(remove_in_folder("link.csv"), 0);
+  assert_int_equal(remove_in_folder("pipe.csv"), 0);
   EXPECT_USAGE_ERROR_KEEPING("--spd: the name is empty", "bench", "--spd", "");
   EXPECT_USAGE_ERROR_KEEPING("--meshes: the name is empty", "bench", "--meshes",
                              "");
