@@ -7,10 +7,12 @@
 #include "view.h"
 
 #include <errno.h>
+#include <fcntl.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
 #include <sys/stat.h>
+#include <unistd.h>
 
 typedef enum command_kind {
   CMD_KEY,
@@ -294,15 +296,22 @@ static void print_state(const viewer *v) {
  * as /dev/zero never ends and would fill the disk, a FIFO may block for
  * ever, and a file copied onto itself would be emptied by the open. */
 static int copy_file(const view_script *s, const command *c) {
-  FILE *in = fopen(c->from, "rb"), *out = NULL;
+  /* Opened without blocking, so that a FIFO is refused at once rather than
+   * waited on (fopen waits for a writer) */
+  int fd = open(c->from, O_RDONLY | O_NONBLOCK | O_CLOEXEC);
+  FILE *in = NULL, *out = NULL;
   struct stat st;
   const char *why = NULL;
-  if (!in)
+  if (fd < 0)
     why = strerror(errno);
-  else if (fstat(fileno(in), &st) != 0)
+  else if (fstat(fd, &st) != 0)
     why = strerror(errno);
   else if (!S_ISREG(st.st_mode))
     why = "not a regular file";
+  else if (!(in = fdopen(fd, "rb")))
+    why = strerror(errno);
+  if (fd >= 0 && !in)
+    close(fd);
   else if (stat(c->to, &st) == 0 && !S_ISREG(st.st_mode))
     why = "the destination is not a regular file";
   else if (same_file(c->from, c->to))

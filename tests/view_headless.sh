@@ -192,6 +192,14 @@ printf 'copy same.json fifo\nquit\n' >copy-fifo.txt
 timeout 20 "$glint" view scene.json --script copy-fifo.txt >out.txt 2>err.txt
 [ $? -eq 2 ] || fail "copy onto a FIFO: exit status"
 grep -qF "the destination is not a regular file" err.txt || fail "copy onto a FIFO: no message"
+# ...and not from a FIFO (the open waited for a writer for ever).
+printf 'copy fifo from-fifo.json\nquit\n' >copy-from-fifo.txt
+timeout 20 "$glint" view scene.json --script copy-from-fifo.txt >out.txt 2>err.txt
+rc=$?
+[ $rc -eq 2 ] || fail "copy from a FIFO: exit status $rc, want 2"
+grep -qF "cannot copy fifo to from-fifo.json: not a regular file" err.txt ||
+  fail "copy from a FIFO: no message"
+[ ! -e from-fifo.json ] || fail "copy from a FIFO made from-fifo.json"
 # A window resized past the memory there is: exit status 1 (out of memory,
 # as glint --help says), not 2. (Not under AddressSanitizer, which cannot
 # start under a limit on address space.)
