@@ -138,6 +138,11 @@ int view_parse(int argc, char **argv, view_options *o) {
       return EXIT_USAGE;
     }
   }
+  if (o->benchmark_frames && o->script_path) {
+    /* the benchmark flies its own orbit: the script was ignored */
+    cli_error("--benchmark and --script each drive the view: choose one");
+    return EXIT_USAGE;
+  }
   if (!o->scene)
     o->scene = "whitted";
   return -1;

@@ -183,15 +183,24 @@ static void options(void **state) {
   assert_true(o.budget_ms == 16.5);
   assert_int_equal(o.settings.width, 320);
   assert_true(o.settings.gamma == 2.2);
-  char *bad[][3] = {{"--benchmark", "0", NULL},
+  char *bad[][4] = {{"--benchmark", "0", NULL},
                     {"--budget", "0.5", NULL},
                     {"--frobnicate", NULL, NULL},
                     {"-b", "quantum", NULL},
-                    {"a.nff", "b.nff", NULL}};
+                    {"a.nff", "b.nff", NULL},
+                    /* the script was ignored */
+                    {"--benchmark=2", "--script", "s.txt", NULL},
+                    {"--", "a.nff", "b.nff", NULL}};
   for (size_t i = 0; i < sizeof bad / sizeof bad[0]; i++) {
-    int n = bad[i][1] ? 2 : 1;
+    int n = 0;
+    while (n < 4 && bad[i][n])
+      n++;
     assert_int_equal(view_parse(n, bad[i], &o), 2);
   }
+  /* after --, a scene named like an option */
+  char *dashed[] = {"--", "-x.nff"};
+  assert_int_equal(view_parse(2, dashed, &o), -1);
+  assert_string_equal(o.scene, "-x.nff");
 }
 
 int main(void) {
