@@ -216,7 +216,25 @@ int frame_files_init(frame_files *files, const glint_scene *scene,
   /* -o out/frame%04d.png makes out/ when it is missing (and a pattern
    * whose number is in a folder's name makes that folder for each frame,
    * in frame_files_path). */
-  return make_folders(first_path);
+  if (make_folders(first_path))
+    return -1;
+  /* Every frame's file can be written, before any is: a folder or a pipe
+   * under frame 2's name had frames 0 and 1 written over what was there
+   * before the run stopped. (A frame --resume keeps is not written.) */
+  for (int f = o->first_frame; f <= o->last_frame; f++) {
+    char path[4096];
+    struct stat sb;
+    glint_error err;
+    if (frame_files_path(files, f, path, sizeof path))
+      return -1;
+    if (o->resume && stat(path, &sb) == 0 && S_ISREG(sb.st_mode))
+      continue;
+    if (glint_image_check_writable(path, &err)) {
+      cli_error("frame %d: %s; no frame was written", f, err.message);
+      return -1;
+    }
+  }
+  return 0;
 }
 
 int frame_files_path(const frame_files *files, int frame, char *path,

@@ -976,6 +976,25 @@ static void frames_of_an_animation(void **state) {
   free(a);
   free(b);
 
+  /* A frame whose file cannot be written (a folder under its name) stops
+   * the run before any frame is: frame 1 was written over before. */
+  put_text("f01.png", "precious");
+  char folder[600];
+  snprintf(folder, sizeof folder, "%s/f03.png", dir);
+  assert_int_equal(remove_in_folder("f03.png"), 0);
+  assert_int_equal(mkdir(folder, 0755), 0);
+  EXPECT_USAGE_ERROR_KEEPING("f03.png: is a directory; no frame was written",
+                             "render", "anim.json", "--frames", "1-3", "-o",
+                             "f%02d.png");
+  long nk;
+  char *f01 = file_bytes("f01.png", &nk);
+  assert_true(nk == 8 && memcmp(f01, "precious", 8) == 0);
+  free(f01);
+  assert_int_equal(rmdir(folder), 0);
+  assert_int_equal(
+      run("render", "anim.json", "--frames", "1-3", "-o", "f%02d.png", NULL),
+      0);
+
   /* A folder in -o that is missing is made. */
   assert_int_equal(run("render", "anim.json", "--frames", "5", "-o",
                        "sub/deeper/f%d.png", "-q", NULL),
