@@ -227,6 +227,16 @@ glint_status glint_scene_load_packed(const void *packed, size_t size,
   if (!st) {
     gli_file_source source = {serve_packed, &files};
     st = gli_scene_load_from(&source, files.files[0].path, scene, error);
+    /* The block was packed from a scene that loaded: one that does not
+     * load now is damaged (a file's name or bytes changed), whatever the
+     * loader calls it (a name that is no scene file, a file not there). */
+    if (st && st != GLINT_E_MEMORY) {
+      glint_error loaded = {0};
+      if (error)
+        loaded = *error;
+      st = gli_fail(error, GLINT_E_PARSE, "packed scene: damaged: %s",
+                    loaded.message);
+    }
   }
   for (size_t i = 0; i < files.count; i++)
     free(files.files[i].path);
