@@ -8,6 +8,7 @@
 
 #include <errno.h>
 #include <fcntl.h>
+#include <math.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
@@ -159,8 +160,10 @@ static int parse_line(view_script *s, char *text, int line, command *c) {
   for (int i = first_number; i < want; i++) {
     errno = 0;
     double x = strtod(word[i], &end);
-    if (*end || errno || !(x > -1e6 && x < 1e6))
+    if (*end || end == word[i] || isnan(x))
       return script_error(s, line, "not a number:", word[i]);
+    if (errno || !(x > -1e6 && x < 1e6))
+      return script_error(s, line, "a number outside -1e6..1e6:", word[i]);
     if (i == first_number)
       c->a = x;
     else
@@ -168,6 +171,10 @@ static int parse_line(view_script *s, char *text, int line, command *c) {
   }
   if ((c->kind == CMD_HOLD || c->kind == CMD_SLEEP) && c->a < 0)
     return script_error(s, line, "a negative time:", word[first_number]);
+  /* (a script that waits hours is a typo, not a test) */
+  if ((c->kind == CMD_HOLD || c->kind == CMD_SLEEP) && c->a > 3600)
+    return script_error(s, line,
+                        "a time past 3600 seconds:", word[first_number]);
   if (c->kind == CMD_RESIZE &&
       (c->a < 1 || c->b < 1 || c->a > GLINT_MAX_DIMENSION ||
        c->b > GLINT_MAX_DIMENSION))

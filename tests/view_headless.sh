@@ -170,6 +170,13 @@ script_refused folder "--script folder: not a regular file"
 script_refused fifo "--script fifo: not a regular file"
 script_refused nul.txt "nul.txt:2: a NUL byte"
 script_refused control.txt "control.txt:1: no key is named '\x01\x1b[31mred'"
+# Numbers: out of range said so (it said "not a number"), hours refused.
+printf 'wheel 1e9\n' >bignum.txt
+printf 'sleep 100000\n' >longsleep.txt
+printf 'drag left x 5\n' >notnum.txt
+script_refused bignum.txt "bignum.txt:1: a number outside -1e6..1e6: '1e9'"
+script_refused longsleep.txt "longsleep.txt:1: a time past 3600 seconds: '100000'"
+script_refused notnum.txt "notnum.txt:1: not a number: 'x'"
 # copy takes regular files only: /dev/zero never ends (it filled the disk).
 printf 'copy /dev/zero zero.json\nquit\n' >copy-device.txt
 timeout 20 "$glint" view scene.json --script copy-device.txt >out.txt 2>err.txt
