@@ -553,6 +553,12 @@ static int run_interactive(viewer *v) {
       if (more == 0) {
         view_script_free(v->script);
         v->script = NULL;
+        /* Without quit the window stays for the user; on a driver that
+         * shows none (dummy, offscreen) no one could ever close it */
+        const char *driver = SDL_GetCurrentVideoDriver();
+        if (driver &&
+            (strcmp(driver, "dummy") == 0 || strcmp(driver, "offscreen") == 0))
+          return 0;
       }
     }
     SDL_Event ev;

@@ -170,6 +170,12 @@ script_refused folder "--script folder: not a regular file"
 script_refused fifo "--script fifo: not a regular file"
 script_refused nul.txt "nul.txt:2: a NUL byte"
 script_refused control.txt "control.txt:1: no key is named '\x01\x1b[31mred'"
+# A script without quit ends the viewer where no window shows (it ran until
+# killed: no one could close it).
+: >empty.txt
+timeout 20 "$glint" view scene.json --script empty.txt >out.txt 2>err.txt
+rc=$?
+[ $rc -eq 0 ] || fail "a script without quit, no display: exit status $rc, want 0"
 # Numbers: out of range said so (it said "not a number"), hours refused.
 printf 'wheel 1e9\n' >bignum.txt
 printf 'sleep 100000\n' >longsleep.txt
