@@ -88,7 +88,7 @@ typedef struct encode_job {
 #define NAME_MAX 255
 #endif
 
-/* "dir/name.png" -> "dir/.name.png.XXXXXX" (create_exclusive); of a name too
+/* "dir/name.png" -> "dir/.name.png.XXXXXX" (claim_name); of a name too
  * long for the dot and the suffix (248 bytes or more), only its first NAME_MAX
  * - 8 bytes go into the temporary name. */
 static char *temp_template(const char *path) {
@@ -124,26 +124,10 @@ static void randomise_suffix(char *name, int attempt) {
     x[k] = letters[r[k] % (sizeof letters - 1)];
 }
 
-/* Creates `name`, whose last six characters are XXXXXX, replaced by
- * random ones until no file has that name; returns its descriptor. Not
- * mkstemp: its 0600 would need the umask to be read, which only setting
- * it does, a change every thread of the process sees (a file another
- * thread made meanwhile would get mode 0666). With mode 0666 here the
- * kernel applies the umask. */
-static int create_exclusive(char *name) {
-  for (int attempt = 0; attempt < 1000; attempt++) {
-    randomise_suffix(name, attempt);
-    int fd = open(name, O_WRONLY | O_CREAT | O_EXCL | O_CLOEXEC, 0666);
-    if (fd >= 0 || errno != EEXIST)
-      return fd;
-  }
-  errno = EEXIST;
-  return -1;
-}
-
 /* Where the file system and /proc allow (Linux's O_TMPFILE, linked later
  * through /proc/self/fd: open(2)), an unnamed file in the folder of
- * `path`; else -1 and the caller names one. */
+ * `path`, which claim_name names once it is complete; else -1 and the
+ * caller names one. */
 static int create_unnamed(const char *path) {
 #ifdef O_TMPFILE
   if (access("/proc/self/fd", X_OK) != 0)
@@ -162,17 +146,27 @@ static int create_unnamed(const char *path) {
 #endif
 }
 
-/* Gives create_unnamed's file the name `name` (XXXXXX replaced by random
- * characters until no file has it); 0 on success, else -1 with errno. */
-static int link_unnamed(int fd, char *name) {
+/* Replaces the last six characters of `name` (XXXXXX) with random ones
+ * until no file has that name, and claims it: fd < 0 creates the file
+ * there and returns its descriptor; else fd, an unnamed file
+ * (create_unnamed), is linked there and returned. -1 with errno on
+ * failure. Not mkstemp: its 0600 would need the umask to be read, which
+ * only setting it does, a change every thread of the process sees (a file
+ * another thread made meanwhile would get mode 0666). With mode 0666 here
+ * the kernel applies the umask. */
+static int claim_name(char *name, int fd) {
   char proc[64];
   snprintf(proc, sizeof proc, "/proc/self/fd/%d", fd);
   for (int attempt = 0; attempt < 1000; attempt++) {
     randomise_suffix(name, attempt);
-    if (linkat(AT_FDCWD, proc, AT_FDCWD, name, AT_SYMLINK_FOLLOW) == 0)
-      return 0;
-    if (errno != EEXIST)
-      return -1;
+    int got;
+    if (fd < 0)
+      got = open(name, O_WRONLY | O_CREAT | O_EXCL | O_CLOEXEC, 0666);
+    else
+      got = linkat(AT_FDCWD, proc, AT_FDCWD, name, AT_SYMLINK_FOLLOW) == 0 ? fd
+                                                                           : -1;
+    if (got >= 0 || errno != EEXIST)
+      return got;
   }
   errno = EEXIST;
   return -1;
@@ -180,7 +174,7 @@ static int link_unnamed(int fd, char *name) {
 
 /* Creates the temporary file beside `path`; returns its descriptor. With
  * *unnamed set (the caller may pass NULL: a named file), the file has no
- * name yet and *temp is the template that link_unnamed completes. */
+ * name yet and *temp is the template that claim_name completes. */
 static int open_temp(const char *path, char **temp, int *unnamed,
                      glint_error *error) {
   /* What is there already: only a regular file the user may write is
@@ -219,7 +213,7 @@ static int open_temp(const char *path, char **temp, int *unnamed,
   if (unnamed)
     *unnamed = fd >= 0;
   if (fd < 0)
-    fd = create_exclusive(*temp);
+    fd = claim_name(*temp, -1);
   if (fd < 0) {
     gli_fail(error, GLINT_E_IO, "%s: cannot write here: %s", path,
              strerror(errno));
@@ -269,7 +263,7 @@ glint_status gli_atomic_open(const char *path, gli_atomic_file *file,
     return error ? error->status : GLINT_E_IO;
   }
   /* A file replaced keeps its permissions (a new one has 0666 less the
-   * umask, as create_exclusive made it). */
+   * umask, as claim_name or create_unnamed made it). */
   struct stat sb;
   if (stat(dest, &sb) == 0 && S_ISREG(sb.st_mode))
     fchmod(fd, sb.st_mode & 07777);
@@ -296,7 +290,7 @@ glint_status gli_atomic_commit(gli_atomic_file *file, int failed,
     bad = 1, saved = errno;
   /* An unnamed file is named now, microseconds before the rename. */
   if (!bad && file->unnamed) {
-    if (link_unnamed(fileno(file->f), file->temp) != 0)
+    if (claim_name(file->temp, fileno(file->f)) < 0)
       bad = 1, saved = errno;
     else
       file->unnamed = 0;
