@@ -164,7 +164,8 @@ glint_status glint_scene_set_ambient(glint_scene *scene, glint_vec3 color,
 glint_status glint_scene_add_light(glint_scene *scene, glint_vec3 position,
                                    glint_vec3 color, glint_error *error);
 
-/* Materials are referred to by the index this returns. */
+/* Materials are referred to by the index this returns in *material_id
+ * (which may be NULL: the n-th material added, from 0, is material n). */
 glint_status glint_scene_add_material(glint_scene *scene,
                                       const glint_material *material,
                                       uint32_t *material_id,
@@ -394,7 +395,9 @@ glint_status glint_backend_parse(const char *name, glint_backend *backend,
  * for STREAM, some stream backend. */
 int glint_backend_supported(glint_backend backend);
 /* AUTO and STREAM to the concrete backend they stand for on this CPU,
- * without a scene: AUTO is the widest beams. */
+ * without a scene: AUTO is the widest beams. A concrete backend, or a value
+ * outside the enumeration, comes back as it is (glint_backend_supported
+ * says 0 for the latter, and rendering with it fails). */
 glint_backend glint_backend_resolve(glint_backend backend);
 /* Lanes per packet: 1 for scalar backends. */
 int glint_backend_width(glint_backend backend);

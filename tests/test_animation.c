@@ -273,6 +273,19 @@ static void keyed_transforms(void **state) {
   assert_int_equal(
       glint_scene_set_object_motion(s, 0, &k, 1, GLINT_INTERPOLATE_LINEAR, &e),
       GLINT_E_ARGUMENT);
+  /* Keys beyond the coordinates' range are refused when given, not when a
+   * frame is made of them. */
+  k.transform.scale = 1e300;
+  assert_int_equal(
+      glint_scene_set_object_motion(s, 0, &k, 1, GLINT_INTERPOLATE_LINEAR, &e),
+      GLINT_E_ARGUMENT);
+  assert_non_null(strstr(e.message, "key 0: translate, pivot and scale must "
+                                    "be finite numbers of magnitude at most"));
+  k.transform.scale = 1;
+  k.transform.translate.y = -2e15;
+  assert_int_equal(
+      glint_scene_set_object_motion(s, 0, &k, 1, GLINT_INTERPOLATE_LINEAR, &e),
+      GLINT_E_ARGUMENT);
   glint_scene_destroy(s);
 }
 

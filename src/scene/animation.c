@@ -278,8 +278,9 @@ void glint_transform_identity(glint_transform *t) {
 }
 
 static int transform_valid(const glint_transform *t) {
-  return gli_vec3_finite(t->translate) && gli_vec3_finite(t->rotate) &&
-         gli_vec3_finite(t->pivot) && isfinite(t->scale) && t->scale > 0;
+  return gli_vec3_in_range(t->translate) && gli_vec3_finite(t->rotate) &&
+         gli_vec3_in_range(t->pivot) && gli_in_range(t->scale) &&
+         t->scale > 0;
 }
 
 glint_status glint_scene_set_object_motion(glint_scene *s, uint32_t object,
@@ -297,8 +298,9 @@ glint_status glint_scene_set_object_motion(glint_scene *s, uint32_t object,
   for (size_t i = 0; i < count; i++) {
     if (!transform_valid(&keys[i].transform))
       return gli_fail(error, GLINT_E_ARGUMENT,
-                      "object motion: key %zu is not finite or its scale is "
-                      "not positive",
+                      "object motion: key %zu: translate, pivot and scale "
+                      "must be " GLI_RANGE_TEXT ", rotate finite, and the "
+                      "scale positive",
                       i);
     glint_status st =
         check_time(keys[i].time, i, i ? keys[i - 1].time : 0, error);
