@@ -274,12 +274,6 @@ int arg_scene_operand(arg_cursor *c, const char *command, const char **scene) {
   return ARG_TAKEN;
 }
 
-int same_file(const char *a, const char *b) {
-  struct stat sa, sb;
-  return stat(a, &sa) == 0 && stat(b, &sb) == 0 && sa.st_dev == sb.st_dev &&
-         sa.st_ino == sb.st_ino;
-}
-
 void cli_write_errors_not_signals(void) {
   signal(SIGPIPE, SIG_IGN);
   signal(SIGXFSZ, SIG_IGN);

@@ -90,9 +90,6 @@ void cli_error(const char *format, ...)
  * the size limit (ulimit -f). Called first by every program. */
 void cli_write_errors_not_signals(void);
 
-/* Whether paths a and b name one existing file (through links or not). */
-int same_file(const char *a, const char *b);
-
 /* Splits a comma-separated list in place, empty items included (the
  * caller's parsing refuses them); returns the item count or -1 if there are
  * more than max. */

@@ -1,4 +1,3 @@
-#define _DEFAULT_SOURCE /* realpath */
 /* glint bench: renders scenes x depths x backends (x thread counts) and
  * prints tables shaped like the thesis's A.1–A.3 (seconds per depth and
  * backend), with Mrays/s, speed-ups, SIMD lane utilisation, the stream
@@ -7,14 +6,13 @@
 #include "args.h"
 #include "bench.h"
 #include "cli.h"
+#include "files.h"
 
 #include <glint.h>
 
 #include <errno.h>
-#include <fcntl.h>
 #include <limits.h>
 #include <math.h>
-#include <signal.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
@@ -382,23 +380,6 @@ int bench_parse(int argc, char **argv, bench_options *o) {
  * over it: a bad scene, a failed render or Ctrl-C leaves an existing file
  * as it was, and no half-written one. */
 
-/* Creates a new file beside `path` (named in `temp`), mode 0666 less the
- * umask; returns its descriptor, or -1 with errno set. */
-static int create_beside(const char *path, char *temp, size_t size) {
-  for (int k = 0; k < 100; k++) {
-    if (snprintf(temp, size, "%s.%ld-%d.tmp", path, (long)getpid(), k) >=
-        (int)size) {
-      errno = ENAMETOOLONG;
-      return -1;
-    }
-    int fd = open(temp, O_WRONLY | O_CREAT | O_EXCL | O_CLOEXEC, 0666);
-    if (fd >= 0 || errno != EEXIST)
-      return fd;
-  }
-  errno = EEXIST;
-  return -1;
-}
-
 /* Whether the CSV can be written (checked before anything is measured) and
  * is none of the scene files the benchmark reads (`scenes`, or the SPD
  * scenes of spd_dir). */
@@ -438,42 +419,15 @@ static int check_csv_path(const char *path, char **scenes, int nscenes,
 /* Writes the CSV's `size` bytes to `path` whole, or not at all. Stop
  * signals wait until the file is in place. */
 static int write_csv(const char *path, const char *text, size_t size) {
-  sigset_t stops, before;
-  sigemptyset(&stops);
-  sigaddset(&stops, SIGINT);
-  sigaddset(&stops, SIGTERM);
-  sigaddset(&stops, SIGHUP);
-  sigprocmask(SIG_BLOCK, &stops, &before);
-  /* Through a link to the file it names, as images are written: renamed
-   * over, the link itself was replaced. */
-  char target[PATH_MAX];
-  const char *label = path;
-  struct stat sb;
-  if (lstat(path, &sb) == 0 && S_ISLNK(sb.st_mode) && realpath(path, target))
-    path = target;
-  char temp[PATH_MAX + 32];
-  int fd = create_beside(path, temp, sizeof temp);
-  int saved = fd < 0 ? errno : 0;
-  for (size_t done = 0; fd >= 0 && !saved && done < size;) {
-    ssize_t n = write(fd, text + done, size - done);
-    if (n < 0 && errno != EINTR)
-      saved = errno;
-    else if (n > 0)
-      done += (size_t)n;
+  file_replacement r;
+  int saved = replace_begin(&r, path);
+  if (!saved) {
+    saved = replace_write(&r, text, size);
+    int ended = replace_end(&r, !saved);
+    saved = saved ? saved : ended;
   }
-  if (fd >= 0) {
-    if (!saved && fsync(fd) != 0 && errno != EINVAL)
-      saved = errno;
-    if (close(fd) != 0 && !saved)
-      saved = errno;
-    if (!saved && rename(temp, path) != 0)
-      saved = errno;
-    if (saved)
-      unlink(temp);
-  }
-  sigprocmask(SIG_SETMASK, &before, NULL);
   if (saved) {
-    cli_error("%s: writing the CSV file failed: %s", label, strerror(saved));
+    cli_error("%s: writing the CSV file failed: %s", path, strerror(saved));
     return -1;
   }
   return 0;

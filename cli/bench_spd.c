@@ -6,6 +6,7 @@
  * and its own "Ray Tracing Time" is compared with glint's render time
  * (both exclude parsing and acceleration-structure building). */
 #include "args.h"
+#include "files.h"
 #include "bench.h"
 #include "cli.h"
 

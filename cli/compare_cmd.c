@@ -1,6 +1,7 @@
 /* glint compare A B: the PSNR between two images of the same size, with a
  * threshold to fail on and an image of their differences. */
 #include "args.h"
+#include "files.h"
 #include "cli.h"
 
 #include <glint.h>

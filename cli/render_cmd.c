@@ -1,5 +1,6 @@
 /* glint render [SCENE] [options] */
 #include "args.h"
+#include "files.h"
 #include "cli.h"
 
 #include <glint.h>

@@ -4,6 +4,7 @@
  * The whole file is checked before the window opens; each input command is
  * followed by at least one frame before the next command runs. */
 #include "args.h"
+#include "files.h"
 #include "view.h"
 
 #include <errno.h>
@@ -162,7 +163,8 @@ static int parse_line(view_script *s, char *text, int line, command *c) {
     double x = strtod(word[i], &end);
     if (*end || end == word[i] || isnan(x))
       return script_error(s, line, "not a number:", word[i]);
-    if (errno || !(x > -1e6 && x < 1e6))
+    /* an underflow (ERANGE) reads as 0, as the options read it */
+    if (!(x > -1e6 && x < 1e6))
       return script_error(s, line, "a number outside -1e6..1e6:", word[i]);
     if (i == first_number)
       c->a = x;
@@ -306,7 +308,6 @@ static int copy_file(const view_script *s, const command *c) {
   /* Opened without blocking, so that a FIFO is refused at once rather than
    * waited on (fopen waits for a writer) */
   int fd = open(c->from, O_RDONLY | O_NONBLOCK | O_CLOEXEC);
-  FILE *in = NULL, *out = NULL;
   struct stat st;
   const char *why = NULL;
   if (fd < 0)
@@ -315,27 +316,29 @@ static int copy_file(const view_script *s, const command *c) {
     why = strerror(errno);
   else if (!S_ISREG(st.st_mode))
     why = "not a regular file";
-  else if (!(in = fdopen(fd, "rb")))
-    why = strerror(errno);
-  if (fd >= 0 && !in)
-    close(fd);
   else if (stat(c->to, &st) == 0 && !S_ISREG(st.st_mode))
     why = "the destination is not a regular file";
   else if (same_file(c->from, c->to))
     why = "they are the same file";
-  else if (!(out = fopen(c->to, "wb")))
-    why = strerror(errno);
-  char buf[8192];
-  size_t n;
-  while (!why && (n = fread(buf, 1, sizeof buf, in)) > 0)
-    if (fwrite(buf, 1, n, out) != n)
-      why = strerror(errno);
-  if (!why && ferror(in))
-    why = strerror(errno);
-  if (out && fclose(out) != 0 && !why)
-    why = strerror(errno);
-  if (in)
-    fclose(in);
+  /* Into a file beside TO, renamed over it once whole: a failed copy
+   * leaves TO as it was, and a viewer watching TO never reads half of it. */
+  file_replacement r;
+  int saved = why ? 0 : replace_begin(&r, c->to);
+  if (!why && !saved) {
+    char buf[8192];
+    ssize_t n;
+    while (!saved && (n = read(fd, buf, sizeof buf)) != 0)
+      if (n < 0 && errno != EINTR && errno != EAGAIN)
+        saved = errno;
+      else if (n > 0)
+        saved = replace_write(&r, buf, (size_t)n);
+    int ended = replace_end(&r, !saved);
+    saved = saved ? saved : ended;
+  }
+  if (saved)
+    why = strerror(saved);
+  if (fd >= 0)
+    close(fd);
   if (why)
     cli_error("%s:%d: cannot copy %s to %s: %s", s->path, c->line, c->from,
               c->to, why);

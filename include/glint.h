@@ -124,8 +124,9 @@ glint_status glint_scene_builtin(const char *name, glint_scene **scene,
                                  glint_error *error);
 
 /* Loads a scene file, by extension: .nff (Eric Haines's Neutral File Format)
- * or .json (glint's own format). Errors name the file and line (or JSON path).
- */
+ * or .json (glint's own format), either optionally gzip-compressed (.gz).
+ * Errors name the file and line (or JSON path). Built-in scenes are not
+ * files: glint_scene_builtin loads them. */
 glint_status glint_scene_load(const char *path, glint_scene **scene,
                               glint_error *error);
 /* The same from memory: `size` bytes of a scene file's text (not

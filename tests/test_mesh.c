@@ -1189,7 +1189,7 @@ static void packed_scene_needs_no_files(void **state) {
   glint_scene_destroy(packed);
   /* Every truncation, and a changed byte in each header field and in the
    * scene file's name: damaged, GLINT_E_PARSE as glint.h says (a changed
-   * name was GLINT_E_ARGUMENT, "not a built-in scene nor a scene file") */
+   * name was GLINT_E_ARGUMENT, "not a scene file") */
   for (size_t n = 0; n < size; n++) {
     glint_error e;
     glint_scene *s = NULL;

@@ -507,7 +507,13 @@ static void scenes_load_from_memory(void **state) {
   assert_int_equal(
       glint_scene_load_memory("{}", 2, "scene.txt", &from_memory, &e),
       GLINT_E_ARGUMENT);
-  assert_non_null(strstr(e.message, "scene.txt: not a built-in scene"));
+  assert_non_null(
+      strstr(e.message,
+             "scene.txt: not a scene file (.nff or .json, optionally .gz)"));
+  /* A built-in scene's name is not a file: glint_scene_builtin loads it. */
+  assert_int_equal(glint_scene_load("whitted", &from_memory, &e),
+                   GLINT_E_ARGUMENT);
+  assert_non_null(strstr(e.message, "whitted: not a scene file"));
   assert_int_equal(glint_scene_load_memory(NULL, 4, "a.json", &from_memory, &e),
                    GLINT_E_ARGUMENT);
   /* empty JSON text is no scene */

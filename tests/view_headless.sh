@@ -183,6 +183,12 @@ printf 'drag left x 5\n' >notnum.txt
 script_refused bignum.txt "bignum.txt:1: a number outside -1e6..1e6: '1e9'"
 script_refused longsleep.txt "longsleep.txt:1: a time past 3600 seconds: '100000'"
 script_refused notnum.txt "notnum.txt:1: not a number: 'x'"
+# ...and a number too small for a double is 0, as the options read it (it
+# was "outside -1e6..1e6").
+printf 'sleep 1e-400\nquit\n' >tiny.txt
+timeout 20 "$glint" view scene.json --script tiny.txt >out.txt 2>err.txt
+rc=$?
+[ $rc -eq 0 ] || fail "sleep 1e-400: exit status $rc, want 0: $(cat err.txt)"
 # copy takes regular files only: /dev/zero never ends (it filled the disk).
 printf 'copy /dev/zero zero.json\nquit\n' >copy-device.txt
 timeout 20 "$glint" view scene.json --script copy-device.txt >out.txt 2>err.txt
@@ -213,6 +219,20 @@ rc=$?
 grep -qF "cannot copy fifo to from-fifo.json: not a regular file" err.txt ||
   fail "copy from a FIFO: no message"
 [ ! -e from-fifo.json ] || fail "copy from a FIFO made from-fifo.json"
+# A copy that fails leaves the destination as it was: from a missing file,
+# TO was emptied (and a missing TO created empty).
+cp good.json kept.json
+printf 'copy missing.json kept.json\nquit\n' >copy-missing.txt
+timeout 20 "$glint" view scene.json --script copy-missing.txt >out.txt 2>err.txt
+rc=$?
+[ $rc -eq 2 ] || fail "copy from a missing file: exit status $rc, want 2"
+grep -qF "cannot copy missing.json to kept.json: No such file or directory" err.txt ||
+  fail "copy from a missing file: no message"
+cmp -s kept.json good.json || fail "copy from a missing file changed its destination"
+printf 'copy missing.json made.json\nquit\n' >copy-missing.txt
+timeout 20 "$glint" view scene.json --script copy-missing.txt >out.txt 2>err.txt
+[ ! -e made.json ] || fail "copy from a missing file made its destination"
+ls -a | grep -q '\.tmp$' && fail "a copy left a temporary file: $(ls -a | grep '\.tmp$')"
 # A window resized past the memory there is: exit status 1 (out of memory,
 # as glint --help says), not 2. (Not under AddressSanitizer, which cannot
 # start under a limit on address space.)

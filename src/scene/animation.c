@@ -279,8 +279,7 @@ void glint_transform_identity(glint_transform *t) {
 
 static int transform_valid(const glint_transform *t) {
   return gli_vec3_in_range(t->translate) && gli_vec3_finite(t->rotate) &&
-         gli_vec3_in_range(t->pivot) && gli_in_range(t->scale) &&
-         t->scale > 0;
+         gli_vec3_in_range(t->pivot) && gli_in_range(t->scale) && t->scale > 0;
 }
 
 glint_status glint_scene_set_object_motion(glint_scene *s, uint32_t object,

@@ -1,0 +1,80 @@
+#define _DEFAULT_SOURCE /* realpath */
+#include "files.h"
+
+#include <errno.h>
+#include <fcntl.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+#include <sys/stat.h>
+#include <unistd.h>
+
+int same_file(const char *a, const char *b) {
+  struct stat sa, sb;
+  return stat(a, &sa) == 0 && stat(b, &sb) == 0 && sa.st_dev == sb.st_dev &&
+         sa.st_ino == sb.st_ino;
+}
+
+int create_beside(const char *path, char *temp, size_t size) {
+  for (int k = 0; k < 100; k++) {
+    if (snprintf(temp, size, "%s.%ld-%d.tmp", path, (long)getpid(), k) >=
+        (int)size) {
+      errno = ENAMETOOLONG;
+      return -1;
+    }
+    int fd = open(temp, O_WRONLY | O_CREAT | O_EXCL | O_CLOEXEC, 0666);
+    if (fd >= 0 || errno != EEXIST)
+      return fd;
+  }
+  errno = EEXIST;
+  return -1;
+}
+
+int replace_begin(file_replacement *r, const char *path) {
+  struct stat sb;
+  if (lstat(path, &sb) == 0 && S_ISLNK(sb.st_mode)) {
+    if (!realpath(path, r->path))
+      return errno;
+  } else if (snprintf(r->path, sizeof r->path, "%s", path) >=
+             (int)sizeof r->path) {
+    return ENAMETOOLONG;
+  }
+  sigset_t stops;
+  sigemptyset(&stops);
+  sigaddset(&stops, SIGINT);
+  sigaddset(&stops, SIGTERM);
+  sigaddset(&stops, SIGHUP);
+  sigprocmask(SIG_BLOCK, &stops, &r->signals);
+  r->fd = create_beside(r->path, r->temp, sizeof r->temp);
+  if (r->fd < 0) {
+    int saved = errno;
+    sigprocmask(SIG_SETMASK, &r->signals, NULL);
+    return saved;
+  }
+  return 0;
+}
+
+int replace_write(file_replacement *r, const void *data, size_t size) {
+  for (size_t done = 0; done < size;) {
+    ssize_t n = write(r->fd, (const char *)data + done, size - done);
+    if (n < 0 && errno != EINTR)
+      return errno;
+    if (n > 0)
+      done += (size_t)n;
+  }
+  return 0;
+}
+
+int replace_end(file_replacement *r, int keep) {
+  int saved = 0;
+  if (keep && fsync(r->fd) != 0 && errno != EINVAL)
+    saved = errno;
+  if (close(r->fd) != 0 && !saved)
+    saved = errno;
+  if (keep && !saved && rename(r->temp, r->path) != 0)
+    saved = errno;
+  if (!keep || saved)
+    unlink(r->temp);
+  sigprocmask(SIG_SETMASK, &r->signals, NULL);
+  return saved;
+}
