@@ -9,10 +9,13 @@
 #include "scene/scene.h"
 #include "shared.h"
 
+#include <errno.h>
+#include <fcntl.h>
 #include <math.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
+#include <sys/resource.h>
 #include <sys/stat.h>
 #include <unistd.h>
 #include <zlib.h>
@@ -1125,22 +1128,51 @@ static void gzip_damage_is_an_error(void **state) {
                    "damaged.obj.gz: damaged compressed file", NULL);
   free(gz);
 
-  /* 300 MiB of blanks in a few hundred kilobytes: refused once it unpacks
-   * past 32 times its size, not held whole (up to 4 GiB) for the parser. */
-  const char *bomb = path_of(f, "blanks.obj.gz");
+  /* 24 MiB of one vertex line in some 100 kilobytes: refused once it
+   * unpacks past 16 MiB and 32 times its size, not held whole (up to
+   * 4 GiB) for the parser, nor made 3 million vertices (a gigabyte of one
+   * sphere repeated in NFF took gigabytes and minutes). */
+  const char *bomb = path_of(f, "repeated.obj.gz");
   gzFile out = gzopen(bomb, "wb9");
   assert_non_null(out);
-  char *blanks = malloc(1 << 20);
-  assert_non_null(blanks);
-  memset(blanks, ' ', 1 << 20);
-  for (int i = 0; i < 300; i++)
-    assert_int_equal(gzwrite(out, blanks, 1 << 20), 1 << 20);
+  static const char line[8] = "v 1 2 3\n";
+  char *lines = malloc(1 << 20);
+  assert_non_null(lines);
+  for (size_t i = 0; i < 1 << 20; i += sizeof line)
+    memcpy(lines + i, line, sizeof line);
+  for (int i = 0; i < 24; i++)
+    assert_int_equal(gzwrite(out, lines, 1 << 20), 1 << 20);
   assert_int_equal(gzclose(out), Z_OK);
-  free(blanks);
+  free(lines);
   expect_fail_path(bomb, GLINT_E_PARSE,
-                   "blanks.obj.gz: unpacks to more than 32 times its "
+                   "repeated.obj.gz: unpacks to more than 32 times its "
                    "compressed size",
                    NULL);
+}
+
+/* A plain file past the 4 GiB limit (sparse: no disk used) is refused
+ * unread: it was read whole, up to the limit, before (4 GiB of memory). */
+static void a_file_past_the_limit_is_refused_unread(void **state) {
+  fixture *f = *state;
+  const char *path = path_of(f, "sparse.obj");
+  int fd = open(path, O_WRONLY | O_CREAT | O_TRUNC, 0644);
+  assert_true(fd >= 0);
+  if (ftruncate(fd, ((off_t)4 << 30) + 1) != 0) {
+    close(fd);
+    unlink(path);
+    print_message("no file of 4 GiB here (%s)\n", strerror(errno));
+    skip();
+  }
+  close(fd);
+  struct rusage before, after;
+  getrusage(RUSAGE_SELF, &before);
+  expect_fail_path(path, GLINT_E_IO, "sparse.obj: larger than 4 GiB", NULL);
+  getrusage(RUSAGE_SELF, &after);
+  unlink(path);
+  /* ru_maxrss is in KiB */
+  if (after.ru_maxrss - before.ru_maxrss > 64 << 10)
+    fail_msg("refusing it took %ld MiB",
+             (after.ru_maxrss - before.ru_maxrss) >> 10);
 }
 
 /* ------------------------------------------------------------------------ */
@@ -1321,6 +1353,7 @@ int main(int argc, char **argv) {
       cmocka_unit_test(obj_errors),
       cmocka_unit_test(files_of_every_kind_of_wrong),
       cmocka_unit_test(gzip_damage_is_an_error),
+      cmocka_unit_test(a_file_past_the_limit_is_refused_unread),
       cmocka_unit_test(packed_scene_needs_no_files),
       cmocka_unit_test(bad_arguments),
       cmocka_unit_test(real_meshes_shared),

@@ -3,6 +3,7 @@
 #include "core/error.h"
 
 #include <errno.h>
+#include <stdint.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
@@ -31,9 +32,10 @@ static glint_status too_large(glint_error *e, const char *path,
  * times theirs (numbers are dense: the SPD dragon's PLY 3.3 times); a file
  * of little but repetition, such as a gigabyte of blanks in a few
  * megabytes, would otherwise be held whole in memory up to max_bytes before
- * its parser could refuse it. */
+ * its parser could refuse it, and one of a sphere repeated (250 MB of it
+ * in 0.5 MB) would become 25 million spheres and gigabytes of scene. */
 #define UNPACK_RATIO 32
-#define UNPACK_FREE ((size_t)256 << 20)
+#define UNPACK_FREE ((size_t)16 << 20)
 
 glint_status gli_file_read_all(const char *path, size_t max_bytes, char **out,
                                size_t *out_size, glint_error *e) {
@@ -48,6 +50,13 @@ glint_status gli_file_read_all(const char *path, size_t max_bytes, char **out,
     return errno ? io_fail(e, path, "", errno)
                  : gli_fail(e, GLINT_E_MEMORY, "%s: out of memory", path);
   gzbuffer(f, 1 << 17);
+  /* A plain file past the limit is refused unread (a sparse file of
+   * gigabytes was read whole first, up to the limit: seconds and as many
+   * gigabytes of memory). gzdirect reads the first bytes to tell. */
+  if ((uintmax_t)sb.st_size > max_bytes && gzdirect(f)) {
+    gzclose(f);
+    return too_large(e, path, max_bytes);
+  }
   /* A plain file fits exactly; a compressed one grows by doubling. */
   size_t cap = (size_t)sb.st_size + 1, size = 0;
   if (cap < (1 << 16))
