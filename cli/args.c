@@ -197,11 +197,26 @@ int arg_flag(arg_cursor *c, const char *short_name, const char *long_name,
              int *out) {
   if (!arg_is(c, short_name, long_name))
     return ARG_NOT_MINE;
+  /* --quiet=no, -qfoo: a value here is a mistake (taken as the flag, it
+   * turned --no-newton=0 into --no-newton) */
+  if (c->inline_v) {
+    cli_error("%s takes no value: '%s'", long_name ? long_name : short_name,
+              c->argv[c->i - 1]);
+    return ARG_BAD;
+  }
   *out = 1;
   return ARG_TAKEN;
 }
 
-int arg_is_help(arg_cursor *c) { return arg_is(c, "-h", "--help"); }
+int arg_is_help(arg_cursor *c) {
+  if (!arg_is(c, "-h", "--help"))
+    return 0;
+  if (c->inline_v) { /* -hello is no help: left to be refused as unknown */
+    c->i--;
+    return 0;
+  }
+  return 1;
+}
 
 int arg_render_setting(arg_cursor *c, glint_render_settings *rs) {
   char *v = NULL;

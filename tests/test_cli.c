@@ -148,6 +148,16 @@ static void usage_errors(void **state) {
   EXPECT_USAGE_ERROR("unknown backend 'gpu?[31m'", "render", "-b",
                      "gpu\033[31m");
   EXPECT_USAGE_ERROR("unknown option '--fast'", "render", "--fast");
+  /* A flag with a value is refused (it was taken as the flag: --quiet=no
+   * ran quiet, --no-newton=0 dropped the Newton step, -hello was help). */
+  EXPECT_USAGE_ERROR("--quiet takes no value: '--quiet=no'", "render",
+                     "--quiet=no");
+  EXPECT_USAGE_ERROR("--quiet takes no value: '-qfoo'", "render", "-qfoo");
+  EXPECT_USAGE_ERROR("--no-newton takes no value", "render", "--no-newton=0");
+  EXPECT_USAGE_ERROR("--time-to-image takes no value", "bench",
+                     "--time-to-image=1");
+  EXPECT_USAGE_ERROR("unknown option '-hello'", "render", "-hello");
+  EXPECT_USAGE_ERROR("unknown option '--help=1'", "compare", "--help=1");
   EXPECT_USAGE_ERROR("more than one scene", "render", "whitted", "giza");
   EXPECT_USAGE_ERROR("--output needs a value", "render", "-o");
   EXPECT_USAGE_ERROR("--math", "render", "--math", "sloppy");
