@@ -100,7 +100,8 @@ typedef struct glint_material {
   glint_vec3 color; /* C, when untextured */
   glint_texture texture;
   glint_vec3 checker_odd, checker_even;
-  double checker_size;  /* edge of one checker cell, > 0 */
+  double checker_size;  /* edge of one checker cell, GLINT_MIN_CHECKER..
+                         * GLINT_MAX_COORDINATE */
   double ka, kd, ks, h; /* ambient, diffuse, highlight and its exponent */
   double kr, kt, ior;   /* reflection, transmission, index of refraction */
   glint_vec3 absorb;    /* Beer's law absorbance per unit length, per channel */
@@ -448,6 +449,10 @@ glint_status glint_accel_parse(const char *name, glint_accel *accel,
  * inside its range (3.4e38). A scene beyond it is refused, not rendered
  * black. */
 #define GLINT_MAX_COORDINATE 1e15
+/* The finest checker cell (glint_material.checker_size): finer ones are
+ * below a single-precision coordinate's resolution, and backends tracing
+ * in float and in double would colour a point differently. */
+#define GLINT_MIN_CHECKER 1e-6
 /* The largest colour component (lights, materials, background, ambient,
  * absorbance) and material coefficient (ka, kd, ks, kr, kt) and index of
  * refraction: 1e39 is infinite in single precision, and an infinite light

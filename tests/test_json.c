@@ -614,7 +614,14 @@ static const bad_case structure_cases[] = {
      "(checker-planar, checker-solid)"},
     {"{'materials': {'floor': {'texture': {'type': 'checker-solid', "
      "'size': 0}}}}",
-     ": materials.floor: checker size 0 must be a finite number > 0"},
+     ": materials.floor: checker size 0 is outside 1e-06..1e+15"},
+    /* 1/size was 0 in float from 1e38: one colour, where double has two */
+    {"{'materials': {'floor': {'texture': {'type': 'checker-solid', "
+     "'size': 1e300}}}}",
+     ": materials.floor: checker size 1e+300 is outside 1e-06..1e+15"},
+    {"{'materials': {'floor': {'texture': {'type': 'checker-solid', "
+     "'size': 1e-39}}}}",
+     ": materials.floor: checker size 1e-39 is outside 1e-06..1e+15"},
     {"{'materials': {'floor': {'texture': {'type': 'checker-solid', "
      "'odd': ['red', 0, 0]}}}}",
      ": materials.floor.texture.odd[0]: expected a number, found a string"},

@@ -212,11 +212,15 @@ glint_status glint_scene_add_material(glint_scene *s, const glint_material *m,
       m->texture != GLINT_TEXTURE_CHECKER_SOLID)
     return gli_fail(error, GLINT_E_ARGUMENT, "unknown texture kind %d",
                     (int)m->texture);
+  /* Cells finer than a millionth are below a float coordinate's resolution
+   * (the SIMD backends' cell of a point disagreed with scalar-double's),
+   * and past 1e15 wider than any scene: from 1e38 the float backends'
+   * 1/size was 0, one colour everywhere. */
   if (m->texture != GLINT_TEXTURE_NONE &&
-      !(isfinite(m->checker_size) && m->checker_size > 0))
+      !(m->checker_size >= GLINT_MIN_CHECKER && gli_in_range(m->checker_size)))
     return gli_fail(error, GLINT_E_ARGUMENT,
-                    "checker size %g must be a finite number > 0",
-                    m->checker_size);
+                    "checker size %g is outside %g..%g", m->checker_size,
+                    GLINT_MIN_CHECKER, GLINT_MAX_COORDINATE);
   if (s->material_count >= UINT32_MAX)
     return gli_fail(error, GLINT_E_ARGUMENT, "too many materials");
   if (GLI_PUSH(s->materials, s->material_count, s->material_cap, *m))

@@ -61,8 +61,7 @@ static const scene_format *scene_format_of(const char *name) {
 
 static glint_status not_a_scene(const char *name, glint_error *error) {
   return gli_fail(error, GLINT_E_ARGUMENT,
-                  "%s: not a scene file (.nff or .json, optionally .gz)",
-                  name);
+                  "%s: not a scene file (.nff or .json, optionally .gz)", name);
 }
 
 glint_status glint_scene_load(const char *path, glint_scene **out,
