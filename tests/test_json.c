@@ -488,7 +488,8 @@ static const bad_case syntax_cases[] = {
     {"{'camera': -Infinity}", ":1:12: JSON syntax error: found '-Infinity'"},
     {"// a comment\n{}", ":1:1: JSON syntax error: found a comment"},
     {"", ":1:1: JSON syntax error: the file is empty"},
-    {"  \n\n ", ":3:2: JSON syntax error: the file is empty"},
+    {"  \n\n ",
+     ":3:2: JSON syntax error: the file holds nothing but white space"},
     {"{} x", ":1:4: JSON syntax error: found 'x'"},
     /* right after an empty object, not at its '}' */
     {"{}]", ":1:3: JSON syntax error: found ']'"},
@@ -511,6 +512,14 @@ static const bad_case syntax_cases[] = {
     {"{'a': 064}", ":1:7: JSON syntax error: a number with a leading zero"},
     /* strings are UTF-8 */
     {"{'a\xff\xfe': 1}",
+     ":1:4: JSON syntax error: a string that is not UTF-8 text"},
+    /* an overlong '/', a lead byte past U+10FFFF, a lone continuation byte
+     * (the first two were taken) */
+    {"{'a\xc0\xaf': 1}",
+     ":1:4: JSON syntax error: a string that is not UTF-8 text"},
+    {"{'a\xf5\x80\x80\x80': 1}",
+     ":1:4: JSON syntax error: a string that is not UTF-8 text"},
+    {"{'a\x80': 1}",
      ":1:4: JSON syntax error: a string that is not UTF-8 text"},
     /* Columns count characters: the é is two bytes. */
     {"{'\xc3\xa9': x}", ":1:7: JSON syntax error: found 'x'"},

@@ -967,6 +967,8 @@ static int is_space(char c) {
 /* The length of a well-formed UTF-8 character (RFC 3629 §4) at p, or 0. */
 static int utf8_length(const char *p) {
   const unsigned char *u = (const unsigned char *)p;
+  if (u[0] < 0xC2 || u[0] > 0xF4)
+    return 0; /* a continuation byte, an overlong lead (C0, C1), or none */
   int n = u[0] >= 0xF0 ? 4 : u[0] >= 0xE0 ? 3 : 2;
   for (int i = 1; i < n; i++)
     if ((u[i] & 0xC0) != 0x80)
@@ -986,7 +988,9 @@ static void syntax_hint(const char *data, const char **at, char *out,
   while (*q && is_space(*q))
     q++;
   if (!*q) {
-    snprintf(out, size, "the file is empty");
+    snprintf(out, size,
+             q == data ? "the file is empty"
+                       : "the file holds nothing but white space");
     return;
   }
   /* cJSON points just after the opening quote of a string that never
