@@ -1,3 +1,4 @@
+#define _DEFAULT_SOURCE /* realpath */
 /* glint bench: renders scenes x depths x backends (x thread counts) and
  * prints tables shaped like the thesis's A.1–A.3 (seconds per depth and
  * backend), with Mrays/s, speed-ups, SIMD lane utilisation, the stream
@@ -16,6 +17,7 @@
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
+#include <strings.h>
 #include <sys/stat.h>
 #include <unistd.h>
 
@@ -380,9 +382,28 @@ int bench_parse(int argc, char **argv, bench_options *o) {
  * over it: a bad scene, a failed render or Ctrl-C leaves an existing file
  * as it was, and no half-written one. */
 
+/* Whether `path` is named as a file glint reads: a scene or a mesh (.nff,
+ * .json, .obj, .ply, each optionally .gz), compared without case as the
+ * readers compare them. */
+static int named_as_input(const char *path) {
+  static const char *const kinds[] = {".nff", ".json", ".obj", ".ply"};
+  const char *slash = strrchr(path, '/');
+  const char *base = slash ? slash + 1 : path;
+  size_t n = strlen(base);
+  if (n > 3 && strcasecmp(base + n - 3, ".gz") == 0)
+    n -= 3;
+  for (size_t i = 0; i < sizeof kinds / sizeof *kinds; i++) {
+    size_t e = strlen(kinds[i]);
+    if (n > e && strncasecmp(base + n - e, kinds[i], e) == 0)
+      return 1;
+  }
+  return 0;
+}
+
 /* Whether the CSV can be written (checked before anything is measured) and
- * is none of the scene files the benchmark reads (`scenes`, or the SPD
- * scenes of spd_dir). */
+ * is none of the files the benchmark reads: its scenes (`scenes`, or the
+ * SPD scenes of spd_dir), and the meshes they name, whose names the check
+ * goes by (an existing scene or mesh file is never replaced by a CSV). */
 static int check_csv_path(const char *path, char **scenes, int nscenes,
                           const char *spd_dir) {
   struct stat csv_sb;
@@ -402,6 +423,14 @@ static int check_csv_path(const char *path, char **scenes, int nscenes,
       scene = same_file(scenes[i], path);
     if (scene) {
       cli_error("--csv: %s is a scene of this benchmark", path);
+      return -1;
+    }
+    char target[PATH_MAX];
+    if (named_as_input(path) ||
+        (realpath(path, target) && named_as_input(target))) {
+      cli_error("--csv: %s is a scene or mesh file (.nff, .json, .obj, .ply): "
+                "the CSV would replace it",
+                path);
       return -1;
     }
   }

@@ -813,6 +813,29 @@ static void bench_csv_keeps_files_on_error(void **state) {
   kept = file_bytes("s.nff", &n);
   assert_true(n > 8 && memcmp(kept, "v\nfrom", 6) == 0);
   free(kept);
+  /* ...nor a mesh the scene reads, directly or through a link (the mesh
+   * was replaced by the CSV, exit 0) */
+  put_text("tri.obj", "v -1 -1 0\nv 1 -1 0\nv 0 1 0\nf 1 2 3\n");
+  put_text("m.json", "{\"materials\": {\"m\": {}}, \"objects\": [{\"type\": "
+                     "\"mesh\", \"file\": \"tri.obj\", \"material\": \"m\"}]}");
+  char mesh_file[600], link_file[600];
+  snprintf(mesh_file, sizeof mesh_file, "%s/tri.obj", dir);
+  snprintf(link_file, sizeof link_file, "%s/results.csv", dir);
+  assert_int_equal(symlink(mesh_file, link_file), 0);
+  EXPECT_USAGE_ERROR_KEEPING("--csv: tri.obj is a scene or mesh file", "bench",
+                             "--scenes", "m.json", "--depths", "1", "--runs",
+                             "1", "--backends", "scalar-float", "--csv",
+                             "tri.obj");
+  EXPECT_USAGE_ERROR_KEEPING("--csv: results.csv is a scene or mesh file",
+                             "bench", "--scenes", "m.json", "--depths", "1",
+                             "--runs", "1", "--backends", "scalar-float",
+                             "--csv", "results.csv");
+  kept = file_bytes("tri.obj", &n);
+  assert_true(n > 8 && memcmp(kept, "v -1 -1 0", 9) == 0);
+  free(kept);
+  assert_int_equal(remove_in_folder("results.csv"), 0);
+  assert_int_equal(remove_in_folder("tri.obj"), 0);
+  assert_int_equal(remove_in_folder("m.json"), 0);
   EXPECT_USAGE_ERROR_KEEPING("--csv: . is a folder", "bench", "--scenes",
                              "s.nff", "--csv", ".");
   EXPECT_USAGE_ERROR_KEEPING("--csv: the name is empty", "bench", "--scenes",
