@@ -189,48 +189,37 @@ printf 'sleep 1e-400\nquit\n' >tiny.txt
 timeout 20 "$glint" view scene.json --script tiny.txt >out.txt 2>err.txt
 rc=$?
 [ $rc -eq 0 ] || fail "sleep 1e-400: exit status $rc, want 0: $(cat err.txt)"
+# A copy that is refused: exit status 2 and its message.
+copy_refused() { # $1: the copy command; $2: the message
+  printf '%s\nquit\n' "$1" >copy.txt
+  timeout 20 "$glint" view scene.json --script copy.txt >out.txt 2>err.txt
+  local rc=$?
+  [ $rc -eq 2 ] || fail "$1: exit status $rc, want 2"
+  grep -qF -- "$2" err.txt || fail "$1: no '$2'"
+}
 # copy takes regular files only: /dev/zero never ends (it filled the disk).
-printf 'copy /dev/zero zero.json\nquit\n' >copy-device.txt
-timeout 20 "$glint" view scene.json --script copy-device.txt >out.txt 2>err.txt
-rc=$?
-[ $rc -eq 2 ] || fail "copy /dev/zero: exit status $rc, want 2"
-grep -qF "copy-device.txt:1: cannot copy /dev/zero to zero.json: not a regular file" err.txt ||
-  fail "copy /dev/zero: no message"
+copy_refused "copy /dev/zero zero.json" \
+  "copy.txt:1: cannot copy /dev/zero to zero.json: not a regular file"
 [ ! -e zero.json ] || fail "copy /dev/zero made zero.json"
 # ...onto a regular file that is not itself (it was emptied), and not onto
 # a FIFO (it blocked for ever).
 cp good.json same.json
 ln -s same.json same-link.json
-printf 'copy same-link.json same.json\nquit\n' >copy-same.txt
-timeout 20 "$glint" view scene.json --script copy-same.txt >out.txt 2>err.txt
-[ $? -eq 2 ] || fail "copy onto itself: exit status"
-grep -qF "cannot copy same-link.json to same.json: they are the same file" err.txt ||
-  fail "copy onto itself: no message"
+copy_refused "copy same-link.json same.json" \
+  "cannot copy same-link.json to same.json: they are the same file"
 cmp -s same.json good.json || fail "copy onto itself emptied the file"
-printf 'copy same.json fifo\nquit\n' >copy-fifo.txt
-timeout 20 "$glint" view scene.json --script copy-fifo.txt >out.txt 2>err.txt
-[ $? -eq 2 ] || fail "copy onto a FIFO: exit status"
-grep -qF "the destination is not a regular file" err.txt || fail "copy onto a FIFO: no message"
+copy_refused "copy same.json fifo" "the destination is not a regular file"
 # ...and not from a FIFO (the open waited for a writer for ever).
-printf 'copy fifo from-fifo.json\nquit\n' >copy-from-fifo.txt
-timeout 20 "$glint" view scene.json --script copy-from-fifo.txt >out.txt 2>err.txt
-rc=$?
-[ $rc -eq 2 ] || fail "copy from a FIFO: exit status $rc, want 2"
-grep -qF "cannot copy fifo to from-fifo.json: not a regular file" err.txt ||
-  fail "copy from a FIFO: no message"
+copy_refused "copy fifo from-fifo.json" \
+  "cannot copy fifo to from-fifo.json: not a regular file"
 [ ! -e from-fifo.json ] || fail "copy from a FIFO made from-fifo.json"
 # A copy that fails leaves the destination as it was: from a missing file,
 # TO was emptied (and a missing TO created empty).
 cp good.json kept.json
-printf 'copy missing.json kept.json\nquit\n' >copy-missing.txt
-timeout 20 "$glint" view scene.json --script copy-missing.txt >out.txt 2>err.txt
-rc=$?
-[ $rc -eq 2 ] || fail "copy from a missing file: exit status $rc, want 2"
-grep -qF "cannot copy missing.json to kept.json: No such file or directory" err.txt ||
-  fail "copy from a missing file: no message"
+copy_refused "copy missing.json kept.json" \
+  "cannot copy missing.json to kept.json: No such file or directory"
 cmp -s kept.json good.json || fail "copy from a missing file changed its destination"
-printf 'copy missing.json made.json\nquit\n' >copy-missing.txt
-timeout 20 "$glint" view scene.json --script copy-missing.txt >out.txt 2>err.txt
+copy_refused "copy missing.json made.json" "cannot copy missing.json to made.json"
 [ ! -e made.json ] || fail "copy from a missing file made its destination"
 ls -a | grep -q '\.tmp$' && fail "a copy left a temporary file: $(ls -a | grep '\.tmp$')"
 # A window resized past the memory there is: exit status 1 (out of memory,
