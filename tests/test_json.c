@@ -499,6 +499,8 @@ static const bad_case syntax_cases[] = {
     {"{objects: []}", ":1:2: JSON syntax error: found 'objects'"},
     {"{'a' 1}", ":1:6: JSON syntax error: found '1'"},
     {"{'a': tru}", ":1:7: JSON syntax error: found 'tru'"},
+    /* lines that end in a lone CR are lines (it said 1:10) */
+    {"{\r\r'a': tru}", ":3:6: JSON syntax error: found 'tru'"},
     {"{'a\\q': 1}", ":1:4: JSON syntax error: an invalid escape sequence"},
     /* numbers as RFC 8259 writes them, not as strtod reads them */
     {"{'a': [1., 0]}",

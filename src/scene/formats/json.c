@@ -945,13 +945,14 @@ static glint_status read_scene(json_reader *r, const cJSON *root) {
   return GLINT_OK;
 }
 
-/* Line and column (UTF-8 characters, both from 1) of `at`. */
+/* Line and column (UTF-8 characters, both from 1) of `at`. A line ends in
+ * LF, CR LF or a lone CR (old Mac files). */
 static void line_column(const char *data, const char *at, size_t *line,
                         size_t *column) {
   *line = 1;
   *column = 1;
   for (const char *p = data; p < at; p++) {
-    if (*p == '\n') {
+    if (*p == '\n' || (*p == '\r' && p[1] != '\n')) {
       (*line)++;
       *column = 1;
     } else if (((unsigned char)*p & 0xC0) != 0x80) {
