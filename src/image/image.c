@@ -243,12 +243,17 @@ static char *link_target(const char *path) {
 glint_status gli_check_folder_writable(const char *path, glint_error *error) {
   char *target = link_target(path);
   char *temp;
-  int fd = open_temp(target ? target : path, &temp, NULL, error);
+  /* Unnamed where the file system allows: a process killed between the
+   * creation and the unlink left a named one (glint render --frames checks
+   * every frame's file before the first is rendered). */
+  int unnamed;
+  int fd = open_temp(target ? target : path, &temp, &unnamed, error);
   free(target);
   if (fd < 0)
     return error ? error->status : GLINT_E_IO;
   close(fd);
-  unlink(temp);
+  if (!unnamed)
+    unlink(temp);
   free(temp);
   return GLINT_OK;
 }
