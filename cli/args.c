@@ -9,6 +9,7 @@
 #include <stdlib.h>
 #include <string.h>
 #include <sys/stat.h>
+#include <unistd.h>
 
 /* What it quotes (a file name, an option's value) may hold control
  * characters: an escape sequence would reach the terminal as a command, so
@@ -289,7 +290,24 @@ int arg_scene_operand(arg_cursor *c, const char *command, const char **scene) {
   return ARG_TAKEN;
 }
 
+/* At exit: what standard output could not take is an error (glint compare
+ * > /dev/full lost its PSNR line and exited 0). A reader that went away
+ * (| head) is not: it wanted no more. */
+static void check_stdout(void) {
+  errno = 0;
+  int failed = fflush(stdout) != 0 || ferror(stdout);
+  int why = errno;
+  if (!failed || why == EPIPE)
+    return;
+  if (why)
+    cli_error("writing to standard output failed: %s", strerror(why));
+  else
+    cli_error("writing to standard output failed");
+  _exit(EXIT_USAGE);
+}
+
 void cli_write_errors_not_signals(void) {
   signal(SIGPIPE, SIG_IGN);
   signal(SIGXFSZ, SIG_IGN);
+  atexit(check_stdout);
 }

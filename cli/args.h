@@ -87,7 +87,9 @@ void cli_error(const char *format, ...)
 /* Writes that cannot be done fail with an error glint reports (and its
  * temporary file removed) instead of a signal killing it: EPIPE for a
  * reader that went away (glint render -o - | head), EFBIG for a file past
- * the size limit (ulimit -f). Called first by every program. */
+ * the size limit (ulimit -f); and at exit, text that standard output could
+ * not take is reported, with exit status 2. Called first by every
+ * program. */
 void cli_write_errors_not_signals(void);
 
 /* Splits a comma-separated list in place, empty items included (the

@@ -651,6 +651,8 @@ int cmd_render(int argc, char **argv) {
   glint_film_destroy(film);
   if (st) {
     cli_error("%s", err.message);
+    if (to_stdout) /* said: not again at exit (cli_write_errors_not_signals) */
+      clearerr(stdout);
     return cli_exit_code(st);
   }
   if (stop_signal) {

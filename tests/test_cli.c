@@ -699,6 +699,50 @@ static void a_closed_pipe_is_an_error(void **state) {
   assert_int_equal(WEXITSTATUS(status), 2);
 }
 
+/* What standard output cannot take is an error (exit 2, said on standard
+ * error): glint compare > /dev/full lost its PSNR line and exited 0. */
+static void a_full_standard_output_is_an_error(void **state) {
+  (void)state;
+  if (access("/dev/full", W_OK) != 0) {
+    print_message("no /dev/full here\n");
+    skip();
+  }
+  assert_int_equal(run("render", "whitted", "-W", "16", "-H", "12", "-q", "-o",
+                       "a.png", NULL),
+                   0);
+  char a_png[600], err_path[600];
+  snprintf(a_png, sizeof a_png, "%s/a.png", dir);
+  snprintf(err_path, sizeof err_path, "%s/err.txt", dir);
+  const char *commands[][6] = {{"glint", "compare", a_png, a_png, NULL},
+                               {"glint", "--version", NULL},
+                               {"glint", "render", "--help", NULL}};
+  for (size_t i = 0; i < sizeof commands / sizeof *commands; i++) {
+    posix_spawn_file_actions_t fa;
+    posix_spawn_file_actions_init(&fa);
+    posix_spawn_file_actions_addopen(&fa, 1, "/dev/full", O_WRONLY, 0);
+    posix_spawn_file_actions_addopen(&fa, 2, err_path,
+                                     O_WRONLY | O_CREAT | O_TRUNC, 0644);
+    pid_t pid;
+    assert_int_equal(posix_spawn(&pid, GLINT_EXE, &fa, NULL,
+                                 (char *const *)commands[i], environ),
+                     0);
+    posix_spawn_file_actions_destroy(&fa);
+    int status;
+    assert_int_equal(waitpid(pid, &status, 0), pid);
+    char text[4096];
+    slurp(err_path, text, sizeof text);
+    if (!WIFEXITED(status) || WEXITSTATUS(status) != 2)
+      fail_msg("glint %s > /dev/full: status %d, want exit 2", commands[i][1],
+               status);
+    if (!strstr(text, "glint: writing to standard output failed: No space "
+                      "left on device"))
+      fail_msg("glint %s > /dev/full: stderr '%s'", commands[i][1], text);
+  }
+  assert_int_equal(remove_in_folder("err.txt"), 0);
+  assert_int_equal(remove_in_folder("a.png"), 0);
+  assert_true(folder_is_empty());
+}
+
 /* A file past the size limit (ulimit -f) is a write error glint reports,
  * the old file kept and no temporary file left: SIGXFSZ killed it mid-write
  * with the temporary file in the folder. */
@@ -1448,6 +1492,7 @@ int main(void) {
       cmocka_unit_test(bench_time_to_image),
       cmocka_unit_test(bench_errors),
       cmocka_unit_test(a_closed_pipe_is_an_error),
+      cmocka_unit_test(a_full_standard_output_is_an_error),
       cmocka_unit_test(a_file_past_the_size_limit_is_an_error),
       cmocka_unit_test(written_files_keep_their_permissions),
       cmocka_unit_test(out_of_memory_exits_1),
