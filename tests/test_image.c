@@ -318,6 +318,33 @@ static void damaged_files_are_refused(void **state) {
   write_bytes(path, bmp, sizeof bmp);
   assert_int_equal(glint_image_read(path, &got, &e), GLINT_E_PARSE);
   assert_non_null(strstr(e.message, "tall.bmp: a BMP with a 12-byte header"));
+  /* a header of 2^32 - 1 bytes (14 + it wrapped to 13, and the pixels at
+   * 54 were taken) */
+  memset(bmp + 14, 0xff, 4);
+  write_bytes(path, bmp, sizeof bmp);
+  assert_int_equal(glint_image_read(path, &got, &e), GLINT_E_PARSE);
+  assert_non_null(strstr(e.message, "tall.bmp: the pixels start at byte 54"));
+
+  /* PPM headers as netpbm writes them: a comment may follow a number
+   * directly (it was refused), and a number ends in white space or a
+   * comment ("2x1y255z" was read as 2 x 1, maxval 255) */
+  snprintf(path, sizeof path, "%s/c.ppm", dir);
+  static const char commented[] = "P6\n2#w\n1\n255#x\n\x01\x02\x03\x04\x05\x06";
+  write_bytes(path, commented, sizeof commented - 1);
+  ASSERT_OK(glint_image_read(path, &got, &e));
+  assert_int_equal(glint_image_width(got), 2);
+  assert_int_equal(glint_image_height(got), 1);
+  assert_memory_equal(glint_image_pixels(got), "\x01\x02\x03\x04\x05\x06", 6);
+  glint_image_destroy(got);
+  static const char junk[] = "P6\n2x1y255z\x01\x02\x03\x04\x05\x06";
+  write_bytes(path, junk, sizeof junk - 1);
+  assert_int_equal(glint_image_read(path, &got, &e), GLINT_E_PARSE);
+  assert_non_null(strstr(e.message, "c.ppm: bad PPM header"));
+  static const char deep[] = "P6\n2 1\n65535\n\x01\x02\x03\x04\x05\x06";
+  write_bytes(path, deep, sizeof deep - 1);
+  assert_int_equal(glint_image_read(path, &got, &e), GLINT_E_PARSE);
+  assert_non_null(strstr(e.message, "c.ppm: a PPM of maxval 65535"));
+  unlink(path);
 
   /* a PNG whose header claims 100000 x 100000 pixels */
   snprintf(path, sizeof path, "%s/huge.png", dir);

@@ -73,7 +73,7 @@ glint_status gli_bmp_decode(FILE *f, const char *path, glint_image **out,
   if (get16(hdr + 28) != 24 || get32(hdr + 30) != 0)
     return gli_fail(error, GLINT_E_PARSE,
                     "%s: only uncompressed 24-bit BMP is supported", path);
-  if (offset < 14 + hsize)
+  if (offset < 14 + (uint64_t)hsize) /* in 32 bits, hsize 2^32 - 1 wrapped */
     return gli_fail(error, GLINT_E_PARSE,
                     "%s: the pixels start at byte %lu, inside the %lu bytes "
                     "of the headers",

@@ -16,14 +16,25 @@ int gli_ppm_encode(const glint_image *im, FILE *f) {
   return fwrite(im->rgb, 1, n, f) == n ? 0 : -1;
 }
 
-/* The next header number, skipping white space and # comments; -1 if none. */
+/* A # comment's rest, through its line's end. */
+static void skip_comment(FILE *f) {
+  int c;
+  do
+    c = fgetc(f);
+  while (c != '\n' && c != '\r' && c != EOF);
+}
+
+/* The next header number, skipping white space and # comments; -1 if none,
+ * or if it does not end in white space or a comment (netpbm's grammar:
+ * "2x1" is no width and height). The white-space character after it, or
+ * the comment with its line's end, is consumed: after the maxval, the
+ * pixels begin there. */
 static long ppm_number(FILE *f) {
   int c;
   for (;;) {
     c = fgetc(f);
     if (c == '#')
-      while (c != '\n' && c != EOF)
-        c = fgetc(f);
+      skip_comment(f);
     else if (!isspace(c))
       break;
   }
@@ -36,7 +47,11 @@ static long ppm_number(FILE *f) {
       return -1;
     c = fgetc(f);
   }
-  return v; /* the single white-space character after it is consumed */
+  if (c == '#')
+    skip_comment(f);
+  else if (!isspace(c))
+    return -1;
+  return v;
 }
 
 glint_status gli_ppm_decode(FILE *f, const char *path, glint_image **out,
@@ -45,9 +60,16 @@ glint_status gli_ppm_decode(FILE *f, const char *path, glint_image **out,
     return gli_fail(error, GLINT_E_PARSE, "%s: not a binary PPM (P6) file",
                     path);
   long w = ppm_number(f), h = ppm_number(f), maxval = ppm_number(f);
-  if (w < 1 || h < 1 || maxval != 255)
+  if (w < 1 || h < 1 || maxval < 1)
     return gli_fail(error, GLINT_E_PARSE,
-                    "%s: bad PPM header (only 8-bit P6 is supported)", path);
+                    "%s: bad PPM header (P6, then width, height and maxval, "
+                    "each a number followed by white space)",
+                    path);
+  if (maxval != 255)
+    return gli_fail(error, GLINT_E_PARSE,
+                    "%s: a PPM of maxval %ld (glint reads maxval 255: 8 bits "
+                    "a channel)",
+                    path, maxval);
   if (w > GLINT_MAX_DIMENSION || h > GLINT_MAX_DIMENSION)
     return gli_fail(error, GLINT_E_PARSE,
                     "%s: a PPM of %ld x %ld pixels (glint reads 1 to %d a "
