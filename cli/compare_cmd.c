@@ -27,6 +27,7 @@ static void compare_usage(FILE *f) {
       "      --diff FILE    write an image of the differences: each\n"
       "                     channel's |A - B| times 16, clamped to 255\n"
       "  -h, --help         this help\n"
+      "  --                 the rest are images (a name that starts with -)\n"
       "\n"
       "Exit status: 0 when the images compare (and reach --min-psnr), 1 when\n"
       "they are below it, 2 when an image cannot be read or the sizes\n"
@@ -59,22 +60,30 @@ int compare_parse(int argc, char **argv, compare_options *o) {
   memset(o, 0, sizeof *o);
   o->min_psnr = -INFINITY;
   arg_cursor c = {argc, argv, 0, NULL};
+  int options = 1; /* 0 after "--": images only, as glint render takes it */
   while (c.i < argc) {
     const char *a = argv[c.i];
-    if (arg_is_help(&c)) {
-      compare_usage(stdout);
-      return 0;
-    }
-    int r;
-    if ((r = arg_text(&c, NULL, "--diff", &o->diff_path)) ||
-        (r = arg_text(&c, NULL, "--min-psnr", &min_text))) {
-      if (r == ARG_BAD)
+    if (options) {
+      if (strcmp(a, "--") == 0) {
+        options = 0;
+        c.i++;
+        continue;
+      }
+      if (arg_is_help(&c)) {
+        compare_usage(stdout);
+        return 0;
+      }
+      int r;
+      if ((r = arg_text(&c, NULL, "--diff", &o->diff_path)) ||
+          (r = arg_text(&c, NULL, "--min-psnr", &min_text))) {
+        if (r == ARG_BAD)
+          return EXIT_USAGE;
+        continue;
+      }
+      if (a[0] == '-' && a[1] != '\0') {
+        cli_error("unknown option '%s' (see glint compare --help)", a);
         return EXIT_USAGE;
-      continue;
-    }
-    if (a[0] == '-' && a[1] != '\0') {
-      cli_error("unknown option '%s' (see glint compare --help)", a);
-      return EXIT_USAGE;
+      }
     }
     if (nfiles == 2) {
       cli_error("compare takes two images, not three ('%s')", a);

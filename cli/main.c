@@ -48,10 +48,14 @@ int main(int argc, char **argv) {
     printf("glint %s\n", glint_version());
     return 0;
   }
+  /* A bad GLINT_ISA stops a command that would render, not its --help */
+  int help = 0;
+  for (int i = 2; i < argc && strcmp(argv[i], "--") != 0; i++)
+    help |= strcmp(argv[i], "-h") == 0 || strcmp(argv[i], "--help") == 0;
   glint_error err;
   if ((strcmp(cmd, "render") == 0 || strcmp(cmd, "bench") == 0 ||
        strcmp(cmd, "view") == 0) &&
-      glint_isa_cap_check(&err)) {
+      !help && glint_isa_cap_check(&err)) {
     cli_error("%s", err.message);
     return EXIT_USAGE;
   }

@@ -158,6 +158,9 @@ static void usage_errors(void **state) {
                      "--time-to-image=1");
   EXPECT_USAGE_ERROR("unknown option '-hello'", "render", "-hello");
   EXPECT_USAGE_ERROR("unknown option '--help=1'", "compare", "--help=1");
+  /* compare takes "--" as render does: images after it (it said "unknown
+   * option '--'") */
+  EXPECT_USAGE_ERROR("-x.png", "compare", "--", "-x.png", "-y.png");
   EXPECT_USAGE_ERROR("more than one scene", "render", "whitted", "giza");
   EXPECT_USAGE_ERROR("--output needs a value", "render", "-o");
   EXPECT_USAGE_ERROR("--math", "render", "--math", "sloppy");
@@ -555,6 +558,9 @@ static void missing_instruction_sets(void **state) {
   EXPECT_USAGE_ERROR("GLINT_ISA='bogus' is not none, sse, avx2 or avx512",
                      "render", "-W", "8", "-H", "8", "-o", "a.png");
   EXPECT_USAGE_ERROR("GLINT_ISA='bogus'", "bench", "--runs", "1");
+  /* ...but the help still shows (it was refused too) */
+  assert_int_equal(run("render", "--help", NULL), 0);
+  assert_non_null(strstr(out, "Usage: glint render"));
   extra_env = NULL;
   assert_int_equal(run("--help", NULL), 0);
   assert_non_null(strstr(out, "GLINT_ISA"));
