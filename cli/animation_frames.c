@@ -123,27 +123,47 @@ int cli_world_at(const glint_scene *scene, double time,
   return st ? -1 : 0;
 }
 
+void frame_size(const glint_scene *scene, const glint_render_settings *rs,
+                int *width, int *height) {
+  glint_scene_info info;
+  glint_scene_get_info(scene, &info);
+  *width = rs->region_width ? rs->region_width
+           : rs->width      ? rs->width
+                            : info.width;
+  *height = rs->region_width ? rs->region_height
+            : rs->height     ? rs->height
+                             : info.height;
+}
+
+/* Whether the existing `path` is a finished frame: frames are written whole
+ * (a temporary file renamed), but what is under the name may be another
+ * run's size, another program's file or damaged: only an image of this
+ * frame's size counts as done. If not, err says why. */
+static int finished_frame(const char *path, const struct stat *sb, int width,
+                          int height, glint_error *err) {
+  glint_image *image = NULL;
+  int done = 0;
+  if (!S_ISREG(sb->st_mode))
+    snprintf(err->message, sizeof err->message, "%.900s: not a regular file",
+             path);
+  else if (glint_image_read(path, &image, err) == GLINT_OK) {
+    done = glint_image_width(image) == width &&
+           glint_image_height(image) == height;
+    if (!done)
+      snprintf(err->message, sizeof err->message, "%.900s: a %dx%d image", path,
+               glint_image_width(image), glint_image_height(image));
+    glint_image_destroy(image);
+  }
+  return done;
+}
+
 int frame_file_kept(const char *path, int frame, int width, int height,
                     int quiet) {
   struct stat sb;
   if (stat(path, &sb) != 0)
     return 0;
-  /* Frames are written whole (a temporary file renamed), but what is under
-   * the name may be another run's size, another program's file or damaged:
-   * only an image of this frame's size counts as done. */
-  glint_image *image = NULL;
   glint_error err;
-  int kept = 0;
-  if (!S_ISREG(sb.st_mode))
-    snprintf(err.message, sizeof err.message, "%s: not a regular file", path);
-  else if (glint_image_read(path, &image, &err) == GLINT_OK) {
-    kept = glint_image_width(image) == width &&
-           glint_image_height(image) == height;
-    if (!kept)
-      snprintf(err.message, sizeof err.message, "%s: a %dx%d image", path,
-               glint_image_width(image), glint_image_height(image));
-    glint_image_destroy(image);
-  }
+  int kept = finished_frame(path, &sb, width, height, &err);
   if (kept && !quiet)
     printf("frame %d: %s is there, kept (--resume)\n", frame, path);
   if (!kept)
@@ -220,16 +240,19 @@ int frame_files_init(frame_files *files, const glint_scene *scene,
     return -1;
   /* Every frame's file can be written, before any is: a folder or a pipe
    * under frame 2's name had frames 0 and 1 written over what was there
-   * before the run stopped. (A frame --resume keeps is not written.) */
+   * before the run stopped. A frame --resume keeps is not written; one it
+   * renders again (of another size, damaged) is, and was not checked. */
+  int width, height;
+  frame_size(scene, &o->settings, &width, &height);
   for (int f = o->first_frame; f <= o->last_frame; f++) {
     char path[4096];
     struct stat sb;
-    glint_error err;
+    glint_error err, why;
     if (frame_files_path(files, f, path, sizeof path))
       return -1;
-    if (o->resume && stat(path, &sb) == 0 && S_ISREG(sb.st_mode))
-      continue;
-    if (glint_image_check_writable(path, &err)) {
+    if (glint_image_check_writable(path, &err) &&
+        !(o->resume && stat(path, &sb) == 0 &&
+          finished_frame(path, &sb, width, height, &why))) {
       cli_error("frame %d: %s; no frame was written", f, err.message);
       return -1;
     }

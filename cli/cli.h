@@ -48,6 +48,10 @@ int frame_files_init(frame_files *files, const struct glint_scene *scene,
  * after a message when the name is too long or the folder cannot be made. */
 int frame_files_path(const frame_files *files, int frame, char *path,
                      size_t size);
+/* The size of the frames' images: the region's, else -W/-H or the
+ * scene's own. */
+void frame_size(const struct glint_scene *scene,
+                const glint_render_settings *settings, int *width, int *height);
 /* Whether `path` holds a finished frame already (--resume keeps it): an
  * image glint reads, of the frame's size; says which, or why a file there
  * is rendered again. */

@@ -178,14 +178,9 @@ int mpi_render_frames(const mpi_world *w, const mpi_options *o,
   j.scene = scene;
   j.renderer = renderer;
   const glint_render_settings *rs = &o->render.settings;
-  glint_scene_info info;
-  glint_scene_get_info(scene, &info);
-  j.width = rs->width ? rs->width : info.width;
-  j.height = rs->height ? rs->height : info.height;
-  if (rs->region_width) {
+  frame_size(scene, rs, &j.width, &j.height);
+  if (rs->region_width)
     j.origin_x = rs->region_x, j.origin_y = rs->region_y;
-    j.width = rs->region_width, j.height = rs->region_height;
-  }
   j.moving = glint_scene_has_motion(scene);
   /* Every frame's file has the extension of -o (or of SCENE.png). */
   j.format = glint_image_format_from_path(o->render.output ? o->render.output

@@ -43,12 +43,8 @@ int render_frames(glint_scene *scene, const render_options *o,
     return cli_exit_code(err.status);
   }
   glint_world_destroy(world);
-  glint_scene_info info;
-  glint_scene_get_info(scene, &info);
-  int w = rs->width ? rs->width : info.width;
-  int h = rs->height ? rs->height : info.height;
-  if (rs->region_width)
-    w = rs->region_width, h = rs->region_height;
+  int w, h;
+  frame_size(scene, rs, &w, &h);
 
   /* Objects that move need a world a frame; a camera alone does not. */
   int moving = glint_scene_has_motion(scene);

@@ -1166,6 +1166,50 @@ static void frames_of_an_animation(void **state) {
   unlink(scene_path);
 }
 
+/* --resume checks, before any frame is written, that a frame it renders
+ * again (here one of another size) can be written: a read-only f02.png of
+ * the wrong size stopped the run after f01.png was written. Run as a user
+ * that may not write it (root writes anything: it drops to nobody). */
+static void resume_checks_the_frames_it_renders_again(void **state) {
+  (void)state;
+  put_text("anim.json", orbit_scene);
+  assert_int_equal(run("render", "anim.json", "--frames", "2", "-o",
+                       "f%02d.png", "-W", "16", "-H", "12", "-q", NULL),
+                   0);
+  char f02[600];
+  snprintf(f02, sizeof f02, "%s/f02.png", dir);
+  assert_int_equal(chmod(f02, 0444), 0);
+  assert_int_equal(chmod(dir, 0777), 0);
+  pid_t pid = fork();
+  assert_true(pid >= 0);
+  if (pid == 0) {
+    int null = open("/dev/null", O_WRONLY);
+    if ((geteuid() == 0 && (setgid(65534) != 0 || setuid(65534) != 0)) ||
+        chdir(dir) != 0 || null < 0 || dup2(null, 1) < 0 || dup2(null, 2) < 0)
+      _exit(97);
+    execl(GLINT_EXE, "glint", "render", "anim.json", "--frames", "1-3", "-o",
+          "f%02d.png", "--resume", (char *)NULL);
+    _exit(98);
+  }
+  int status;
+  assert_int_equal(waitpid(pid, &status, 0), pid);
+  assert_int_equal(chmod(dir, 0700), 0);
+  assert_true(WIFEXITED(status));
+  if (WEXITSTATUS(status) == 98 || WEXITSTATUS(status) == 97) {
+    print_message("glint cannot run as another user here\n");
+    chmod(f02, 0644);
+    remove_in_folder("f02.png");
+    remove_in_folder("anim.json");
+    skip();
+  }
+  assert_int_equal(WEXITSTATUS(status), 2);
+  assert_false(exists("f01.png")); /* no frame was written */
+  assert_int_equal(chmod(f02, 0644), 0);
+  assert_int_equal(remove_in_folder("f02.png"), 0);
+  assert_int_equal(remove_in_folder("anim.json"), 0);
+  assert_true(folder_is_empty());
+}
+
 /* Objects that move: frame 1 (t = 1 s) of a sphere sliding 2 units in 2 s
  * is the still scene with the sphere 1 unit along, byte for byte; the
  * still render of the animated scene is its first frame. */
@@ -1499,6 +1543,7 @@ int main(void) {
       cmocka_unit_test(bench_errors),
       cmocka_unit_test(a_closed_pipe_is_an_error),
       cmocka_unit_test(a_full_standard_output_is_an_error),
+      cmocka_unit_test(resume_checks_the_frames_it_renders_again),
       cmocka_unit_test(a_file_past_the_size_limit_is_an_error),
       cmocka_unit_test(written_files_keep_their_permissions),
       cmocka_unit_test(out_of_memory_exits_1),
