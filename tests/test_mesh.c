@@ -832,8 +832,12 @@ static void ply_ascii_errors(void **state) {
               "number.ply:12: expected a number for the vertex's y, found "
               "'abc'",
               NULL);
-  expect_fail(f, "nan.ply", PLY_HEAD "0 0 0\n1 0 nan\n", GLINT_E_PARSE,
-              "nan.ply:11: the vertex's z is 'nan', not a finite number", NULL);
+  expect_fail(f, "nan.ply",
+              PLY_HEAD "0 0 0\n1 0 nan\n1 1 0\n0 1 0\n3 0 1 2\n3 0 2 3\n",
+              GLINT_E_PARSE,
+              "nan.ply:11: the vertex's z is 'nan', not a finite number (and "
+              "a face uses it)",
+              NULL);
   expect_fail(f, "trunc.ply", PLY_HEAD "0 0 0\n1 0 0\n", GLINT_E_PARSE,
               "the file ends after 2 of 4 vertices", NULL);
   expect_fail(f, "trunc_line.ply", PLY_HEAD "0 0 0\n1 0 0\n1 1 0\n0 1",
@@ -963,13 +967,23 @@ static void obj_errors(void **state) {
               "number.obj:12: expected a number for the vertex's y, found "
               "'abc'",
               NULL);
-  expect_fail(f, "nan.obj", "v 0 0 0\nv nan 0 0\n", GLINT_E_PARSE,
-              "nan.obj:2: the vertex's x is 'nan', not a finite number", NULL);
-  expect_fail(f, "inf.obj", "v 0 0 1e999\n", GLINT_E_PARSE,
-              "inf.obj:1: the vertex's z is '1e999', not a finite number",
+  expect_fail(f, "nan.obj", "v 0 0 0\nv nan 0 0\nv 0 1 0\nf 1 2 3\n",
+              GLINT_E_PARSE,
+              "nan.obj:2: the vertex's x is 'nan', not a finite number (and a "
+              "face uses it)",
               NULL);
-  expect_fail(f, "vn.obj", "vn 0 inf 0\n", GLINT_E_PARSE,
-              "vn.obj:1: the normal's y is 'inf', not a finite number", NULL);
+  /* the first such vertex unused, a later one used: named by number */
+  expect_fail(
+      f, "nan2.obj", "v nan 0 0\nv 0 0 0\nv 1 0 0\nv 0 inf 0\nf 2 3 4\n",
+      GLINT_E_PARSE,
+      "nan2.obj: vertex 4 is not a finite point, and triangle 1 uses it", NULL);
+  expect_fail(
+      f, "inf.obj", "v 0 0 1e999\nv 1 0 0\nv 0 1 0\nf 1 2 3\n", GLINT_E_PARSE,
+      "inf.obj:1: the vertex's z is '1e999', not a finite number", NULL);
+  /* (a normal that is not finite is zero: nonfinite_vertices_no_face_uses) */
+  expect_fail(f, "vn.obj", "vn 0 x 0\n", GLINT_E_PARSE,
+              "vn.obj:1: expected a number for the normal's y, found 'x'",
+              NULL);
   expect_fail(f, "short.obj", "v 0 0\n", GLINT_E_PARSE,
               "short.obj:1: expected a number for the vertex's z, found the "
               "end of the line",
@@ -1148,6 +1162,35 @@ static void gzip_damage_is_an_error(void **state) {
                    "repeated.obj.gz: unpacks to more than 32 times its "
                    "compressed size",
                    NULL);
+}
+
+/* Points no face uses may be nan (scanners write them so), and a normal
+ * that is not finite is zero (the face's normal shades there): the mesh
+ * loads. Both were refused, however unused. */
+static void nonfinite_vertices_no_face_uses(void **state) {
+  fixture *f = *state;
+  static const char ply[] =
+      "ply\nformat ascii 1.0\nelement vertex 5\nproperty float x\n"
+      "property float y\nproperty float z\nproperty float nx\n"
+      "property float ny\nproperty float nz\nelement face 1\n"
+      "property list uchar int vertex_indices\nend_header\n"
+      "0 -3 0 0 0 1\n3 -3 0 0 0 1\n3 0 0 nan nan nan\n0 0 0 0 0 1\n"
+      "9 9 9 nan nan nan\n4 0 1 2 3\n";
+  static const char obj[] = "v 0 0 0\nv 1 0 0\nv 0 1 0\nv nan nan nan\n"
+                            "vn 0 0 1\nvn nan 0 0\nf 1//1 2//2 3//1\n";
+  const char *paths[] = {write_text(f, "cloud.ply", ply),
+                         write_text(f, "cloud.obj", obj)};
+  for (int i = 0; i < 2; i++) {
+    uint32_t m;
+    glint_scene *s = scene_with_default_material(&m);
+    ASSERT_OK(glint_scene_add_mesh_file(s, paths[i], 1, (V){0, 0, 0}, m, &e_));
+    assert_int_equal(s->triangle_count, i == 0 ? 2 : 1);
+    for (size_t k = 0; k < s->tri_normal_count; k++)
+      assert_true(isfinite(s->tri_normals[k].x) &&
+                  isfinite(s->tri_normals[k].y) &&
+                  isfinite(s->tri_normals[k].z));
+    glint_scene_destroy(s);
+  }
 }
 
 /* A plain file past the 4 GiB limit (sparse: no disk used) is refused
@@ -1354,6 +1397,7 @@ int main(int argc, char **argv) {
       cmocka_unit_test(files_of_every_kind_of_wrong),
       cmocka_unit_test(gzip_damage_is_an_error),
       cmocka_unit_test(a_file_past_the_limit_is_refused_unread),
+      cmocka_unit_test(nonfinite_vertices_no_face_uses),
       cmocka_unit_test(packed_scene_needs_no_files),
       cmocka_unit_test(bad_arguments),
       cmocka_unit_test(real_meshes_shared),

@@ -60,6 +60,18 @@ static int emit_corners(void *user, size_t a, size_t b, size_t c) {
   return 0;
 }
 
+void gli_mesh_nonfinite_vertex(mesh_data *m, size_t index,
+                               const glint_error *why) {
+  if (m->nonfinite_pos != MESH_NO_INDEX)
+    return;
+  m->nonfinite_pos = (uint32_t)index;
+  snprintf(m->nonfinite_why, sizeof m->nonfinite_why, "%s", why->message);
+}
+
+static int finite_point(glint_vec3 p) {
+  return isfinite(p.x) && isfinite(p.y) && isfinite(p.z);
+}
+
 /* A fan of a concave face would cover what is not the face: those are
  * clipped by ears instead. */
 int gli_mesh_emit_face(mesh_data *m, int obj, int with_normals) {
@@ -74,7 +86,7 @@ int gli_mesh_emit_face(mesh_data *m, int obj, int with_normals) {
    * cannot be checked: a fan. */
   int known = n > 3;
   for (size_t i = 0; known && i < n; i++)
-    known = m->corners[i].v < m->npos;
+    known = m->corners[i].v < m->npos && finite_point(m->pos[m->corners[i].v]);
   glint_vec3 small[16], *v = n <= 16 ? small : malloc(n * sizeof *v);
   if (!v)
     return -1;
@@ -111,9 +123,33 @@ static const glint_vec3 *triangle_normals(const mesh_data *m, size_t i,
   return n;
 }
 
+/* A vertex that is not a finite point is refused where a face uses it. */
+static glint_status check_used_vertices(const char *path, const mesh_data *m,
+                                        glint_error *e) {
+  if (m->nonfinite_pos == MESH_NO_INDEX)
+    return GLINT_OK;
+  for (size_t i = 0; i < m->ntri; i++)
+    for (int k = 0; k < 3; k++) {
+      uint32_t v = m->tri[i].v[k];
+      if (finite_point(m->pos[v]))
+        continue;
+      if (v == m->nonfinite_pos)
+        return gli_fail(e, GLINT_E_PARSE, "%s (and a face uses it)",
+                        m->nonfinite_why);
+      return gli_fail(e, GLINT_E_PARSE,
+                      "%s: vertex %u is not a finite point, and triangle %zu "
+                      "uses it",
+                      path, v + 1, i + 1);
+    }
+  return GLINT_OK;
+}
+
 static glint_status add_to_scene(glint_scene *s, const char *path, mesh_data *m,
                                  double scale, glint_vec3 tr, uint32_t material,
                                  glint_error *e) {
+  glint_status checked = check_used_vertices(path, m, e);
+  if (checked)
+    return checked;
   for (size_t i = 0; i < m->npos; i++) {
     glint_vec3 *p = &m->pos[i];
     *p = (glint_vec3){p->x * scale + tr.x, p->y * scale + tr.y,
@@ -236,6 +272,7 @@ static glint_status add_mesh_text(glint_scene *scene, const char *path,
   mesh_data m;
   memset(&m, 0, sizeof m);
   m.ear_tests_left = &scene->ear_tests_left;
+  m.nonfinite_pos = MESH_NO_INDEX;
   glint_status st = read(path, lf ? lf : data, size, &m, error);
   gli_number_locale_end(locale);
   free(lf);

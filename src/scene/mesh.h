@@ -38,7 +38,19 @@ typedef struct mesh_data {
   corner *corners;    /* the face being read */
   size_t ncorners, corners_cap;
   size_t *ear_tests_left; /* the scene's (scene/polygon.h) */
+  /* The first vertex whose position is not a finite number: scanners write
+   * nan for points no face uses, so it is kept (as read) and refused only
+   * where a face uses it, with `nonfinite_why`, the reader's message;
+   * MESH_NO_INDEX while there is none. (A normal that is not finite is
+   * read as zero: the face's normal shades there.) */
+  uint32_t nonfinite_pos;
+  char nonfinite_why[1024];
 } mesh_data;
+
+/* A reader's note that vertex `index` has a coordinate that is not finite,
+ * `why` its message (see mesh_data.nonfinite_pos). */
+void gli_mesh_nonfinite_vertex(mesh_data *m, size_t index,
+                               const glint_error *why);
 
 void gli_mesh_free(mesh_data *m);
 /* "PATH: out of memory" */

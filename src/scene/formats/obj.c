@@ -13,6 +13,7 @@
 #include "scene/polygon.h"
 #include "scene/text.h"
 
+#include <math.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
@@ -63,8 +64,11 @@ static int obj_at_eol(obj_reader *r) {
   return *r->p == '\0' || *r->p == '\n';
 }
 
+/* The next number. One that is not finite fails, or, where `nonfinite` is
+ * given, reads as NaN with its message there (a vertex's coordinate: see
+ * mesh_data.nonfinite_pos). */
 static glint_status obj_number(obj_reader *r, const char *what, double *out,
-                               glint_error *e) {
+                               glint_error *nonfinite, glint_error *e) {
   size_t len;
   const char *t = obj_token(r, &len);
   char q[48];
@@ -81,10 +85,14 @@ static glint_status obj_number(obj_reader *r, const char *what, double *out,
     return gli_fail(e, GLINT_E_PARSE,
                     "%s:%zu: expected a number for %s, found '%s'", r->path,
                     r->line, what, gli_text_quote(q, sizeof q, t, len));
-  if (parsed == NUMBER_NOT_FINITE)
-    return gli_fail(e, GLINT_E_PARSE, "%s:%zu: %s is '%s', not a finite number",
-                    r->path, r->line, what,
-                    gli_text_quote(q, sizeof q, t, len));
+  if (parsed == NUMBER_NOT_FINITE) {
+    glint_status st =
+        gli_fail(nonfinite ? nonfinite : e, GLINT_E_PARSE,
+                 "%s:%zu: %s is '%s', not a finite number", r->path, r->line,
+                 what, gli_text_quote(q, sizeof q, t, len));
+    *out = NAN;
+    return nonfinite ? GLINT_OK : st;
+  }
   *out = v;
   return GLINT_OK;
 }
@@ -101,14 +109,23 @@ static glint_status obj_line_end(obj_reader *r, const char *statement,
                   statement);
 }
 
-/* x, y and z of a v or vn line, named in errors by `names`. */
+/* x, y and z of a v or vn line, named in errors by `names`; the first
+ * that is not finite is told in *nonfinite (its status set), the others
+ * read as NaN too. */
 static glint_status obj_xyz(obj_reader *r, const char *const names[3],
-                            glint_vec3 *out, glint_error *e) {
+                            glint_vec3 *out, glint_error *nonfinite,
+                            glint_error *e) {
   double v[3];
   glint_status st;
-  for (int k = 0; k < 3; k++)
-    if ((st = obj_number(r, names[k], &v[k], e)))
+  nonfinite->status = GLINT_OK;
+  for (int k = 0; k < 3; k++) {
+    /* the first one's message, written where it goes; later ones into
+     * `later` (no 1 KiB copy or clearing a number: this is every vertex) */
+    glint_error later;
+    glint_error *here = nonfinite->status ? &later : nonfinite;
+    if ((st = obj_number(r, names[k], &v[k], here, e)))
       return st;
+  }
   *out = (glint_vec3){v[0], v[1], v[2]};
   return GLINT_OK;
 }
@@ -131,17 +148,20 @@ static glint_status obj_vertex(obj_reader *r, glint_error *e) {
   glint_vec3 v;
   double extra;
   glint_status st;
-  if ((st = obj_xyz(r, names, &v, e)))
+  glint_error nonfinite;
+  if ((st = obj_xyz(r, names, &v, &nonfinite, e)))
     return st;
   /* w, or the r g b of the widespread vertex colour extension: read (so
    * that garbage is still caught) and ignored. */
   for (int k = 0; k < 4 && !obj_at_eol(r); k++)
     if ((st = obj_number(r, k == 0 ? "the vertex's w" : "a vertex colour",
-                         &extra, e)))
+                         &extra, NULL, e)))
       return st;
   if ((st = obj_line_end(r, "vertex's coordinates", e)))
     return st;
   mesh_data *m = r->m;
+  if (nonfinite.status)
+    gli_mesh_nonfinite_vertex(m, m->npos, &nonfinite);
   return obj_append(r, "vertices", &m->pos, &m->npos, &m->pos_cap, v, e);
 }
 
@@ -150,8 +170,12 @@ static glint_status obj_normal(obj_reader *r, glint_error *e) {
                                        "the normal's z"};
   glint_vec3 v;
   glint_status st;
-  if ((st = obj_xyz(r, names, &v, e)) || (st = obj_line_end(r, "normal", e)))
+  glint_error nonfinite;
+  if ((st = obj_xyz(r, names, &v, &nonfinite, e)) ||
+      (st = obj_line_end(r, "normal", e)))
     return st;
+  if (nonfinite.status) /* zero: the face's normal shades there */
+    v = (glint_vec3){0, 0, 0};
   mesh_data *m = r->m;
   return obj_append(r, "normals", &m->nrm, &m->nnrm, &m->nrm_cap, v, e);
 }

@@ -196,9 +196,12 @@ static double ply_binary_value(ply_reader *r, ply_type type) {
   }
 }
 
-/* The next value as a finite number: a vertex coordinate. */
+/* The next value as a number: a vertex coordinate. One that is not finite
+ * reads as NaN, its message in *nonfinite unless that has one already (see
+ * mesh_data.nonfinite_pos). */
 static glint_status ply_number(ply_reader *r, const ply_property *p,
-                               double *out, glint_error *e) {
+                               double *out, glint_error *nonfinite,
+                               glint_error *e) {
   char w[1100], q[48];
   ply_type type = p->type;
   const char *what = role_what[p->role];
@@ -206,9 +209,12 @@ static glint_status ply_number(ply_reader *r, const ply_property *p,
     if (r->size - r->pos < ply_size[type])
       return ply_truncated(r, e);
     double v = ply_binary_value(r, type);
-    if (!isfinite(v))
-      return gli_fail(e, GLINT_E_PARSE, "%s: %s is %g, not a finite number",
-                      ply_where(r, w, sizeof w), what, v);
+    if (!isfinite(v)) {
+      if (!nonfinite->status)
+        gli_fail(nonfinite, GLINT_E_PARSE, "%s: %s is %g, not a finite number",
+                 ply_where(r, w, sizeof w), what, v);
+      v = NAN;
+    }
     *out = v;
     return GLINT_OK;
   }
@@ -222,10 +228,13 @@ static glint_status ply_number(ply_reader *r, const ply_property *p,
     return gli_fail(
         e, GLINT_E_PARSE, "%s: expected a number for %s, found '%s'",
         ply_where(r, w, sizeof w), what, gli_text_quote(q, sizeof q, t, len));
-  if (parsed == NUMBER_NOT_FINITE)
-    return gli_fail(e, GLINT_E_PARSE, "%s: %s is '%s', not a finite number",
-                    ply_where(r, w, sizeof w), what,
-                    gli_text_quote(q, sizeof q, t, len));
+  if (parsed == NUMBER_NOT_FINITE) {
+    if (!nonfinite->status)
+      gli_fail(nonfinite, GLINT_E_PARSE, "%s: %s is '%s', not a finite number",
+               ply_where(r, w, sizeof w), what,
+               gli_text_quote(q, sizeof q, t, len));
+    v = NAN;
+  }
   *out = v;
   return GLINT_OK;
 }
@@ -368,13 +377,16 @@ static glint_status ply_element_body(ply_reader *r, glint_error *e) {
   const ply_element *el = r->el;
   double v[6] = {0, 0, 0, 0, 0, 0};
   glint_status st = GLINT_OK;
+  glint_error nonfinite[2]; /* the position's, the normal's */
+  nonfinite[0].status = nonfinite[1].status = GLINT_OK;
   if (r->format == PLY_ASCII && ply_ascii_begin(r))
     return ply_truncated(r, e);
   for (size_t i = 0; i < el->prop_count && !st; i++) {
     const ply_property *p = &r->props[el->first_prop + i];
     if (!p->is_list) {
       if (p->role >= ROLE_X && p->role <= ROLE_NZ)
-        st = ply_number(r, p, &v[p->role - ROLE_X], e);
+        st = ply_number(r, p, &v[p->role - ROLE_X],
+                        &nonfinite[p->role >= ROLE_NX], e);
       else
         st = ply_skip(r, p, 1, e);
       continue;
@@ -398,6 +410,10 @@ static glint_status ply_element_body(ply_reader *r, glint_error *e) {
   if (st || el->kind != 1)
     return st;
   mesh_data *m = r->m;
+  if (nonfinite[0].status)
+    gli_mesh_nonfinite_vertex(m, m->npos, &nonfinite[0]);
+  if (nonfinite[1].status) /* zero: the face's normal shades there */
+    v[3] = v[4] = v[5] = 0;
   if (GLI_PUSH(m->pos, m->npos, m->pos_cap, ((glint_vec3){v[0], v[1], v[2]})))
     return gli_mesh_oom(r->path, e);
   if (m->vertex_normals &&
