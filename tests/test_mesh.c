@@ -550,8 +550,9 @@ static void ply_ascii_skips_what_it_does_not_use(void **state) {
  * integer coordinates, and normals without nz (so: flat). */
 static void ply_ascii_unusual_but_valid(void **state) {
   fixture *f = *state;
+  /* (a blank after the magic 'ply' was refused; other lines took one) */
   const char *p = write_text(f, "unusual.ply",
-                             "ply\r\nformat ascii 1.0\r\n"
+                             "ply \r\nformat ascii 1.0\r\n"
                              "element face 1\r\n"
                              "property list uint8 int32 vertex_indices\r\n"
                              "element vertex 3\r\n"

@@ -633,8 +633,8 @@ static glint_status ply_header(ply_reader *r, glint_error *e) {
     const char *nl = memchr(b, '\n', (size_t)(end - b));
     const char *le = nl ? nl : end;
     if (line == 1) { /* the magic number, before anything else is trusted */
-      const char *t = le;
-      if (t > b && t[-1] == '\r')
+      const char *t = le; /* trailing blanks and CR aside, as elsewhere */
+      while (t > b + 3 && (t[-1] == '\r' || t[-1] == ' ' || t[-1] == '\t'))
         t--;
       if (t - b != 3 || memcmp(b, "ply", 3) != 0)
         return gli_fail(e, GLINT_E_PARSE,
