@@ -568,6 +568,44 @@ static void ply_ascii_unusual_but_valid(void **state) {
   glint_scene_destroy(s);
 }
 
+/* The absolute area of the mesh's triangles. */
+static double mesh_area(const glint_scene *s) {
+  double sum = 0;
+  for (size_t i = 0; i < s->triangle_count; i++) {
+    const glint_vec3 *v = s->triangles[i].v;
+    double ux = v[1].x - v[0].x, uy = v[1].y - v[0].y;
+    double wx = v[2].x - v[0].x, wy = v[2].y - v[0].y;
+    sum += fabs(ux * wy - uy * wx) / 2;
+  }
+  return sum;
+}
+
+/* A concave face listed before the vertices (PLY allows any order) is cut
+ * by ears once they are read, as when it comes after them: it was cut as a
+ * fan, covering the notch of this L (area 5). */
+static void ply_faces_before_vertices(void **state) {
+  fixture *f = *state;
+  static const char *const bodies[] = {
+      "ply\nformat ascii 1.0\nelement face 1\n"
+      "property list uchar int vertex_indices\nelement vertex 6\n"
+      "property float x\nproperty float y\nproperty float z\nend_header\n"
+      "6 0 1 2 3 4 5\n3 -2 0\n1 -2 0\n1 0 0\n0 0 0\n0 -3 0\n3 -3 0\n",
+      "ply\nformat ascii 1.0\nelement vertex 6\n"
+      "property float x\nproperty float y\nproperty float z\n"
+      "element face 1\nproperty list uchar int vertex_indices\nend_header\n"
+      "3 -2 0\n1 -2 0\n1 0 0\n0 0 0\n0 -3 0\n3 -3 0\n6 0 1 2 3 4 5\n"};
+  for (int i = 0; i < 2; i++) {
+    glint_scene *s =
+        load(write_text(f, i ? "after.ply" : "before.ply", bodies[i]), 1,
+             (V){0, 0, 0});
+    assert_int_equal(s->triangle_count, 4);
+    if (fabs(mesh_area(s) - 5) > 1e-9)
+      fail_msg("%s: the triangles cover %g, not the L's 5",
+               i ? "after" : "before", mesh_area(s));
+    glint_scene_destroy(s);
+  }
+}
+
 /* A binary PLY body under construction, in either byte order. */
 typedef struct bin {
   unsigned char b[8192];
@@ -1399,6 +1437,7 @@ int main(int argc, char **argv) {
       cmocka_unit_test(gzip_damage_is_an_error),
       cmocka_unit_test(a_file_past_the_limit_is_refused_unread),
       cmocka_unit_test(nonfinite_vertices_no_face_uses),
+      cmocka_unit_test(ply_faces_before_vertices),
       cmocka_unit_test(packed_scene_needs_no_files),
       cmocka_unit_test(bad_arguments),
       cmocka_unit_test(real_meshes_shared),

@@ -82,8 +82,9 @@ int gli_mesh_emit_face(mesh_data *m, int obj, int with_normals) {
                       sizeof(tri3)))
     return -1;
   face_emit fe = {m, obj, with_normals};
-  /* Corners not read yet (a PLY whose faces come before its vertices)
-   * cannot be checked: a fan. */
+  /* Corners not read yet (a triangle of a PLY whose faces come before its
+   * vertices; larger faces wait for them, scene/formats/ply.c) or not
+   * finite (refused once the file is read) cannot be checked: a fan. */
   int known = n > 3;
   for (size_t i = 0; known && i < n; i++)
     known = m->corners[i].v < m->npos && finite_point(m->pos[m->corners[i].v]);

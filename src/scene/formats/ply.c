@@ -87,6 +87,12 @@ typedef struct ply_reader {
   size_t index;
   size_t vertex_count; /* declared: faces are checked against it */
   mesh_data *m;
+  /* Faces of more than 3 corners read before their vertices (a file may
+   * order its elements so): each its count, then its indices, cut into
+   * triangles once the vertices are read (ply_late_faces), as a concave
+   * one cannot be cut before. */
+  uint32_t *late;
+  size_t nlate, late_cap;
 } ply_reader;
 
 /* Where an error is: FILE:LINE for ASCII, FILE: vertex 12 for binary. */
@@ -292,6 +298,8 @@ static glint_status ply_skip(ply_reader *r, const ply_property *p, long long n,
 
 /* --- elements ------------------------------------------------------------ */
 
+static glint_status ply_emit(ply_reader *r, const char *where, glint_error *e);
+
 static glint_status ply_face(ply_reader *r, const ply_property *p, long long n,
                              glint_error *e) {
   char w[1100];
@@ -328,15 +336,49 @@ static glint_status ply_face(ply_reader *r, const ply_property *p, long long n,
                       r->vertex_count == 1 ? "is" : "are");
     m->corners[k] = (corner){(uint32_t)v, MESH_NO_INDEX};
   }
-  switch (gli_mesh_emit_face(m, 0, 0)) {
+  int read = 1;
+  for (long long k = 0; k < n && read; k++)
+    read = m->corners[k].v < m->npos;
+  if (n > 3 && !read) {
+    if (gli_grow((void **)&r->late, &r->late_cap, r->nlate + 1 + (size_t)n,
+                 sizeof *r->late))
+      return gli_mesh_oom(r->path, e);
+    r->late[r->nlate++] = (uint32_t)n;
+    for (long long k = 0; k < n; k++)
+      r->late[r->nlate++] = m->corners[k].v;
+    return GLINT_OK;
+  }
+  return ply_emit(r, ply_where(r, w, sizeof w), e);
+}
+
+/* The triangles of the face in m->corners; `where` names it in errors. */
+static glint_status ply_emit(ply_reader *r, const char *where, glint_error *e) {
+  switch (gli_mesh_emit_face(r->m, 0, 0)) {
   case 0: return GLINT_OK;
   case GLI_TRIANGULATE_TOO_COMPLEX:
     return gli_fail(e, GLINT_E_PARSE,
                     "%s: the face of %zu vertices has too many inward "
                     "corners to triangulate (" GLI_EAR_LIMIT_TEXT ")",
-                    ply_where(r, w, sizeof w), m->ncorners);
+                    where, r->m->ncorners);
   default: return gli_mesh_oom(r->path, e);
   }
+}
+
+/* The faces read before their vertices (ply_reader.late), now. */
+static glint_status ply_late_faces(ply_reader *r, glint_error *e) {
+  mesh_data *m = r->m;
+  char where[1100];
+  snprintf(where, sizeof where, "%s: a face listed before the vertices",
+           r->path);
+  for (size_t i = 0; i < r->nlate; i += 1 + r->late[i]) {
+    m->ncorners = r->late[i];
+    for (size_t k = 0; k < m->ncorners; k++)
+      m->corners[k] = (corner){r->late[i + 1 + k], MESH_NO_INDEX};
+    glint_status st = ply_emit(r, where, e);
+    if (st)
+      return st;
+  }
+  return GLINT_OK;
 }
 
 /* ASCII: moves to the next non-blank line; 1 at the end of the file. */
@@ -744,6 +786,8 @@ glint_status gli_ply_parse(const char *path, const char *data, size_t size,
   glint_status st = ply_header(&r, e);
   for (size_t i = 0; i < r.nelements && !st; i++)
     st = ply_read_element(&r, &r.elements[i], e);
+  if (!st)
+    st = ply_late_faces(&r, e);
   if (!st && r.format == PLY_ASCII && !ply_ascii_begin(&r)) {
     char q[48];
     size_t len;
@@ -761,5 +805,6 @@ glint_status gli_ply_parse(const char *path, const char *data, size_t size,
                   path);
   free(r.elements);
   free(r.props);
+  free(r.late);
   return st;
 }
