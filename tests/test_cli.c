@@ -48,6 +48,24 @@ static void slurp(const char *path, char *buf, size_t size) {
 
 /* Runs glint with the given arguments (NULL-terminated) in the test folder;
  * returns the exit status and fills out/err. */
+/* Starts glint with argv and envp, its standard output to out_path
+ * (opened to write; created when missing) and standard error to err_path
+ * (created or emptied); returns its pid. */
+static pid_t spawn_glint(char *const argv[], char *const envp[],
+                         const char *out_path, const char *err_path) {
+  posix_spawn_file_actions_t fa;
+  posix_spawn_file_actions_init(&fa);
+  posix_spawn_file_actions_addopen(&fa, 1, out_path, O_WRONLY | O_CREAT, 0644);
+  posix_spawn_file_actions_addopen(&fa, 2, err_path,
+                                   O_WRONLY | O_CREAT | O_TRUNC, 0644);
+  pid_t pid;
+  int rc = posix_spawn(&pid, GLINT_EXE, &fa, NULL, argv, envp);
+  posix_spawn_file_actions_destroy(&fa);
+  if (rc != 0)
+    fail_msg("cannot run %s", GLINT_EXE);
+  return pid;
+}
+
 static int run(const char *first, ...) {
   const char *argv[64] = {GLINT_EXE};
   int n = 1;
@@ -723,16 +741,8 @@ static void a_full_standard_output_is_an_error(void **state) {
                                {"glint", "--version", NULL},
                                {"glint", "render", "--help", NULL}};
   for (size_t i = 0; i < sizeof commands / sizeof *commands; i++) {
-    posix_spawn_file_actions_t fa;
-    posix_spawn_file_actions_init(&fa);
-    posix_spawn_file_actions_addopen(&fa, 1, "/dev/full", O_WRONLY, 0);
-    posix_spawn_file_actions_addopen(&fa, 2, err_path,
-                                     O_WRONLY | O_CREAT | O_TRUNC, 0644);
-    pid_t pid;
-    assert_int_equal(posix_spawn(&pid, GLINT_EXE, &fa, NULL,
-                                 (char *const *)commands[i], environ),
-                     0);
-    posix_spawn_file_actions_destroy(&fa);
+    pid_t pid =
+        spawn_glint((char *const *)commands[i], environ, "/dev/full", err_path);
     int status;
     assert_int_equal(waitpid(pid, &status, 0), pid);
     char text[4096];
@@ -1385,14 +1395,7 @@ static void interrupted_time_to_image_leaves_nothing(void **state) {
                   "255",      "-s",       "16",
                   "-t",       "1",        NULL};
   char *envp[] = {env_tmp, NULL};
-  posix_spawn_file_actions_t fa;
-  posix_spawn_file_actions_init(&fa);
-  posix_spawn_file_actions_addopen(&fa, 1, "/dev/null", O_WRONLY, 0);
-  posix_spawn_file_actions_addopen(&fa, 2, err_path,
-                                   O_WRONLY | O_CREAT | O_TRUNC, 0644);
-  pid_t pid;
-  assert_int_equal(posix_spawn(&pid, GLINT_EXE, &fa, NULL, argv, envp), 0);
-  posix_spawn_file_actions_destroy(&fa);
+  pid_t pid = spawn_glint(argv, envp, "/dev/null", err_path);
   usleep(500 * 1000); /* minutes from the end of 255 runs at 16 spp */
   kill(pid, SIGINT);
   int status;
