@@ -229,8 +229,12 @@ void glint_scene_get_info(const glint_scene *scene, glint_scene_info *info);
 
 /* Frames first_frame..last_frame at fps frames a second: frame f shows the
  * scene at time (f - first_frame) / fps seconds. Frame numbers are
- * 0..GLINT_MAX_FRAME (eight digits in a file name). */
+ * 0..GLINT_MAX_FRAME (eight digits in a file name), fps GLINT_MIN_FPS..
+ * GLINT_MAX_FPS (so that every frame's time is finite: at 5e-324 frames
+ * a second, frame 1 was at an infinite time). */
 #define GLINT_MAX_FRAME 99999999
+#define GLINT_MIN_FPS 1e-6
+#define GLINT_MAX_FPS 1e6
 typedef struct glint_animation {
   double fps;
   int first_frame, last_frame;

@@ -163,7 +163,7 @@ static void world_keeps_the_animation(void **state) {
   glint_animation fast = {1e300, 0, 2};
   assert_int_equal(glint_scene_set_animation(s, &fast, &e), GLINT_E_ARGUMENT);
   assert_non_null(strstr(e.message, "fps 1e+300 is not a number of frames a "
-                                    "second from above 0 to 1e6"));
+                                    "second from 1e-06 to 1e+06"));
   ASSERT_OK(glint_scene_set_camera_orbit(s, keys[0].camera.at, 2, 0, 360, &e_));
   glint_camera c;
   assert_int_equal(glint_scene_camera_at(s, 0, &c, &e), GLINT_E_ARGUMENT);
@@ -355,10 +355,13 @@ static void json_mistakes_are_named(void **state) {
   (void)state;
   static const bad_case cases[] = {
       {"{\"animation\": {\"fps\": 0, \"frames\": [0, 1]}}",
-       "anim.json: animation.fps: fps 0 is not in (0, 1e6]"},
+       "anim.json: animation.fps: fps 0 is outside 1e-06..1e+06"},
       /* shown with the digits that put it past 1e6 (it read 1e+06) */
       {"{\"animation\": {\"fps\": 1.000001e6, \"frames\": [0, 1]}}",
-       "animation.fps: fps 1000001 is not in (0, 1e6]"},
+       "animation.fps: fps 1000001 is outside 1e-06..1e+06"},
+      /* frame 1 of it was at an infinite time */
+      {"{\"animation\": {\"fps\": 5e-324, \"frames\": [0, 2]}}",
+       "animation.fps: fps 4.94065646e-324 is outside 1e-06..1e+06"},
       {"{\"animation\": {\"fps\": 24}}", "animation: missing \"frames\""},
       {"{\"animation\": {\"frames\": [5, 2]}}",
        "animation.frames: the last frame 2 comes before the first 5"},

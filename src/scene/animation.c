@@ -153,11 +153,11 @@ glint_status glint_scene_set_animation(glint_scene *s, const glint_animation *a,
                                        glint_error *error) {
   GLI_NOT_NULL(s, "scene", error);
   GLI_NOT_NULL(a, "animation", error);
-  if (!(a->fps > 0 && a->fps <= 1e6))
+  if (!(a->fps >= GLINT_MIN_FPS && a->fps <= GLINT_MAX_FPS))
     return gli_fail(error, GLINT_E_ARGUMENT,
                     "animation: fps %g is not a number of frames a second "
-                    "from above 0 to 1e6",
-                    a->fps);
+                    "from %g to %g",
+                    a->fps, GLINT_MIN_FPS, GLINT_MAX_FPS);
   if (a->first_frame < 0 || a->last_frame < a->first_frame ||
       a->last_frame > GLINT_MAX_FRAME)
     return gli_fail(error, GLINT_E_ARGUMENT,

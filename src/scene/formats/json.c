@@ -874,9 +874,10 @@ static glint_status read_animation(json_reader *r, const cJSON *v) {
   if ((st = expect_object(r, v)) || (st = check_fields(r, v, fields)) ||
       (st = number_field(r, v, "fps", 0, &a.fps)))
     return st;
-  if (!(a.fps > 0) || a.fps > 1e6) {
+  if (!(a.fps >= GLINT_MIN_FPS && a.fps <= GLINT_MAX_FPS)) {
     path_key(r, "fps");
-    return fail(r, GLINT_E_PARSE, "fps %.9g is not in (0, 1e6]", a.fps);
+    return fail(r, GLINT_E_PARSE, "fps %.9g is outside %g..%g", a.fps,
+                GLINT_MIN_FPS, GLINT_MAX_FPS);
   }
   const cJSON *frames = cJSON_GetObjectItemCaseSensitive(v, "frames");
   if (!frames)
