@@ -12,7 +12,7 @@ FUZZ_SMOKE_SECONDS ?= 10
 FUZZ_SECONDS ?= 3600
 
 .PHONY: render test test-unit test-asan fuzz fuzz-smoke build deps peers \
-        clean format install
+        clean format install uninstall
 
 render: build
 	@./$(BUILD)/glint render whitted -o whitted.png
@@ -66,6 +66,12 @@ deps:
 # Headers, libraries, the program, glint.pc, the CMake package, man pages.
 install: build
 	cmake --install $(BUILD) --prefix $(PREFIX)
+
+# What install put in place, as its manifest lists it.
+uninstall:
+	@test -f $(BUILD)/install_manifest.txt || \
+	  { echo "uninstall: no $(BUILD)/install_manifest.txt (nothing installed from this build)" >&2; exit 1; }
+	xargs -d '\n' rm -f -- <$(BUILD)/install_manifest.txt
 
 # Optional: Tachyon, Embree 3 and assimp for glint bench's comparisons.
 peers:
