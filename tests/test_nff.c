@@ -135,10 +135,17 @@ static void malformed_files(void **state) {
               "resolution 64 48\n",
               GLINT_E_PARSE,
               "angle.nff:5: view angle 180 is not between 0 and 180");
-  EXPECT_FAIL(
-      "trunc.nff", VIEW "f 1 1 1 1 0 1 0 1\np 4\n0 0 0\n1 0 0\n1 1 0\n",
-      GLINT_E_PARSE,
-      "the file ends where a polygon vertex was expected (vertex 4 of 4");
+  /* at the last line (it said the line after it, which is not there) */
+  EXPECT_FAIL("trunc.nff", VIEW "f 1 1 1 1 0 1 0 1\np 4\n0 0 0\n1 0 0\n1 1 0\n",
+              GLINT_E_PARSE,
+              "trunc.nff:12: the file ends where a polygon vertex was expected "
+              "(vertex 4 of 4");
+  EXPECT_FAIL("res-eof.nff",
+              "v\nfrom 0 0 10\nat 0 0 0\nup 0 1 0\nangle 45\nhither 1\n"
+              "resolution 64\n",
+              GLINT_E_PARSE,
+              "res-eof.nff:7: the file ends where the vertical resolution was "
+              "expected");
   EXPECT_FAIL("count.nff", VIEW "f 1 1 1 1 0 1 0 1\np 2\n0 0 0\n1 0 0\n",
               GLINT_E_PARSE, "count.nff:9: the vertex count is 2, outside 3..");
   EXPECT_FAIL("nomat.nff", VIEW "s 0 0 0 1\n", GLINT_E_PARSE,
@@ -150,8 +157,8 @@ static void malformed_files(void **state) {
               "1\nresolution 0 10\n",
               GLINT_E_PARSE, "res.nff:7: the horizontal resolution is 0");
   EXPECT_FAIL("field.nff", VIEW "f 1 1 1 1 0 1 0\n", GLINT_E_PARSE,
-              "the file ends where the material's the index of refraction was "
-              "expected");
+              "field.nff:8: the file ends where the material's index of "
+              "refraction was expected");
   EXPECT_FAIL("radius.nff", VIEW "f 1 1 1 1 0 1 0 1\ns 0 0 0 0\n",
               GLINT_E_PARSE, "radius.nff:9: sphere: radius 0 must be > 0");
   EXPECT_FAIL("cone.nff", VIEW "f 1 1 1 1 0 1 0 1\nc\n0 0 0 1\n0 1 0 -1\n",

@@ -133,11 +133,12 @@ int gli_text_more_on_line(text_file *t) {
 glint_status gli_text_number(text_file *t, const char *what, double *out,
                              glint_error *error) {
   size_t len;
+  int last = t->token_line; /* the line that ends too soon, at the end */
   const char *tok = gli_text_span(t, &len);
   if (!tok)
     return gli_fail(error, GLINT_E_PARSE,
                     "%s:%d: the file ends where %s was expected", t->path,
-                    t->line, what);
+                    last > 0 ? last : t->line, what);
   int r = gli_number_parse(tok, len, out);
   if (r == NUMBER_OK)
     return GLINT_OK;
@@ -165,11 +166,12 @@ glint_status gli_text_vec3(text_file *t, const char *what, glint_vec3 *out,
 glint_status gli_text_int(text_file *t, const char *what, long min, long max,
                           long *out, glint_error *error) {
   size_t len;
+  int last = t->token_line; /* as in gli_text_number */
   const char *span = gli_text_span(t, &len);
   if (!span)
     return gli_fail(error, GLINT_E_PARSE,
                     "%s:%d: the file ends where %s was expected", t->path,
-                    t->line, what);
+                    last > 0 ? last : t->line, what);
   char buf[48];
   const char *tok = buf;
   if (len > 40) { /* no whole number a scene needs is this long */

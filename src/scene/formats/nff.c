@@ -135,9 +135,8 @@ static glint_status read_light(nff_reader *r, glint_error *e) {
 
 static glint_status read_material(nff_reader *r, glint_error *e) {
   int line = r->t.token_line;
-  static const char *names[8] = {
-      "red", "green", "blue", "Kd",
-      "Ks",  "Shine", "T",    "the index of refraction"};
+  static const char *names[8] = {"red", "green", "blue", "Kd",
+                                 "Ks",  "Shine", "T",    "index of refraction"};
   double v[8];
   for (int i = 0; i < 8; i++) {
     char what[64];
