@@ -416,8 +416,8 @@ static void json_mistakes_are_named(void **state) {
       {"{\"materials\": {\"m\": {}}, \"objects\": [{\"type\": \"sphere\", "
        "\"center\": [0, 0, 0], \"radius\": 1, \"material\": \"m\", "
        "\"transform\": {\"keys\": [{\"time\": 0}], \"rotate\": [1, 0, 0]}}]}",
-       "objects[0].transform: unknown field \"rotate\" (known: keys, "
-       "interpolation)"},
+       "objects[0].transform.rotate: a transform with \"keys\" has its "
+       "rotate in each key, not beside them"},
       {"{\"materials\": {\"m\": {}}, \"objects\": [{\"type\": \"sphere\", "
        "\"center\": [1e14, 0, 0], \"radius\": 1, \"material\": \"m\", "
        "\"transform\": {\"scale\": 100}}]}",

@@ -685,6 +685,15 @@ static glint_status read_transform(json_reader *r, const cJSON *v) {
     return GLINT_OK;
   }
   static const char *const fields[] = {"keys", "interpolation", NULL};
+  static const char *const still[] = {"translate", "rotate", "scale", "pivot"};
+  for (size_t i = 0; i < sizeof still / sizeof *still; i++)
+    if (cJSON_GetObjectItemCaseSensitive(v, still[i])) {
+      path_key(r, still[i]);
+      return fail(r, GLINT_E_PARSE,
+                  "a transform with \"keys\" has its %s in each key, not "
+                  "beside them",
+                  still[i]);
+    }
   glint_interpolation how = GLINT_INTERPOLATE_LINEAR;
   if ((st = check_fields(r, v, fields)) ||
       (st = read_interpolation(r, v, &how)))
