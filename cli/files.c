@@ -51,6 +51,10 @@ int replace_begin(file_replacement *r, const char *path) {
     sigprocmask(SIG_SETMASK, &r->signals, NULL);
     return saved;
   }
+  /* A file replaced keeps its permissions, as the images' writer keeps
+   * them (a new one has 0666 less the umask). */
+  if (stat(r->path, &sb) == 0 && S_ISREG(sb.st_mode))
+    (void)fchmod(r->fd, sb.st_mode & 07777);
   return 0;
 }
 

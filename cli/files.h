@@ -26,7 +26,8 @@ typedef struct file_replacement {
 } file_replacement;
 
 /* Starts replacing `path` (through a link, the file it names: renamed over,
- * the link itself would be replaced). Stop signals (SIGINT, SIGTERM,
+ * the link itself would be replaced), keeping an existing file's
+ * permissions. Stop signals (SIGINT, SIGTERM,
  * SIGHUP) wait from here until replace_end. Returns 0, or an errno value
  * (with nothing to end). */
 int replace_begin(file_replacement *r, const char *path);

@@ -221,6 +221,14 @@ copy_refused "copy missing.json kept.json" \
 cmp -s kept.json good.json || fail "copy from a missing file changed its destination"
 copy_refused "copy missing.json made.json" "cannot copy missing.json to made.json"
 [ ! -e made.json ] || fail "copy from a missing file made its destination"
+# A copy over a file keeps that file's permissions, as fopen's did.
+cp good.json moded.json
+chmod 600 moded.json
+printf 'copy scene.json moded.json\nquit\n' >copy.txt
+timeout 20 "$glint" view scene.json --script copy.txt >out.txt 2>err.txt ||
+  fail "copy over a file: $(cat err.txt)"
+[ "$(stat -c %a moded.json)" = 600 ] || fail "copy over a file changed its mode"
+cmp -s moded.json scene.json || fail "copy over a file: not copied"
 ls -a | grep -q '\.tmp$' && fail "a copy left a temporary file: $(ls -a | grep '\.tmp$')"
 # A window resized past the memory there is: exit status 1 (out of memory,
 # as glint --help says), not 2. (Not under AddressSanitizer, which cannot
