@@ -27,9 +27,8 @@ typedef struct file_replacement {
 
 /* Starts replacing `path` (through a link, the file it names: renamed over,
  * the link itself would be replaced), keeping an existing file's
- * permissions. Stop signals (SIGINT, SIGTERM,
- * SIGHUP) wait from here until replace_end. Returns 0, or an errno value
- * (with nothing to end). */
+ * permissions. Stop signals (SIGINT, SIGTERM, SIGHUP) wait from here until
+ * replace_end. Returns 0, or an errno value (with nothing to end). */
 int replace_begin(file_replacement *r, const char *path);
 /* Appends `size` bytes; returns 0 or an errno value. */
 int replace_write(file_replacement *r, const void *data, size_t size);

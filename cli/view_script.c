@@ -159,7 +159,6 @@ static int parse_line(view_script *s, char *text, int line, command *c) {
           ? 1
           : want;
   for (int i = first_number; i < want; i++) {
-    errno = 0;
     double x = strtod(word[i], &end);
     if (*end || end == word[i] || isnan(x))
       return script_error(s, line, "not a number:", word[i]);

@@ -130,15 +130,23 @@ int gli_text_more_on_line(text_file *t) {
   return *t->pos && !at_line_end(t->pos);
 }
 
+/* The file ended where `what` was expected: said at the line of the last
+ * token, `last` (the statement that ends too soon), not the line after the
+ * file's last one. */
+static glint_status file_ends(const text_file *t, int last, const char *what,
+                              glint_error *error) {
+  return gli_fail(error, GLINT_E_PARSE,
+                  "%s:%d: the file ends where %s was expected", t->path,
+                  last > 0 ? last : t->line, what);
+}
+
 glint_status gli_text_number(text_file *t, const char *what, double *out,
                              glint_error *error) {
   size_t len;
-  int last = t->token_line; /* the line that ends too soon, at the end */
+  int last = t->token_line;
   const char *tok = gli_text_span(t, &len);
   if (!tok)
-    return gli_fail(error, GLINT_E_PARSE,
-                    "%s:%d: the file ends where %s was expected", t->path,
-                    last > 0 ? last : t->line, what);
+    return file_ends(t, last, what, error);
   int r = gli_number_parse(tok, len, out);
   if (r == NUMBER_OK)
     return GLINT_OK;
@@ -166,12 +174,10 @@ glint_status gli_text_vec3(text_file *t, const char *what, glint_vec3 *out,
 glint_status gli_text_int(text_file *t, const char *what, long min, long max,
                           long *out, glint_error *error) {
   size_t len;
-  int last = t->token_line; /* as in gli_text_number */
+  int last = t->token_line;
   const char *span = gli_text_span(t, &len);
   if (!span)
-    return gli_fail(error, GLINT_E_PARSE,
-                    "%s:%d: the file ends where %s was expected", t->path,
-                    last > 0 ? last : t->line, what);
+    return file_ends(t, last, what, error);
   char buf[48];
   const char *tok = buf;
   if (len > 40) { /* no whole number a scene needs is this long */

@@ -636,10 +636,12 @@ static glint_status read_keys(json_reader *r, const cJSON *keys, size_t size,
 
 /* A transform's members (all optional) into *t, which holds the defaults;
  * `time` as well when it is a key. */
+/* The fields of a still transform (each key of a moving one has them too). */
+static const char *const still_fields[] = {"translate", "rotate", "scale",
+                                           "pivot", NULL};
+
 static glint_status read_transform_fields(json_reader *r, const cJSON *v,
                                           int key, glint_transform_key *k) {
-  static const char *const still_fields[] = {"translate", "rotate", "scale",
-                                             "pivot", NULL};
   static const char *const key_fields[] = {"time",  "translate", "rotate",
                                            "scale", "pivot",     NULL};
   glint_transform *t = &k->transform;
@@ -685,14 +687,13 @@ static glint_status read_transform(json_reader *r, const cJSON *v) {
     return GLINT_OK;
   }
   static const char *const fields[] = {"keys", "interpolation", NULL};
-  static const char *const still[] = {"translate", "rotate", "scale", "pivot"};
-  for (size_t i = 0; i < sizeof still / sizeof *still; i++)
-    if (cJSON_GetObjectItemCaseSensitive(v, still[i])) {
-      path_key(r, still[i]);
+  for (size_t i = 0; still_fields[i]; i++)
+    if (cJSON_GetObjectItemCaseSensitive(v, still_fields[i])) {
+      path_key(r, still_fields[i]);
       return fail(r, GLINT_E_PARSE,
                   "a transform with \"keys\" has its %s in each key, not "
                   "beside them",
-                  still[i]);
+                  still_fields[i]);
     }
   glint_interpolation how = GLINT_INTERPOLATE_LINEAR;
   if ((st = check_fields(r, v, fields)) ||
