@@ -173,6 +173,108 @@ static void renders_equal(void **state) {
   }
 }
 
+/* A scene of GLI_BVH_PACKET_CUT_PRIMS primitives and more (random small
+ * triangles, spheres and cones): the packets walk a cut of the binary tree
+ * (accel/bvh.c, cut_costs), which must hold every primitive once in leaves
+ * of at most 16 whose boxes hold them, be smaller than the binary tree,
+ * and find the nearest hits brute force finds, for every packet width and
+ * walk (the hybrid hands its lanes the wide tree at the packet tree's
+ * nodes). */
+static void large_scene_packet_tree(void **state) {
+  (void)state;
+  glint_scene *g;
+  ASSERT_OK(glint_scene_create(&g, &e_));
+  glint_material mat;
+  glint_material_default(&mat);
+  uint32_t m;
+  ASSERT_OK(glint_scene_add_material(g, &mat, &m, &e_));
+  unsigned long long seed = 7;
+  for (int i = 0; i < GLI_BVH_PACKET_CUT_PRIMS + 2000; i++) {
+    glint_vec3 c = {100 * uniform(&seed), 100 * uniform(&seed),
+                    100 * uniform(&seed)};
+    if (i % 3 == 0) {
+      ASSERT_OK(glint_scene_add_sphere(g, c, 0.3 * uniform(&seed), m, &e_));
+    } else if (i % 7 == 1) {
+      glint_vec3 a = {c.x + uniform(&seed), c.y + uniform(&seed), c.z + 1};
+      ASSERT_OK(glint_scene_add_cone(g, c, 0.1, a, 0.05, m, &e_));
+    } else {
+      glint_vec3 b = {c.x + uniform(&seed), c.y, c.z + uniform(&seed)};
+      glint_vec3 d = {c.x, c.y + uniform(&seed), c.z + uniform(&seed)};
+      ASSERT_OK(glint_scene_add_triangle(g, c, b, d, m, &e_));
+    }
+  }
+  glint_scene_info info;
+  glint_scene_get_info(g, &info);
+  test_view vb;
+  const scene_r *fb =
+      test_view_open(g, DATA_SCALAR_FLOAT, GLINT_ACCEL_BVH, &vb);
+  const gli_bvh *b = fb->bvh;
+  assert_true(b->packet_nodes != b->nodes);
+  assert_true(b->packet_node_count > 1 && b->packet_node_count < b->node_count);
+  char *seen = calloc(b->ref_count, 1);
+  for (uint32_t i = 0; i < b->packet_node_count; i++) {
+    const gli_bvh_node *n = &b->packet_nodes[i];
+    if (n->count) {
+      assert_true(n->count <= 16 && n->offset + n->count <= b->ref_count);
+      for (uint32_t k = n->offset; k < n->offset + n->count; k++) {
+        float lo[3], hi[3];
+        gli_bvh_ref_box(g, b->refs[k], lo, hi);
+        assert_true(holds(n->lo, n->hi, lo, hi));
+        assert_false(seen[k]);
+        seen[k] = 1;
+      }
+      continue;
+    }
+    assert_true(n->offset > i && n->offset + 1 < b->packet_node_count);
+    assert_int_equal((uintptr_t)&b->packet_nodes[n->offset] % 64, 0);
+    for (uint32_t c = n->offset; c < n->offset + 2; c++)
+      assert_true(
+          holds(n->lo, n->hi, b->packet_nodes[c].lo, b->packet_nodes[c].hi));
+  }
+  for (uint32_t k = 0; k < b->ref_count; k++)
+    assert_true(seen[k]);
+  free(seen);
+  test_view_close(&vb);
+
+  int ties = 0;
+  static const glint_accel walks[2] = {GLINT_ACCEL_BVH, GLINT_ACCEL_BVH2};
+  for (size_t k = 0; k < sizeof packets / sizeof *packets; k++) {
+    if (backend_missing(packets[k].backend))
+      continue;
+    data_kind kind = gli_backend_ops_of(packets[k].backend)->data;
+    for (int wi = 0; wi < 2; wi++) {
+      test_view pvb, pvn;
+      void *pb = test_view_open(g, kind, walks[wi], &pvb);
+      void *pn = test_view_open(g, kind, GLINT_ACCEL_NONE, &pvn);
+      int w = packets[k].width;
+      char what[64];
+      snprintf(what, sizeof what, "%s --accel %s",
+               glint_backend_name(packets[k].backend),
+               glint_accel_name(walks[wi]));
+      for (int base = 0; base < 1024; base += w) {
+        float o[3 * 16], d[3 * 16], ta[16], tb[16];
+        int oa[16], ob[16], bits = 0;
+        for (int i = 0; i < w; i++) {
+          float oo[3], dd[3];
+          make_ray(&info, &seed, oo, dd);
+          for (int c = 0; c < 3; c++)
+            o[c * w + i] = oo[c], d[c * w + i] = dd[c];
+          bits |= (uniform(&seed) < 0.9) << i;
+        }
+        packets[k].nearest(pb, o, d, bits, ta, oa);
+        packets[k].nearest(pn, o, d, bits, tb, ob);
+        for (int i = 0; i < w; i++)
+          if (bits >> i & 1)
+            compare("large scene", what, oa[i], ta[i], ob[i], tb[i], &ties);
+      }
+      test_view_close(&pvb);
+      test_view_close(&pvn);
+    }
+  }
+  assert_true(ties < 8);
+  glint_scene_destroy(g);
+}
+
 /* Every inner node of `b` comes before its children and holds their boxes,
  * its two children share a cache line (accel/bvh.c, nodes_alloc), and
  * every primitive is referenced once. */
@@ -282,6 +384,7 @@ int main(int argc, char **argv) {
       {"renders_equal", renders_equal, NULL, NULL, (void *)&own},
       {"refit_follows_moved_objects", refit_follows_moved_objects, NULL, NULL,
        NULL},
+      {"large_scene_packet_tree", large_scene_packet_tree, NULL, NULL, NULL},
       {"nearest_hits_equal_brute_force_shared", nearest_hits_equal_brute_force,
        NULL, NULL, (void *)&spd},
       {"renders_equal_shared", renders_equal, NULL, NULL, (void *)&spd},

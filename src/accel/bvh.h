@@ -35,6 +35,8 @@ typedef struct gli_bvh_node {
 
 #define GLI_BVH_MAX_DEPTH 64 /* traversal stacks are this deep */
 #define GLI_BVH_MIN_PRIMS 16 /* fewer bounded primitives: no hierarchy */
+/* As many or more: the packets walk a cut of the tree (bvh.c, cut_costs). */
+#define GLI_BVH_PACKET_CUT_PRIMS 40000
 
 typedef struct gli_bvh {
   /* The same tree collapsed for single rays (accel/wide_bvh.h); built with
@@ -42,6 +44,13 @@ typedef struct gli_bvh {
   gli_wide_bvh wide;
   gli_bvh_node *nodes;
   uint32_t node_count;
+  /* The tree the packet walks take (accel/packet_traverse.h): `nodes`
+   * itself, or in a large scene the same tree with the subtrees that
+   * packets test faster as one leaf cut into one (bvh.c, cut_costs); and
+   * per packet node, wide.of_binary of the binary node it copies. */
+  gli_bvh_node *packet_nodes;
+  uint32_t *packet_wide;
+  uint32_t packet_node_count;
   uint32_t *refs;
   uint32_t ref_count;
   int depth;
@@ -73,8 +82,8 @@ glint_status gli_bvh_refit(const gli_bvh *from, const glint_scene *scene,
 void gli_bvh_ref_box(const glint_scene *scene, uint32_t ref, float lo[3],
                      float hi[3]);
 
-/* Bytes the built binary hierarchy occupies (nodes and references; the
- * wide one: gli_wide_bytes). */
+/* Bytes the built binary hierarchy occupies (nodes and references, and
+ * the packets' cut of it where it has one; the wide one: gli_wide_bytes). */
 uint64_t gli_bvh_bytes(const gli_bvh *bvh);
 
 #endif

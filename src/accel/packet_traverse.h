@@ -6,7 +6,8 @@
  *
  * Both walks are hybrid (Benthin, Wald, Woop, Ernst and Mark 2012,
  * "Combining single and packet-ray tracing for arbitrary ray distributions
- * on the Intel MIC architecture"): a packet walks the binary tree while
+ * on the Intel MIC architecture"): a packet walks the binary tree (its
+ * packets' cut, gli_bvh.packet_nodes) while
  * enough of its lanes stay together; where at most `alone` lanes enter a
  * node that has a wide counterpart (accel/wide_bvh.h), the caller's subtree
  * function walks that subtree with each of them alone, through the wide
@@ -195,7 +196,7 @@ typedef void (*packet_prefetch_fn)(void *ctx, const uint32_t *refs,
 /* Walks the subtree at wide node `wide` with each lane of m alone. */
 typedef void (*packet_alone_fn)(void *ctx, uint32_t wide, vmask m);
 
-/* The wide node that can take over at binary inner node `node` from the
+/* The wide node that can take over at packet inner node `node` from the
  * lanes of m, or GLI_WIDE_NONE. The node's flag is tested first: the lane
  * count is a branch no predictor guesses, which cost gears-s4 (no
  * hand-over points) 5% when it came first. alone = 0: never (a constant
@@ -205,7 +206,7 @@ static ALWAYS_INLINE uint32_t hand_over(const gli_bvh *bvh,
                                         vmask m, int alone) {
   if (!alone || !(n->flags & GLI_NODE_HAND_OVER) || vm_count(m) > alone)
     return GLI_WIDE_NONE;
-  return bvh->wide.of_binary[node];
+  return bvh->packet_wide[node];
 }
 
 /* The closest-hit walk, depth first: the child the packet's direction meets
@@ -227,7 +228,7 @@ packet_bvh_closest(const gli_bvh *bvh, const packet_origin *po, vvec3 d,
   test_count prims = {0, 0};
   while (sp > 0) {
     uint32_t node = stack[--sp];
-    const gli_bvh_node *n = &bvh->nodes[node];
+    const gli_bvh_node *n = &bvh->packet_nodes[node];
     if (n->count)
       prefetch(ctx, bvh->refs + n->offset, n->count);
     vmask m = packet_box(n, &r, tmin, *tmax, active);
@@ -269,7 +270,7 @@ packet_bvh_segment(const gli_bvh *bvh, const packet_origin *po, vvec3 d,
   test_count boxes = {0, 0}, prims = {0, 0};
   while (sp > 0 && vm_any(*alive)) {
     uint32_t node = stack[--sp];
-    const gli_bvh_node *n = &bvh->nodes[node];
+    const gli_bvh_node *n = &bvh->packet_nodes[node];
     vmask m = packet_box(n, &r, tmin, tmax, *alive);
     add_tests(&boxes, 1, vm_count(*alive));
     if (vm_none(m))
