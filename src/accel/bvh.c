@@ -332,6 +332,12 @@ by_count:
   return mid;
 }
 
+/* The box4 of a node's box. */
+static box4 node_box(const gli_bvh_node *n) {
+  return (box4){_mm_setr_ps(n->lo[0], n->lo[1], n->lo[2], 0),
+                _mm_setr_ps(n->hi[0], n->hi[1], n->hi[2], 0)};
+}
+
 /* Expected node visits and primitive tests of a ray through the tree
  * (every node's area over the root's; leaves count their primitives). */
 static double sah_cost(const gli_bvh *bvh) {
@@ -340,24 +346,28 @@ static double sah_cost(const gli_bvh *bvh) {
   double total = 0;
   for (uint32_t i = 0; i < bvh->node_count; i++) {
     const gli_bvh_node *n = &bvh->nodes[i];
-    box4 b = {_mm_setr_ps(n->lo[0], n->lo[1], n->lo[2], 0),
-              _mm_setr_ps(n->hi[0], n->hi[1], n->hi[2], 0)};
-    total += (double)box4_area(b) * (n->count ? n->count : 1);
+    total += (double)box4_area(node_box(n)) * (n->count ? n->count : 1);
   }
-  const gli_bvh_node *root = &bvh->nodes[0];
-  double area =
-      box4_area((box4){_mm_setr_ps(root->lo[0], root->lo[1], root->lo[2], 0),
-                       _mm_setr_ps(root->hi[0], root->hi[1], root->hi[2], 0)});
+  double area = box4_area(node_box(&bvh->nodes[0]));
   return area > 0 ? total / area : 0;
 }
 
-static gli_bvh_node *nodes_alloc(size_t count);
-static void nodes_free(gli_bvh_node *nodes);
+/* The node array starts half a cache line in, so that the sibling pairs
+ * that follow the root, (1, 2), (3, 4), ..., each fill one line: a packet
+ * tests both children of most nodes it enters, and a pair straddling two
+ * lines was two misses (the 200k-triangle dragon's primary rays: the
+ * loads of a node's box were the walk's costliest instructions). */
+_Static_assert(2 * sizeof(gli_bvh_node) == GLI_ALIGN,
+               "a sibling pair of BVH nodes fills one cache line");
 
-/* The box4 of a node's box. */
-static box4 node_box(const gli_bvh_node *n) {
-  return (box4){_mm_setr_ps(n->lo[0], n->lo[1], n->lo[2], 0),
-                _mm_setr_ps(n->hi[0], n->hi[1], n->hi[2], 0)};
+static gli_bvh_node *nodes_alloc(size_t count) {
+  gli_bvh_node *line_start = gli_aligned_calloc(count + 1, sizeof *line_start);
+  return line_start ? line_start + 1 : NULL;
+}
+
+static void nodes_free(gli_bvh_node *nodes) {
+  if (nodes)
+    gli_aligned_free(nodes - 1);
 }
 
 /* The packets' tree: the binary tree with each subtree cut into one leaf
@@ -368,11 +378,12 @@ static box4 node_box(const gli_bvh_node *n) {
  * GLI_BVH_PACKET_CUT_PRIMS primitives or more: there the triangles outgrow the
  * caches and each node a packet visits is a miss, while the packet tests
  * a leaf's primitives for all its lanes at once; on the 200k-triangle
- * dragon's primary rays, cut leaves are 15% faster (AVX-512 beams), and
- * the scalar walk, which tests a leaf's primitives one ray at a time,
- * keeps the finer tree (cut for it too, scalar-float renders 7% slower).
- * On the SPD scenes (under 10 000 primitives, cache-resident) a cut tree
- * measured within noise of the full one, so they keep one tree. */
+ * dragon's primary rays (README, "Memory order") the packets ran 5%
+ * faster, its shaded renders 5-8% (AVX2 and AVX-512), and the scalar walk,
+ * which tests a leaf's primitives one ray at a time, keeps the finer tree (cut
+ * for it too, scalar-float renders 7% slower). On the SPD scenes (under 10 000
+ * primitives, cache-resident) a cut tree measured within noise of the full one,
+ * so they keep one tree. */
 #define PACKET_COST_NODE 5.0f
 
 /* What the cut of a subtree knows of it. */
@@ -501,24 +512,6 @@ static glint_status derive_trees(gli_bvh *bvh, const glint_scene *scene,
                                  glint_error *error) {
   glint_status st = collapse_wide(bvh, scene, error);
   return st ? st : cut_for_packets(bvh, error);
-}
-
-/* The node array starts half a cache line in, so that the sibling pairs
- * that follow the root, (1, 2), (3, 4), ..., each fill one line: a packet
- * tests both children of most nodes it enters, and a pair straddling two
- * lines was two misses (the 200k-triangle dragon's primary rays: the
- * loads of a node's box were the walk's costliest instructions). */
-_Static_assert(2 * sizeof(gli_bvh_node) == GLI_ALIGN,
-               "a sibling pair of BVH nodes fills one cache line");
-
-static gli_bvh_node *nodes_alloc(size_t count) {
-  gli_bvh_node *line_start = gli_aligned_calloc(count + 1, sizeof *line_start);
-  return line_start ? line_start + 1 : NULL;
-}
-
-static void nodes_free(gli_bvh_node *nodes) {
-  if (nodes)
-    gli_aligned_free(nodes - 1);
 }
 
 glint_status gli_bvh_build(const glint_scene *scene, gli_bvh *bvh,
@@ -702,11 +695,7 @@ glint_status gli_bvh_refit(const gli_bvh *from, const glint_scene *scene,
         *r = t;
       }
       for (uint32_t c = n->offset; c < n->offset + 2; c++)
-        box4_grow(&b,
-                  (box4){_mm_setr_ps(bvh->nodes[c].lo[0], bvh->nodes[c].lo[1],
-                                     bvh->nodes[c].lo[2], 0),
-                         _mm_setr_ps(bvh->nodes[c].hi[0], bvh->nodes[c].hi[1],
-                                     bvh->nodes[c].hi[2], 0)});
+        box4_grow(&b, node_box(&bvh->nodes[c]));
     }
     store_bounds(n, b);
   }
