@@ -5,7 +5,8 @@
  * hands subtrees to single rays in the wide tree (bvh), every ray alone
  * (bvh8); renders with and without it are the same image; and images are
  * bit-identical for any number of threads. Scenes: Giza (the only thesis
- * scene above the BVH's size threshold) and the SPD scenes. The wide tree
+ * scene above the BVH's size threshold) and the SPD scenes, and a random
+ * scene large enough for the packets' cut of the tree. The wide tree
  * itself and the scalar single rays: tests/test_wide_bvh.c. */
 #define GLINT_REAL_FLOAT
 #include "test_util.h"
@@ -173,13 +174,44 @@ static void renders_equal(void **state) {
   }
 }
 
+/* The packets' cut of a large scene's tree: smaller than the binary tree,
+ * every reference once in leaves of at most 16 whose boxes hold them,
+ * every inner node before its children, which share a cache line and
+ * whose boxes it holds. */
+static void assert_packet_tree_sound(const gli_bvh *b, const glint_scene *g) {
+  assert_true(b->packet_nodes != b->nodes);
+  assert_true(b->packet_node_count > 1 && b->packet_node_count < b->node_count);
+  char *seen = calloc(b->ref_count, 1);
+  for (uint32_t i = 0; i < b->packet_node_count; i++) {
+    const gli_bvh_node *n = &b->packet_nodes[i];
+    if (n->count) {
+      assert_true(n->count <= 16 && n->offset + n->count <= b->ref_count);
+      for (uint32_t k = n->offset; k < n->offset + n->count; k++) {
+        float lo[3], hi[3];
+        gli_bvh_ref_box(g, b->refs[k], lo, hi);
+        assert_true(holds(n->lo, n->hi, lo, hi));
+        assert_false(seen[k]);
+        seen[k] = 1;
+      }
+      continue;
+    }
+    assert_true(n->offset > i && n->offset + 1 < b->packet_node_count);
+    assert_int_equal((uintptr_t)&b->packet_nodes[n->offset] % 64, 0);
+    for (uint32_t c = n->offset; c < n->offset + 2; c++)
+      assert_true(
+          holds(n->lo, n->hi, b->packet_nodes[c].lo, b->packet_nodes[c].hi));
+  }
+  for (uint32_t k = 0; k < b->ref_count; k++)
+    assert_true(seen[k]);
+  free(seen);
+}
+
 /* A scene of GLI_BVH_PACKET_CUT_PRIMS primitives and more (random small
  * triangles, spheres and cones): the packets walk a cut of the binary tree
- * (accel/bvh.c, cut_costs), which must hold every primitive once in leaves
- * of at most 16 whose boxes hold them, be smaller than the binary tree,
- * and find the nearest hits brute force finds, for every packet width and
- * walk (the hybrid hands its lanes the wide tree at the packet tree's
- * nodes). */
+ * (accel/bvh.c, cut_costs), sound as built and as a refit for moved
+ * objects makes it again, and finding the nearest hits brute force finds
+ * for every packet width and walk (the hybrid hands its lanes the wide
+ * tree at the packet tree's nodes). */
 static void large_scene_packet_tree(void **state) {
   (void)state;
   glint_scene *g;
@@ -208,33 +240,21 @@ static void large_scene_packet_tree(void **state) {
   test_view vb;
   const scene_r *fb =
       test_view_open(g, DATA_SCALAR_FLOAT, GLINT_ACCEL_BVH, &vb);
-  const gli_bvh *b = fb->bvh;
-  assert_true(b->packet_nodes != b->nodes);
-  assert_true(b->packet_node_count > 1 && b->packet_node_count < b->node_count);
-  char *seen = calloc(b->ref_count, 1);
-  for (uint32_t i = 0; i < b->packet_node_count; i++) {
-    const gli_bvh_node *n = &b->packet_nodes[i];
-    if (n->count) {
-      assert_true(n->count <= 16 && n->offset + n->count <= b->ref_count);
-      for (uint32_t k = n->offset; k < n->offset + n->count; k++) {
-        float lo[3], hi[3];
-        gli_bvh_ref_box(g, b->refs[k], lo, hi);
-        assert_true(holds(n->lo, n->hi, lo, hi));
-        assert_false(seen[k]);
-        seen[k] = 1;
-      }
-      continue;
-    }
-    assert_true(n->offset > i && n->offset + 1 < b->packet_node_count);
-    assert_int_equal((uintptr_t)&b->packet_nodes[n->offset] % 64, 0);
-    for (uint32_t c = n->offset; c < n->offset + 2; c++)
-      assert_true(
-          holds(n->lo, n->hi, b->packet_nodes[c].lo, b->packet_nodes[c].hi));
-  }
-  for (uint32_t k = 0; k < b->ref_count; k++)
-    assert_true(seen[k]);
-  free(seen);
+  assert_packet_tree_sound(fb->bvh, g);
   test_view_close(&vb);
+  /* An animation's next frame refits the tree and cuts it again. */
+  gli_bvh built, refit;
+  ASSERT_OK(gli_bvh_build(g, &built, &e_));
+  glint_scene *moved;
+  ASSERT_OK(gli_scene_copy(g, &moved, &e_));
+  glint_transform turn = {{0, 40, 0}, {30, 60, 0}, {0, 0, 0}, 1.5};
+  for (uint32_t o = 0; o < moved->object_count; o += 5)
+    assert_int_equal(gli_object_transform(moved, o, &turn), 0);
+  ASSERT_OK(gli_bvh_refit(&built, moved, &refit, &e_));
+  assert_packet_tree_sound(&refit, moved);
+  gli_bvh_free(&refit);
+  gli_bvh_free(&built);
+  glint_scene_destroy(moved);
 
   int ties = 0;
   static const glint_accel walks[2] = {GLINT_ACCEL_BVH, GLINT_ACCEL_BVH2};
