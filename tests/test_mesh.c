@@ -606,6 +606,54 @@ static void ply_faces_before_vertices(void **state) {
   }
 }
 
+/* Triangle strips (a 'tristrips' element): each index after a strip's
+ * first two makes a triangle with the two before it, every other one
+ * turned so that all face one way; -1 starts a new strip; a triangle that
+ * repeats a vertex (a strip turning) is dropped. Here a strip over a
+ * 2 x 1 grid of unit squares (4 triangles), a turn, and after -1 a strip
+ * of one triangle: 5 triangles of area 2.5, all facing +z. A file with
+ * strips and no faces loads; one with neither is a point cloud. */
+static void ply_tristrips(void **state) {
+  fixture *f = *state;
+  static const char *const body =
+      "ply\nformat ascii 1.0\nelement vertex 9\n"
+      "property float x\nproperty float y\nproperty float z\n"
+      "element tristrips 1\nproperty list int int vertex_indices\n"
+      "end_header\n"
+      "0 1 0\n0 0 0\n1 1 0\n1 0 0\n2 1 0\n2 0 0\n5 0 0\n6 0 0\n5 1 0\n"
+      "12 0 1 2 3 4 5 5 5 -1 6 7 8\n";
+  glint_scene *s = load(write_text(f, "strip.ply", body), 1, (V){0, 0, 0});
+  assert_int_equal(s->triangle_count, 5);
+  if (fabs(mesh_area(s) - 2.5) > 1e-9)
+    fail_msg("the strips cover %g, not 2.5", mesh_area(s));
+  for (size_t i = 0; i < s->triangle_count; i++) {
+    const glint_vec3 *v = s->triangles[i].v;
+    double z = (v[1].x - v[0].x) * (v[2].y - v[0].y) -
+               (v[1].y - v[0].y) * (v[2].x - v[0].x);
+    if (z <= 0)
+      fail_msg("triangle %zu of the strips faces -z", i);
+  }
+  glint_scene_destroy(s);
+  expect_fail(f, "stripidx.ply",
+              "ply\nformat ascii 1.0\nelement vertex 3\n"
+              "property float x\nproperty float y\nproperty float z\n"
+              "element tristrips 1\nproperty list int int vertex_indices\n"
+              "end_header\n0 0 0\n1 0 0\n0 1 0\n4 0 1 2 3\n",
+              GLINT_E_PARSE,
+              "stripidx.ply:13: triangle strip refers to vertex 3, but only 3 "
+              "are defined",
+              NULL);
+  expect_fail(f, "stripnone.ply",
+              "ply\nformat ascii 1.0\nelement vertex 3\n"
+              "property float x\nproperty float y\nproperty float z\n"
+              "element tristrips 1\nproperty int vertex_indices\n"
+              "end_header\n0 0 0\n1 0 0\n0 1 0\n4\n",
+              GLINT_E_PARSE,
+              "stripnone.ply:8: the triangle strip's 'vertex_indices' must be "
+              "a list of integers",
+              NULL);
+}
+
 /* A binary PLY body under construction, in either byte order. */
 typedef struct bin {
   unsigned char b[8192];
@@ -1438,6 +1486,7 @@ int main(int argc, char **argv) {
       cmocka_unit_test(a_file_past_the_limit_is_refused_unread),
       cmocka_unit_test(nonfinite_vertices_no_face_uses),
       cmocka_unit_test(ply_faces_before_vertices),
+      cmocka_unit_test(ply_tristrips),
       cmocka_unit_test(packed_scene_needs_no_files),
       cmocka_unit_test(bad_arguments),
       cmocka_unit_test(real_meshes_shared),

@@ -1,7 +1,9 @@
 /* Stanford PLY meshes, ASCII and binary little- and big-endian: the vertex
  * element's x, y, z (and nx, ny, nz, when all three are there, for smooth
- * shading) and the face element's vertex_indices (or vertex_index) list;
- * every other element and property is skipped by its declared type. ASCII
+ * shading), the face element's vertex_indices (or vertex_index) list and
+ * the tristrips element's (triangle strips, -1 ending a strip, as the
+ * Georgia Tech models and Greg Turk's PLY library write them); every
+ * other element and property is skipped by its declared type. ASCII
  * bodies are read line by line (one element per line), so a value too many
  * or too few is reported on its own line instead of shifting every later
  * value. */
@@ -69,7 +71,7 @@ typedef struct ply_property {
 
 typedef struct ply_element {
   char label[48];
-  int kind; /* 0, or 1 for "vertex", 2 for "face" */
+  int kind; /* 0, or 1 for "vertex", 2 for "face", 3 for "tristrips" */
   size_t count, first_prop, prop_count;
 } ply_element;
 
@@ -109,6 +111,8 @@ static const char *ply_plural(const ply_element *el, char *buf, size_t cap) {
     return "vertices";
   if (el->kind == 2)
     return "faces";
+  if (el->kind == 3)
+    return "triangle strips";
   snprintf(buf, cap, "'%s' elements", el->label);
   return buf;
 }
@@ -364,6 +368,56 @@ static glint_status ply_emit(ply_reader *r, const char *where, glint_error *e) {
   }
 }
 
+/* A triangle strip of n indices: each index after the first two makes a
+ * triangle with the two before it, every other one turned so that all
+ * face the strip's first way; -1 ends a strip and the next begins. A
+ * triangle that repeats a vertex (a strip turning) is none. */
+static glint_status ply_strip(ply_reader *r, const ply_property *p, long long n,
+                              glint_error *e) {
+  char w[1100];
+  mesh_data *m = r->m;
+  if (r->format != PLY_ASCII &&
+      (unsigned long long)n > (r->size - r->pos) / ply_size[p->type])
+    return ply_truncated(r, e);
+  if (gli_grow((void **)&m->corners, &m->corners_cap, 3, sizeof *m->corners))
+    return gli_mesh_oom(r->path, e);
+  long long a = -1, b = -1; /* the strip's last two vertices */
+  int odd = 0;
+  for (long long k = 0; k < n; k++) {
+    long long v;
+    glint_status st = ply_whole(r, p, 0, &v, e);
+    if (st)
+      return st;
+    if (v == -1) {
+      a = b = -1;
+      odd = 0;
+      continue;
+    }
+    if (v < 0 || (unsigned long long)v >= r->vertex_count)
+      return gli_fail(e, GLINT_E_PARSE,
+                      "%s: triangle strip refers to vertex %lld, but only "
+                      "%zu %s defined",
+                      ply_where(r, w, sizeof w), v, r->vertex_count,
+                      r->vertex_count == 1 ? "is" : "are");
+    if (a >= 0 && a != b && b != v && a != v) {
+      if (m->ntri + 1 > MESH_MAX_ITEMS)
+        return gli_fail(e, GLINT_E_PARSE, "%s: too many triangles",
+                        ply_where(r, w, sizeof w));
+      m->ncorners = 3;
+      m->corners[0] = (corner){(uint32_t)(odd ? b : a), MESH_NO_INDEX};
+      m->corners[1] = (corner){(uint32_t)(odd ? a : b), MESH_NO_INDEX};
+      m->corners[2] = (corner){(uint32_t)v, MESH_NO_INDEX};
+      if ((st = ply_emit(r, ply_where(r, w, sizeof w), e)))
+        return st;
+    }
+    if (a >= 0)
+      odd = !odd;
+    a = b;
+    b = v;
+  }
+  return GLINT_OK;
+}
+
 /* The faces read before their vertices (ply_reader.late), now. */
 static glint_status ply_late_faces(ply_reader *r, glint_error *e) {
   mesh_data *m = r->m;
@@ -443,7 +497,7 @@ static glint_status ply_element_body(ply_reader *r, glint_error *e) {
                       ply_what(r, p, 1, what, sizeof what), n);
     }
     if (p->role == ROLE_INDICES)
-      st = ply_face(r, p, n, e);
+      st = el->kind == 3 ? ply_strip(r, p, n, e) : ply_face(r, p, n, e);
     else
       st = ply_skip(r, p, n, e);
   }
@@ -597,7 +651,7 @@ static glint_status ply_property_line(ply_reader *r, size_t line,
     for (int k = 0; k < 6; k++)
       if (span_is(name, names[k]))
         p.role = ROLE_X + k;
-  } else if (el->kind == 2 &&
+  } else if ((el->kind == 2 || el->kind == 3) &&
              (span_is(name, "vertex_indices") || span_is(name, "vertex_index")))
     p.role = ROLE_INDICES;
   if (p.role != ROLE_NONE) {
@@ -607,9 +661,9 @@ static glint_status ply_property_line(ply_reader *r, size_t line,
                         "%s:%zu: a second '%s' property in the %s element",
                         r->path, line, p.label, el->label);
     if (p.role == ROLE_INDICES && (!p.is_list || !ply_integer_type(p.type)))
-      return gli_fail(e, GLINT_E_PARSE,
-                      "%s:%zu: the face's '%s' must be a list of integers",
-                      r->path, line, p.label);
+      return gli_fail(
+          e, GLINT_E_PARSE, "%s:%zu: the %s's '%s' must be a list of integers",
+          r->path, line, el->kind == 3 ? "triangle strip" : "face", p.label);
     if (p.role != ROLE_INDICES && p.is_list)
       return gli_fail(e, GLINT_E_PARSE,
                       "%s:%zu: the vertex's '%s' must be a number, not a "
@@ -632,7 +686,10 @@ static glint_status ply_element_line(ply_reader *r, size_t line,
   ply_element el;
   memset(&el, 0, sizeof el);
   gli_text_quote(el.label, sizeof el.label, tok[1].s, tok[1].n);
-  el.kind = span_is(tok[1], "vertex") ? 1 : span_is(tok[1], "face") ? 2 : 0;
+  el.kind = span_is(tok[1], "vertex")      ? 1
+            : span_is(tok[1], "face")      ? 2
+            : span_is(tok[1], "tristrips") ? 3
+                                           : 0;
   const char *s = tok[2].s;
   long long count;
   if (gli_text_parse_whole(&s, tok[2].s + tok[2].n, &count) ||
@@ -736,21 +793,32 @@ static glint_status ply_header(ply_reader *r, glint_error *e) {
   if (!has_format)
     return gli_fail(e, GLINT_E_PARSE, "%s: the header has no 'format' line",
                     r->path);
-  /* What a mesh needs: vertices with x, y, z and faces with indices. */
-  const ply_element *vertex = NULL, *face = NULL;
+  /* What a mesh needs: vertices with x, y, z, and faces or triangle strips
+   * with indices. */
+  const ply_element *vertex = NULL;
+  int faces = 0;
   for (size_t i = 0; i < r->nelements; i++) {
-    if (r->elements[i].kind == 1)
-      vertex = &r->elements[i];
-    if (r->elements[i].kind == 2)
-      face = &r->elements[i];
+    const ply_element *el = &r->elements[i];
+    if (el->kind == 1)
+      vertex = el;
+    if (el->kind < 2)
+      continue;
+    faces = 1;
+    int has_indices = 0;
+    for (size_t k = 0; k < el->prop_count; k++)
+      has_indices |= r->props[el->first_prop + k].role == ROLE_INDICES;
+    if (!has_indices)
+      return gli_fail(e, GLINT_E_PARSE,
+                      "%s: the %s element has no 'vertex_indices' list",
+                      r->path, el->label);
   }
   if (!vertex)
     return gli_fail(e, GLINT_E_PARSE, "%s: the header has no 'vertex' element",
                     r->path);
-  if (!face)
+  if (!faces)
     return gli_fail(e, GLINT_E_PARSE,
-                    "%s: the header has no 'face' element (a point cloud is "
-                    "not a mesh)",
+                    "%s: the header has no 'face' element, nor 'tristrips' (a "
+                    "point cloud is not a mesh)",
                     r->path);
   int roles = 0;
   for (size_t i = 0; i < vertex->prop_count; i++)
@@ -762,13 +830,6 @@ static glint_status ply_header(ply_reader *r, glint_error *e) {
                       role_what[k] + strlen("the vertex's "));
   int normal_roles = 1 << ROLE_NX | 1 << ROLE_NY | 1 << ROLE_NZ;
   r->m->vertex_normals = (roles & normal_roles) == normal_roles;
-  int has_indices = 0;
-  for (size_t i = 0; i < face->prop_count; i++)
-    has_indices |= r->props[face->first_prop + i].role == ROLE_INDICES;
-  if (!has_indices)
-    return gli_fail(e, GLINT_E_PARSE,
-                    "%s: the face element has no 'vertex_indices' list",
-                    r->path);
   if (r->format == PLY_ASCII)
     return gli_file_check_text(r->path, data + r->pos, r->size - r->pos,
                                r->line, e);
