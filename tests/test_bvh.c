@@ -51,6 +51,49 @@ static void compare(const char *scene, const char *backend, int obj_a,
            backend, obj_a, (double)t_a, obj_b, (double)t_b);
 }
 
+/* Every packet width through each of `walks` against the brute-force
+ * packet loop, on `rays` random rays of the scene (the lanes each active
+ * with probability 0.9); counts ties. */
+static void packets_agree(glint_scene *g, const char *name,
+                          const glint_accel *walks, int nwalks, int rays,
+                          unsigned long long *seed, int *ties) {
+  glint_scene_info info;
+  glint_scene_get_info(g, &info);
+  for (size_t k = 0; k < sizeof packets / sizeof *packets; k++) {
+    if (backend_missing(packets[k].backend))
+      continue;
+    data_kind kind = gli_backend_ops_of(packets[k].backend)->data;
+    for (int wi = 0; wi < nwalks; wi++) {
+      test_view pvb, pvn;
+      void *pb = test_view_open(g, kind, walks[wi], &pvb);
+      void *pn = test_view_open(g, kind, GLINT_ACCEL_NONE, &pvn);
+      int w = packets[k].width;
+      char what[64];
+      snprintf(what, sizeof what, "%s --accel %s",
+               glint_backend_name(packets[k].backend),
+               glint_accel_name(walks[wi]));
+      for (int base = 0; base < rays; base += w) {
+        float o[3 * 16], d[3 * 16], ta[16], tb[16];
+        int oa[16], ob[16], bits = 0;
+        for (int i = 0; i < w; i++) {
+          float oo[3], dd[3];
+          make_ray(&info, seed, oo, dd);
+          for (int c = 0; c < 3; c++)
+            o[c * w + i] = oo[c], d[c * w + i] = dd[c];
+          bits |= (uniform(seed) < 0.9) << i;
+        }
+        packets[k].nearest(pb, o, d, bits, ta, oa);
+        packets[k].nearest(pn, o, d, bits, tb, ob);
+        for (int i = 0; i < w; i++)
+          if (bits >> i & 1)
+            compare(name, what, oa[i], ta[i], ob[i], tb[i], ties);
+      }
+      test_view_close(&pvb);
+      test_view_close(&pvn);
+    }
+  }
+}
+
 static void nearest_hits_equal_brute_force(void **state) {
   const char *const *scenes = ((const scene_list *)*state)->names;
   for (size_t si = 0; scenes[si]; si++) {
@@ -80,39 +123,7 @@ static void nearest_hits_equal_brute_force(void **state) {
     /* Every packet width and walk against the brute-force packet loop. */
     static const glint_accel walks[3] = {GLINT_ACCEL_BVH, GLINT_ACCEL_BVH2,
                                          GLINT_ACCEL_BVH8};
-    for (size_t k = 0; k < sizeof packets / sizeof *packets; k++) {
-      if (backend_missing(packets[k].backend))
-        continue;
-      data_kind kind = gli_backend_ops_of(packets[k].backend)->data;
-      for (int wi = 0; wi < 3; wi++) {
-        test_view pvb, pvn;
-        void *pb = test_view_open(g, kind, walks[wi], &pvb);
-        void *pn = test_view_open(g, kind, GLINT_ACCEL_NONE, &pvn);
-        int w = packets[k].width;
-        char what[64];
-        snprintf(what, sizeof what, "%s --accel %s",
-                 glint_backend_name(packets[k].backend),
-                 glint_accel_name(walks[wi]));
-        for (int base = 0; base < RAYS; base += w) {
-          float o[3 * 16], d[3 * 16], ta[16], tb[16];
-          int oa[16], ob[16], bits = 0;
-          for (int i = 0; i < w; i++) {
-            float oo[3], dd[3];
-            make_ray(&info, &seed, oo, dd);
-            for (int c = 0; c < 3; c++)
-              o[c * w + i] = oo[c], d[c * w + i] = dd[c];
-            bits |= (uniform(&seed) < 0.9) << i;
-          }
-          packets[k].nearest(pb, o, d, bits, ta, oa);
-          packets[k].nearest(pn, o, d, bits, tb, ob);
-          for (int i = 0; i < w; i++)
-            if (bits >> i & 1)
-              compare(scenes[si], what, oa[i], ta[i], ob[i], tb[i], &ties);
-        }
-        test_view_close(&pvb);
-        test_view_close(&pvn);
-      }
-    }
+    packets_agree(g, scenes[si], walks, 3, RAYS, &seed, &ties);
     printf("%-26s %zu triangles, %zu spheres, %zu cones: agree (%d ties)\n",
            scenes[si], info.triangles, info.spheres, info.cones, ties);
     assert_true(ties < RAYS / 500);
@@ -235,8 +246,6 @@ static void large_scene_packet_tree(void **state) {
       ASSERT_OK(glint_scene_add_triangle(g, c, b, d, m, &e_));
     }
   }
-  glint_scene_info info;
-  glint_scene_get_info(g, &info);
   test_view vb;
   const scene_r *fb =
       test_view_open(g, DATA_SCALAR_FLOAT, GLINT_ACCEL_BVH, &vb);
@@ -258,39 +267,7 @@ static void large_scene_packet_tree(void **state) {
 
   int ties = 0;
   static const glint_accel walks[2] = {GLINT_ACCEL_BVH, GLINT_ACCEL_BVH2};
-  for (size_t k = 0; k < sizeof packets / sizeof *packets; k++) {
-    if (backend_missing(packets[k].backend))
-      continue;
-    data_kind kind = gli_backend_ops_of(packets[k].backend)->data;
-    for (int wi = 0; wi < 2; wi++) {
-      test_view pvb, pvn;
-      void *pb = test_view_open(g, kind, walks[wi], &pvb);
-      void *pn = test_view_open(g, kind, GLINT_ACCEL_NONE, &pvn);
-      int w = packets[k].width;
-      char what[64];
-      snprintf(what, sizeof what, "%s --accel %s",
-               glint_backend_name(packets[k].backend),
-               glint_accel_name(walks[wi]));
-      for (int base = 0; base < 1024; base += w) {
-        float o[3 * 16], d[3 * 16], ta[16], tb[16];
-        int oa[16], ob[16], bits = 0;
-        for (int i = 0; i < w; i++) {
-          float oo[3], dd[3];
-          make_ray(&info, &seed, oo, dd);
-          for (int c = 0; c < 3; c++)
-            o[c * w + i] = oo[c], d[c * w + i] = dd[c];
-          bits |= (uniform(&seed) < 0.9) << i;
-        }
-        packets[k].nearest(pb, o, d, bits, ta, oa);
-        packets[k].nearest(pn, o, d, bits, tb, ob);
-        for (int i = 0; i < w; i++)
-          if (bits >> i & 1)
-            compare("large scene", what, oa[i], ta[i], ob[i], tb[i], &ties);
-      }
-      test_view_close(&pvb);
-      test_view_close(&pvn);
-    }
-  }
+  packets_agree(g, "large scene", walks, 2, 1024, &seed, &ties);
   assert_true(ties < 8);
   glint_scene_destroy(g);
 }

@@ -304,6 +304,18 @@ static glint_status ply_skip(ply_reader *r, const ply_property *p, long long n,
 
 static glint_status ply_emit(ply_reader *r, const char *where, glint_error *e);
 
+/* Whether v is the index of a declared vertex; `what` refers to it. */
+static glint_status ply_vertex_index(const ply_reader *r, const char *what,
+                                     long long v, glint_error *e) {
+  if (v >= 0 && (unsigned long long)v < r->vertex_count)
+    return GLINT_OK;
+  char w[1100];
+  return gli_fail(e, GLINT_E_PARSE,
+                  "%s: %s refers to vertex %lld, but only %zu %s defined",
+                  ply_where(r, w, sizeof w), what, v, r->vertex_count,
+                  r->vertex_count == 1 ? "is" : "are");
+}
+
 static glint_status ply_face(ply_reader *r, const ply_property *p, long long n,
                              glint_error *e) {
   char w[1100];
@@ -332,12 +344,8 @@ static glint_status ply_face(ply_reader *r, const ply_property *p, long long n,
     glint_status st = ply_whole(r, p, 0, &v, e);
     if (st)
       return st;
-    if (v < 0 || (unsigned long long)v >= r->vertex_count)
-      return gli_fail(e, GLINT_E_PARSE,
-                      "%s: face refers to vertex %lld, but only %zu %s "
-                      "defined",
-                      ply_where(r, w, sizeof w), v, r->vertex_count,
-                      r->vertex_count == 1 ? "is" : "are");
+    if ((st = ply_vertex_index(r, "face", v, e)))
+      return st;
     m->corners[k] = (corner){(uint32_t)v, MESH_NO_INDEX};
   }
   int read = 1;
@@ -393,12 +401,8 @@ static glint_status ply_strip(ply_reader *r, const ply_property *p, long long n,
       odd = 0;
       continue;
     }
-    if (v < 0 || (unsigned long long)v >= r->vertex_count)
-      return gli_fail(e, GLINT_E_PARSE,
-                      "%s: triangle strip refers to vertex %lld, but only "
-                      "%zu %s defined",
-                      ply_where(r, w, sizeof w), v, r->vertex_count,
-                      r->vertex_count == 1 ? "is" : "are");
+    if ((st = ply_vertex_index(r, "triangle strip", v, e)))
+      return st;
     if (a >= 0 && a != b && b != v && a != v) {
       if (m->ntri + 1 > MESH_MAX_ITEMS)
         return gli_fail(e, GLINT_E_PARSE, "%s: too many triangles",
