@@ -11,6 +11,7 @@
 #include <stdlib.h>
 #include <string.h>
 #include <sys/stat.h>
+#include <unistd.h>
 
 /* Checks an -o pattern: exactly one %d conversion (flags 0 and a width
  * allowed) and %% for a literal %. Returns 1 when it is one, 0 when the
@@ -85,9 +86,29 @@ static int frame_path(char *out, size_t size, const char *name, int pattern,
   return 0;
 }
 
-/* Makes the folders of `path` that are missing (mkdir -p of its dirname);
- * -1 with a message when one cannot be made. */
-static int make_folders(const char *path) {
+/* The folders a run made, so that a refused run can take them away. */
+typedef struct made_folders {
+  char **paths;
+  size_t count;
+} made_folders;
+
+/* Forgets the folders in `made`, first removing those still empty (the
+ * deepest first) when `remove`. */
+static void forget_made_folders(made_folders *made, int remove) {
+  while (made->count > 0) {
+    char *folder = made->paths[--made->count];
+    if (remove)
+      rmdir(folder); /* one not empty stays */
+    free(folder);
+  }
+  free(made->paths);
+  made->paths = NULL;
+}
+
+/* Makes the folders of `path` that are missing (mkdir -p of its dirname),
+ * noting in `made` (when not NULL) each one made (short of memory, one is
+ * not noted, and stays); -1 with a message when one cannot be made. */
+static int make_folders(const char *path, made_folders *made) {
   char folder[4096];
   snprintf(folder, sizeof folder, "%s", path);
   char *slash = strrchr(folder, '/');
@@ -99,10 +120,20 @@ static int make_folders(const char *path) {
       char saved = *p;
       *p = '\0';
       struct stat sb;
-      if (stat(folder, &sb) != 0 && mkdir(folder, 0777) != 0 &&
-          errno != EEXIST) {
-        cli_error("%s: cannot make the folder: %s", folder, strerror(errno));
-        return -1;
+      if (stat(folder, &sb) != 0) {
+        if (mkdir(folder, 0777) == 0) {
+          char **grown =
+              made ? realloc(made->paths, (made->count + 1) * sizeof *grown)
+                   : NULL;
+          if (grown) {
+            made->paths = grown;
+            if ((grown[made->count] = strdup(folder)) != NULL)
+              made->count++;
+          }
+        } else if (errno != EEXIST) {
+          cli_error("%s: cannot make the folder: %s", folder, strerror(errno));
+          return -1;
+        }
       }
       *p = saved;
       if (!saved)
@@ -235,34 +266,37 @@ int frame_files_init(frame_files *files, const glint_scene *scene,
   }
   /* -o out/frame%04d.png makes out/ when it is missing (and a pattern
    * whose number is in a folder's name makes that folder for each frame,
-   * in frame_files_path). */
-  if (make_folders(first_path))
-    return -1;
+   * in frame_files_path). A run refused below takes away the folders it
+   * made. */
+  made_folders made = {NULL, 0};
+  int refused = make_folders(first_path, &made);
   /* Every frame's file can be written, before any is: a folder or a pipe
    * under frame 2's name had frames 0 and 1 written over what was there
    * before the run stopped. A frame --resume keeps is not written; one it
    * renders again (of another size, damaged) is, and was not checked. */
   int width, height;
   frame_size(scene, &o->settings, &width, &height);
-  for (int f = o->first_frame; f <= o->last_frame; f++) {
+  for (int f = o->first_frame; f <= o->last_frame && !refused; f++) {
     char path[4096];
     struct stat sb;
     glint_error err, why;
-    if (frame_files_path(files, f, path, sizeof path))
-      return -1;
-    if (glint_image_check_writable(path, &err) &&
+    refused = frame_path(path, sizeof path, files->name, files->pattern, f,
+                         files->digits) ||
+              (files->pattern && make_folders(path, &made));
+    if (!refused && glint_image_check_writable(path, &err) &&
         !(o->resume && stat(path, &sb) == 0 &&
           finished_frame(path, &sb, width, height, &why))) {
       cli_error("frame %d: %s; no frame was written", f, err.message);
-      return -1;
+      refused = 1;
     }
   }
-  return 0;
+  forget_made_folders(&made, refused);
+  return refused ? -1 : 0;
 }
 
 int frame_files_path(const frame_files *files, int frame, char *path,
                      size_t size) {
   if (frame_path(path, size, files->name, files->pattern, frame, files->digits))
     return -1;
-  return files->pattern ? make_folders(path) : 0;
+  return files->pattern ? make_folders(path, NULL) : 0;
 }

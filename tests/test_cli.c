@@ -1093,6 +1093,20 @@ static void frames_of_an_animation(void **state) {
                        "sub/deeper/f%d.png", "-q", NULL),
                    0);
   assert_true(exists("sub/deeper/f5.png"));
+  /* A refused run takes away the folders it made (the number in a
+   * folder's name; frame 3's file blocked by a folder), and no others. */
+  char blocked[600];
+  const char *const folders[] = {"in3", "in3/deep", "in3/deep/f.png"};
+  for (int k = 0; k < 3; k++) {
+    snprintf(blocked, sizeof blocked, "%s/%s", dir, folders[k]);
+    assert_int_equal(mkdir(blocked, 0755), 0);
+  }
+  EXPECT_USAGE_ERROR_KEEPING(
+      "in3/deep/f.png: is a directory; no frame was written", "render",
+      "anim.json", "--frames", "1-3", "-o", "in%d/deep/f.png");
+  assert_false(exists("in1"));
+  assert_false(exists("in2"));
+  assert_true(exists("in3/deep/f.png"));
 
   /* Numbers before the extension; the default name is the scene's. */
   assert_int_equal(
@@ -1149,11 +1163,12 @@ static void frames_of_an_animation(void **state) {
    * error writes nothing. */
   char cmd[768], scene_path[300];
   snprintf(scene_path, sizeof scene_path, "%s-anim.json", dir);
-  snprintf(cmd, sizeof cmd,
-           "cd '%s' && mv anim.json '%s' && rm -rf f0*.png "
-           "out0048.png anim0007.png still.png still.json sub 100%%0003.png "
-           "p%%3.png",
-           dir, scene_path);
+  snprintf(
+      cmd, sizeof cmd,
+      "cd '%s' && mv anim.json '%s' && rm -rf f0*.png "
+      "out0048.png anim0007.png still.png still.json sub in3 100%%0003.png "
+      "p%%3.png",
+      dir, scene_path);
   assert_int_equal(system(cmd), 0);
   EXPECT_USAGE_ERROR("-anim.json's animation has frames 1-48", "render",
                      scene_path, "--frames", "40-60");
