@@ -229,6 +229,14 @@ static int check_frames(const glint_scene *scene, const char *scene_name,
   return 0;
 }
 
+/* frame_files_path, noting in `made` the folders it makes. */
+static int frame_file(const frame_files *files, int frame, char *path,
+                      size_t size, made_folders *made) {
+  if (frame_path(path, size, files->name, files->pattern, frame, files->digits))
+    return -1;
+  return files->pattern ? make_folders(path, made) : 0;
+}
+
 int frame_files_init(frame_files *files, const glint_scene *scene,
                      const render_options *o, const char *stem,
                      glint_animation *anim) {
@@ -280,9 +288,7 @@ int frame_files_init(frame_files *files, const glint_scene *scene,
     char path[4096];
     struct stat sb;
     glint_error err, why;
-    refused = frame_path(path, sizeof path, files->name, files->pattern, f,
-                         files->digits) ||
-              (files->pattern && make_folders(path, &made));
+    refused = frame_file(files, f, path, sizeof path, &made);
     if (!refused && glint_image_check_writable(path, &err) &&
         !(o->resume && stat(path, &sb) == 0 &&
           finished_frame(path, &sb, width, height, &why))) {
@@ -296,7 +302,5 @@ int frame_files_init(frame_files *files, const glint_scene *scene,
 
 int frame_files_path(const frame_files *files, int frame, char *path,
                      size_t size) {
-  if (frame_path(path, size, files->name, files->pattern, frame, files->digits))
-    return -1;
-  return files->pattern ? make_folders(path, NULL) : 0;
+  return frame_file(files, frame, path, size, NULL);
 }

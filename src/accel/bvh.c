@@ -392,6 +392,7 @@ typedef struct subtree {
   float prims;    /* the summed prim_cost of its references */
   uint32_t first; /* its references: [first, first + count) */
   uint32_t count;
+  uint32_t nodes; /* the nodes of its cut */
 } subtree;
 
 /* The packet costs of the subtree at `node`, marking the binary nodes that
@@ -400,7 +401,7 @@ typedef struct subtree {
 static subtree cut_costs(const gli_bvh *bvh, uint32_t node, uint16_t *cut,
                          uint32_t *first) {
   const gli_bvh_node *n = &bvh->nodes[node];
-  subtree st = {0, 0, n->offset, n->count};
+  subtree st = {0, 0, n->offset, n->count, 1};
   if (n->count) {
     for (uint32_t k = n->offset; k < n->offset + n->count; k++)
       st.prims += prim_cost[GLI_REF_SHAPE(bvh->refs[k])];
@@ -416,12 +417,14 @@ static subtree cut_costs(const gli_bvh *bvh, uint32_t node, uint16_t *cut,
   st.first = l.first < r.first ? l.first : r.first;
   st.count = l.count + r.count;
   st.prims = l.prims + r.prims;
+  st.nodes = 1 + l.nodes + r.nodes;
   st.cost = PACKET_COST_NODE +
             (area > 0 ? (al * l.cost + ar * r.cost) / area : st.prims);
   if (st.count <= MAX_LEAF && st.prims <= st.cost) {
     cut[node] = (uint16_t)st.count;
     first[node] = st.first;
     st.cost = st.prims;
+    st.nodes = 1;
   }
   return st;
 }
@@ -462,38 +465,28 @@ static glint_status cut_for_packets(gli_bvh *bvh, glint_error *error) {
     return GLINT_OK;
   uint16_t *cut = calloc(bvh->node_count, sizeof *cut);
   uint32_t *first = malloc(bvh->node_count * sizeof *first);
-  gli_bvh_node *nodes = nodes_alloc(bvh->node_count);
-  uint32_t *wide = malloc(bvh->node_count * sizeof *wide);
-  gli_bvh_node *shrunk = NULL;
-  uint32_t *shrunk_wide = NULL;
-  if (cut && first && nodes && wide) {
-    cut_costs(bvh, 0, cut, first);
+  gli_bvh_node *nodes = NULL;
+  uint32_t *wide = NULL;
+  if (cut && first) {
+    uint32_t count = cut_costs(bvh, 0, cut, first).nodes;
+    nodes = nodes_alloc(count);
+    wide = malloc(count * sizeof *wide);
+  }
+  if (nodes && wide) {
     bvh->packet_nodes = nodes;
     bvh->packet_wide = wide;
     bvh->packet_node_count = 1;
     cut_copy(bvh, cut, first, 0, 0);
-    shrunk = nodes_alloc(bvh->packet_node_count);
-    shrunk_wide = malloc(bvh->packet_node_count * sizeof *shrunk_wide);
   }
   free(cut);
   free(first);
-  if (!shrunk || !shrunk_wide) {
+  if (!nodes || !wide) {
     nodes_free(nodes);
     free(wide);
-    nodes_free(shrunk);
-    free(shrunk_wide);
-    bvh->packet_nodes = bvh->nodes;
-    bvh->packet_wide = bvh->wide.of_binary;
     gli_bvh_free(bvh);
     return gli_fail(error, GLINT_E_MEMORY,
                     "out of memory cutting the BVH for packets");
   }
-  memcpy(shrunk, nodes, bvh->packet_node_count * sizeof *shrunk);
-  memcpy(shrunk_wide, wide, bvh->packet_node_count * sizeof *shrunk_wide);
-  nodes_free(nodes);
-  free(wide);
-  bvh->packet_nodes = shrunk;
-  bvh->packet_wide = shrunk_wide;
   return GLINT_OK;
 }
 
