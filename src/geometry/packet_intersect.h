@@ -82,16 +82,26 @@ static ALWAYS_INLINE void packet_sphere(const psphere *sp, vvec3 o, vvec3 d,
   h->inside = vm_select(win, vm_andnot(vm_true(), outside), h->inside);
 }
 
-/* Eq. 2.5, the division by rcp (eq. 3.1). */
+/* Eq. 2.5 for all lanes, the division by rcp (eq. 3.1): the lanes of
+ * `active` that cross the plane within (eps, tmax), with their t and N·D
+ * (negative: from the front). */
+static ALWAYS_INLINE vmask plane_lanes(const pplane *pl, vvec3 o, vvec3 d,
+                                       vmask active, vfloat eps, vfloat tmax,
+                                       int newton, vfloat *t, vfloat *nd) {
+  vvec3 n = vv_get(pl->n);
+  vfloat denom = vv_dot(n, d);
+  *t = vf_mul(vf_neg(vf_add(vv_dot(n, o), vs_get(&pl->d))),
+              vf_rcp(denom, newton));
+  *nd = denom;
+  return vm_and(vm_and(active, vf_neq(denom, vf_zero())),
+                vm_and(vf_gt(*t, eps), vf_lt(*t, tmax)));
+}
+
 static ALWAYS_INLINE void packet_plane(const pplane *pl, vvec3 o, vvec3 d,
                                        vmask active, vfloat eps, int newton,
                                        packet_hit *h) {
-  vvec3 n = vv_get(pl->n);
-  vfloat denom = vv_dot(n, d);
-  vfloat t = vf_mul(vf_neg(vf_add(vv_dot(n, o), vs_get(&pl->d))),
-                    vf_rcp(denom, newton));
-  vmask win = vm_and(vm_and(active, vf_neq(denom, vf_zero())),
-                     vm_and(vf_gt(t, eps), vf_lt(t, h->t)));
+  vfloat t, nd;
+  vmask win = plane_lanes(pl, o, d, active, eps, h->t, newton, &t, &nd);
   h->t = vf_select(win, t, h->t);
   h->object = vi_select(win, vi_set1(pl->object), h->object);
 }

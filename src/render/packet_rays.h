@@ -419,13 +419,9 @@ static ALWAYS_INLINE vvec3 packet_transmission(const packet_scene *ps, vvec3 o,
   count_tests(st, ps->outside_tests, vm_count(active));
   for (size_t i = 0; i < s->plane_count && vm_any(sh.alive); i++) {
     const pplane *pl = &ps->planes[i];
-    vvec3 n = vv_get(pl->n);
-    vfloat denom = vv_dot(n, d);
-    vfloat t = vf_mul(vf_neg(vf_add(vv_dot(n, o), vs_get(&pl->d))),
-                      vf_rcp(denom, newton));
-    vmask c = vm_and(vm_and(sh.alive, vf_neq(denom, vf_zero())),
-                     vm_and(vf_gt(t, eps), vf_lt(t, dist)));
-    shadow_cross(ps, pl->object, c, t, vf_lt(denom, vf_zero()), &sh);
+    vfloat t, nd;
+    vmask c = plane_lanes(pl, o, d, sh.alive, eps, dist, newton, &t, &nd);
+    shadow_cross(ps, pl->object, c, t, vf_lt(nd, vf_zero()), &sh);
   }
   if (bvh->node_count == 0) {
     for (size_t i = 0; i < s->sphere_count && vm_any(sh.alive); i++)
