@@ -129,6 +129,23 @@ static void malformed_files(void **state) {
               "inf.nff:8: the background colour is 'inf', not a finite number");
   EXPECT_FAIL("unknown.nff", VIEW "torus 0 0 0 1 2\n", GLINT_E_PARSE,
               "unknown.nff:8: unknown entity 'torus'");
+  /* A line a number short: said at that line, not at the next entity's
+   * (it said "short.nff:10: ... found 's'"). */
+  EXPECT_FAIL("short.nff", VIEW "f 1 1 1 1 0 1 0 1\ns 0 0 0\ns 1 1 1 1\n",
+              GLINT_E_PARSE,
+              "short.nff:9: expected a number for the sphere's radius, found "
+              "the end of the line (line 10 begins 's')");
+  /* A number too many (it said "unknown entity '2'"), on the entity's line
+   * and on a line of its own. */
+  EXPECT_FAIL("extra.nff", VIEW "f 1 1 1 1 0 1 0 1\ns 0 0 0 1 2\n",
+              GLINT_E_PARSE,
+              "extra.nff:9: unexpected '2': more numbers on the line than its "
+              "entity takes");
+  EXPECT_FAIL("stray.nff",
+              VIEW "f 1 1 1 1 0 1 0 1\np 3\n0 0 0\n1 0 0\n0 1 0\n1 1 1\n",
+              GLINT_E_PARSE,
+              "stray.nff:13: expected an entity (v, b, l, f, s, c, p or pp), "
+              "found the number '1'");
   /* the angle's own line, not the view's (it said line 1) */
   EXPECT_FAIL("angle.nff",
               "v\nfrom 0 0 10\nat 0 0 0\nup 0 1 0\nangle 180\nhither 0.01\n"

@@ -152,6 +152,13 @@ glint_status gli_text_number(text_file *t, const char *what, double *out,
     return GLINT_OK;
   char shown[48];
   gli_text_quote(shown, sizeof shown, tok, len);
+  /* A word on a later line: most likely the line before ended a number
+   * short (the next entity's name), said at that line, naming both. */
+  if (r == NUMBER_BAD && last > 0 && t->token_line > last)
+    return gli_fail(error, GLINT_E_PARSE,
+                    "%s:%d: expected a number for %s, found the end of the "
+                    "line (line %d begins '%s')",
+                    t->path, last, what, t->token_line, shown);
   if (r == NUMBER_BAD)
     return gli_fail(error, GLINT_E_PARSE,
                     "%s:%d: expected a number for %s, found '%s'", t->path,

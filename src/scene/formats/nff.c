@@ -10,10 +10,12 @@
  *       uncoloured lights open; glint gives each 1/sqrt(number of lights),
  *       the rule Haines suggests so that scenes with many lights are not
  *       washed out. A given colour is used as it is.
- *   f   a material: r g b Kd Ks Shine T ior, mapped onto docs/specification.md
- * §4 as C = (r, g, b), ka = 0.1 (as Tachyon), kd = Kd, ks = kr = Ks, h = Shine,
- * kt = T, ior; no absorption. c   an open cylinder or cone (no end caps). s   a
- * sphere. p   a polygon, one object, triangulated by scene/polygon.c (NFF says
+ *   f   a material: r g b Kd Ks Shine T ior, mapped onto
+ *       docs/specification.md §4 as C = (r, g, b), ka = 0.1 (as Tachyon),
+ *       kd = Kd, ks = kr = Ks, h = Shine, kt = T, ior; no absorption.
+ *   c   an open cylinder or cone (no end caps).
+ *   s   a sphere.
+ *   p   a polygon, one object, triangulated by scene/polygon.c (NFF says
  *       convex, but SPD's gears have concave faces: ear clipping down to
  *       a convex rest, then well-shaped triangles by recursive bisection).
  *   pp  a polygonal patch: the same, with vertex normals, shaded smooth.
@@ -285,7 +287,9 @@ static glint_status read_nff(nff_reader *r, glint_error *e) {
   const char *tok;
   glint_status st = GLINT_OK;
   size_t entities = 0;
-  while (!st && (tok = gli_text_token(&r->t, buf, sizeof buf))) {
+  int last = 0; /* the line of the token before */
+  while (!st && (last = r->t.token_line,
+                 tok = gli_text_token(&r->t, buf, sizeof buf))) {
     entities++;
     if (strcmp(tok, "v") == 0)
       st = read_view(r, e);
@@ -306,6 +310,16 @@ static glint_status read_nff(nff_reader *r, glint_error *e) {
       st = read_polygon(r, 0, e);
     else if (strcmp(tok, "pp") == 0)
       st = read_polygon(r, 1, e);
+    else if (gli_number_parse(tok, strlen(tok), &(double){0}) == NUMBER_OK)
+      st = r->t.token_line == last
+               ? gli_fail(e, GLINT_E_PARSE,
+                          "%s:%d: unexpected '%s': more numbers on the line "
+                          "than its entity takes",
+                          r->t.path, r->t.token_line, tok)
+               : gli_fail(e, GLINT_E_PARSE,
+                          "%s:%d: expected an entity (v, b, l, f, s, c, p or "
+                          "pp), found the number '%s'",
+                          r->t.path, r->t.token_line, tok);
     else
       st = gli_fail(e, GLINT_E_PARSE, "%s:%d: unknown entity '%s'", r->t.path,
                     r->t.token_line,
