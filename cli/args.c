@@ -106,6 +106,8 @@ int parse_region(const char *option, const char *text, int out[4]) {
   for (int k = 0; k < 4; k++) {
     long v = 0;
     int digits = 0;
+    if (*p == '+') /* as parse_int's strtol takes one (-s +4) */
+      p++;
     /* digits only, and at most what GLINT_MAX_DIMENSION needs: no wrap */
     for (; *p >= '0' && *p <= '9' && v <= GLINT_MAX_DIMENSION; p++, digits++)
       v = v * 10 + (*p - '0');

@@ -233,6 +233,9 @@ static void size_errors(void **state) {
   EXPECT_USAGE_ERROR("--region: '-1,0,1,1'", "render", "--region", "-1,0,1,1");
   EXPECT_USAGE_ERROR("--region: '16385,0,1,1'", "render", "--region",
                      "16385,0,1,1");
+  EXPECT_USAGE_ERROR("--region: '++1,0,1,1'", "render", "--region",
+                     "++1,0,1,1");
+  EXPECT_USAGE_ERROR("--region: '+,0,1,1'", "render", "--region", "+,0,1,1");
 }
 
 static void output_errors(void **state) {
@@ -597,6 +600,13 @@ static void options_as_people_write_them(void **state) {
   assert_memory_equal(head, "P6\n16 12\n255\n", 13);
   unlink(p);
   EXPECT_USAGE_ERROR("more than one scene", "render", "--", "giza", "whitted");
+  /* a '+' before a number, in --region as in -W and -s (it was refused) */
+  assert_int_equal(run("render", "-W", "+16", "-s", "+1", "--region",
+                       "+2,+3,+4,+5", "-q", "-o", "a.ppm", "giza", NULL),
+                   0);
+  slurp(p, head, sizeof head);
+  assert_memory_equal(head, "P6\n4 5\n255\n", 11);
+  unlink(p);
 
   /* -o -: the image on stdout, the summary on stderr */
   assert_int_equal(
