@@ -120,8 +120,6 @@ static void frames_equal_glint_render(void **state) {
   glint_scene_destroy(scene);
 }
 
-/* Editing or destroying the scene after the commit changes nothing; the
- * world outlives glint_world_destroy while its renderer holds it. */
 /* Materials within glint.h's limits can still overflow single precision
  * (kr = kt = 1e6, two nested spheres, five bounces: about 1e30 a bounce);
  * every backend's film stays finite, an overflow held at FLT_MAX. */
@@ -168,6 +166,8 @@ static void films_stay_finite(void **state) {
   glint_scene_destroy(s);
 }
 
+/* Editing or destroying the scene after the commit changes nothing; the
+ * world outlives glint_world_destroy while its renderer holds it. */
 static void worlds_are_independent_of_their_scene(void **state) {
   (void)state;
   glint_scene *scene = whitted();

@@ -490,21 +490,16 @@ static glint_status cut_for_packets(gli_bvh *bvh, glint_error *error) {
   return GLINT_OK;
 }
 
-/* The wide form of a finished binary BVH; on failure, neither. */
-static glint_status collapse_wide(gli_bvh *bvh, const glint_scene *scene,
-                                  glint_error *error) {
-  glint_status st = gli_wide_build(bvh, scene, &bvh->wide, error);
-  if (st)
-    gli_bvh_free(bvh);
-  return st;
-}
-
 /* The trees derived from a finished binary BVH: the wide one and the
  * packets'; on failure, none. */
 static glint_status derive_trees(gli_bvh *bvh, const glint_scene *scene,
                                  glint_error *error) {
-  glint_status st = collapse_wide(bvh, scene, error);
-  return st ? st : cut_for_packets(bvh, error);
+  glint_status st = gli_wide_build(bvh, scene, &bvh->wide, error);
+  if (st) {
+    gli_bvh_free(bvh);
+    return st;
+  }
+  return cut_for_packets(bvh, error);
 }
 
 glint_status gli_bvh_build(const glint_scene *scene, gli_bvh *bvh,
