@@ -423,6 +423,18 @@ static void json_mistakes_are_named(void **state) {
        "\"transform\": {\"scale\": 100}}]}",
        "objects[0].transform: the transform moves the object beyond "
        "coordinates of magnitude 1e15"},
+      /* A pivot cancels out where no rotation or scale acts: 1e300 left
+       * the sphere at 1e300 + (3 - 1e300) = 0, and said nothing. */
+      {"{\"materials\": {\"m\": {}}, \"objects\": [{\"type\": \"sphere\", "
+       "\"center\": [3, 0, 0], \"radius\": 1, \"material\": \"m\", "
+       "\"transform\": {\"pivot\": [1e300, 0, 0]}}]}",
+       "objects[0].transform.pivot: must be finite numbers of magnitude at "
+       "most 1e15"},
+      {"{\"materials\": {\"m\": {}}, \"objects\": [{\"type\": \"sphere\", "
+       "\"center\": [0, 0, 0], \"radius\": 1, \"material\": \"m\", "
+       "\"transform\": {\"translate\": [0, 2e15, 0], \"pivot\": [0, -2e15, "
+       "0]}}]}",
+       "objects[0].transform.translate: must be finite"},
   };
   for (size_t i = 0; i < sizeof cases / sizeof cases[0]; i++) {
     glint_scene *s = NULL;

@@ -658,6 +658,20 @@ static glint_status read_transform_fields(json_reader *r, const cJSON *v,
     path_key(r, "scale");
     return fail(r, GLINT_E_PARSE, "the scale %g is not positive", t->scale);
   }
+  /* Checked here, not only where the transform lands: a pivot of 1e300
+   * cancels itself out of translate + pivot + R (p - pivot), and the
+   * object would move silently. */
+  const struct {
+    const char *name;
+    int in_range;
+  } limits[] = {{"translate", gli_vec3_in_range(t->translate)},
+                {"pivot", gli_vec3_in_range(t->pivot)},
+                {"scale", gli_in_range(t->scale)}};
+  for (size_t i = 0; i < sizeof limits / sizeof *limits; i++)
+    if (!limits[i].in_range) {
+      path_key(r, limits[i].name);
+      return fail(r, GLINT_E_PARSE, "must be " GLI_RANGE_TEXT);
+    }
   return GLINT_OK;
 }
 
