@@ -60,12 +60,12 @@ static int emit_corners(void *user, size_t a, size_t b, size_t c) {
   return 0;
 }
 
-void gli_mesh_nonfinite_vertex(mesh_data *m, size_t index,
-                               const glint_error *why) {
-  if (m->nonfinite_pos != MESH_NO_INDEX)
+void gli_mesh_nonfinite(mesh_nonfinite *first, size_t index,
+                        const glint_error *why) {
+  if (first->index != MESH_NO_INDEX)
     return;
-  m->nonfinite_pos = (uint32_t)index;
-  snprintf(m->nonfinite_why, sizeof m->nonfinite_why, "%s", why->message);
+  first->index = (uint32_t)index;
+  snprintf(first->why, sizeof first->why, "%s", why->message);
 }
 
 static int finite_point(glint_vec3 p) {
@@ -124,25 +124,35 @@ static const glint_vec3 *triangle_normals(const mesh_data *m, size_t i,
   return n;
 }
 
-/* A vertex that is not a finite point is refused where a face uses it. */
+/* A vertex or a normal that is not finite is refused where a face uses
+ * it: `normals` chooses which, `list` and `first` are its. */
+static glint_status check_used(const char *path, const mesh_data *m,
+                               int normals, const glint_vec3 *list,
+                               const mesh_nonfinite *first, glint_error *e) {
+  if (first->index == MESH_NO_INDEX)
+    return GLINT_OK;
+  for (size_t i = 0; i < m->ntri; i++) {
+    const uint32_t *v = normals ? normal_indices(m, i) : m->tri[i].v;
+    for (int k = 0; v && k < 3; k++) {
+      if (finite_point(list[v[k]]))
+        continue;
+      if (v[k] == first->index)
+        return gli_fail(e, GLINT_E_PARSE, "%s (and a face uses it)",
+                        first->why);
+      return gli_fail(e, GLINT_E_PARSE,
+                      "%s: %s %u is not a finite %s, and triangle %zu uses "
+                      "it",
+                      path, normals ? "normal" : "vertex", v[k] + 1,
+                      normals ? "direction" : "point", i + 1);
+    }
+  }
+  return GLINT_OK;
+}
+
 static glint_status check_used_vertices(const char *path, const mesh_data *m,
                                         glint_error *e) {
-  if (m->nonfinite_pos == MESH_NO_INDEX)
-    return GLINT_OK;
-  for (size_t i = 0; i < m->ntri; i++)
-    for (int k = 0; k < 3; k++) {
-      uint32_t v = m->tri[i].v[k];
-      if (finite_point(m->pos[v]))
-        continue;
-      if (v == m->nonfinite_pos)
-        return gli_fail(e, GLINT_E_PARSE, "%s (and a face uses it)",
-                        m->nonfinite_why);
-      return gli_fail(e, GLINT_E_PARSE,
-                      "%s: vertex %u is not a finite point, and triangle %zu "
-                      "uses it",
-                      path, v + 1, i + 1);
-    }
-  return GLINT_OK;
+  glint_status st = check_used(path, m, 0, m->pos, &m->nonfinite_pos, e);
+  return st ? st : check_used(path, m, 1, m->nrm, &m->nonfinite_nrm, e);
 }
 
 static glint_status add_to_scene(glint_scene *s, const char *path, mesh_data *m,
@@ -273,7 +283,7 @@ static glint_status add_mesh_text(glint_scene *scene, const char *path,
   mesh_data m;
   memset(&m, 0, sizeof m);
   m.ear_tests_left = &scene->ear_tests_left;
-  m.nonfinite_pos = MESH_NO_INDEX;
+  m.nonfinite_pos.index = m.nonfinite_nrm.index = MESH_NO_INDEX;
   glint_status st = read(path, lf ? lf : data, size, &m, error);
   gli_number_locale_end(locale);
   free(lf);

@@ -25,6 +25,12 @@ typedef struct corner {
   uint32_t v, n; /* position and normal index; n = MESH_NO_INDEX: none */
 } corner;
 
+/* The first item of a list (vertices, normals) that is not finite. */
+typedef struct mesh_nonfinite {
+  uint32_t index; /* MESH_NO_INDEX: none */
+  char why[1024];
+} mesh_nonfinite;
+
 typedef struct mesh_data {
   glint_vec3 *pos;
   size_t npos, pos_cap;
@@ -38,19 +44,17 @@ typedef struct mesh_data {
   corner *corners;    /* the face being read */
   size_t ncorners, corners_cap;
   size_t *ear_tests_left; /* the scene's (scene/polygon.h) */
-  /* The first vertex whose position is not a finite number: scanners write
-   * nan for points no face uses, so it is kept (as read) and refused only
-   * where a face uses it, with `nonfinite_why`, the reader's message;
-   * MESH_NO_INDEX while there is none. (A normal that is not finite is
-   * read as zero: the face's normal shades there.) */
-  uint32_t nonfinite_pos;
-  char nonfinite_why[1024];
+  /* The first vertex whose position is not a finite number, and the first
+   * such normal: scanners write nan for points no face uses, so they are
+   * kept (as read) and refused only where a face uses them, with the
+   * reader's message; MESH_NO_INDEX while there is none. */
+  mesh_nonfinite nonfinite_pos, nonfinite_nrm;
 } mesh_data;
 
-/* A reader's note that vertex `index` has a coordinate that is not finite,
- * `why` its message (see mesh_data.nonfinite_pos). */
-void gli_mesh_nonfinite_vertex(mesh_data *m, size_t index,
-                               const glint_error *why);
+/* A reader's note that vertex (or normal) `index` has a coordinate that is
+ * not finite, `why` its message (see mesh_data.nonfinite_pos). */
+void gli_mesh_nonfinite(mesh_nonfinite *first, size_t index,
+                        const glint_error *why);
 
 void gli_mesh_free(mesh_data *m);
 /* "PATH: out of memory" */

@@ -161,7 +161,7 @@ static glint_status obj_vertex(obj_reader *r, glint_error *e) {
     return st;
   mesh_data *m = r->m;
   if (nonfinite.status)
-    gli_mesh_nonfinite_vertex(m, m->npos, &nonfinite);
+    gli_mesh_nonfinite(&m->nonfinite_pos, m->npos, &nonfinite);
   return obj_append(r, "vertices", &m->pos, &m->npos, &m->pos_cap, v, e);
 }
 
@@ -174,9 +174,9 @@ static glint_status obj_normal(obj_reader *r, glint_error *e) {
   if ((st = obj_xyz(r, names, &v, &nonfinite, e)) ||
       (st = obj_line_end(r, "normal", e)))
     return st;
-  if (nonfinite.status) /* zero: the face's normal shades there */
-    v = (glint_vec3){0, 0, 0};
   mesh_data *m = r->m;
+  if (nonfinite.status)
+    gli_mesh_nonfinite(&m->nonfinite_nrm, m->nnrm, &nonfinite);
   return obj_append(r, "normals", &m->nrm, &m->nnrm, &m->nrm_cap, v, e);
 }
 

@@ -511,9 +511,9 @@ static glint_status ply_element_body(ply_reader *r, glint_error *e) {
     return st;
   mesh_data *m = r->m;
   if (nonfinite[0].status)
-    gli_mesh_nonfinite_vertex(m, m->npos, &nonfinite[0]);
-  if (nonfinite[1].status) /* zero: the face's normal shades there */
-    v[3] = v[4] = v[5] = 0;
+    gli_mesh_nonfinite(&m->nonfinite_pos, m->npos, &nonfinite[0]);
+  if (nonfinite[1].status && m->vertex_normals)
+    gli_mesh_nonfinite(&m->nonfinite_nrm, m->nnrm, &nonfinite[1]);
   if (GLI_PUSH(m->pos, m->npos, m->pos_cap, ((glint_vec3){v[0], v[1], v[2]})))
     return gli_mesh_oom(r->path, e);
   if (m->vertex_normals &&
