@@ -772,7 +772,8 @@ static void ply_binary_both_byte_orders(void **state) {
   s = load(write_bytes(f, "be.ply", b.b, b.n), 1, (V){0, 0, 0});
   check_binary_scene(s);
   glint_scene_destroy(s);
-  /* Padding after the last element of a binary file is ignored. */
+  /* Line breaks and blanks after the last element of a binary file are
+   * ignored (more data: ply_binary_errors). */
   put_text(&b, "\n\n");
   s = load(write_bytes(f, "be_padded.ply", b.b, b.n), 1, (V){0, 0, 0});
   check_binary_scene(s);
@@ -823,6 +824,16 @@ static void ply_binary_errors(void **state) {
   memcpy(b.b + y1, "\x7f\x80\x00\x00", 4);
   expect_fail_path(write_bytes(f, "inf.ply", b.b, b.n), GLINT_E_PARSE,
                    "vertex 1: the vertex's y is inf, not a finite number",
+                   NULL);
+  /* Data after the last element: counts too small, data lost (it was
+   * ignored), even where it is zeros. */
+  make_binary_ply(&b, 0, 5, 2);
+  put_text(&b, "\n");
+  put_uint(&b, 0, 8);
+  put_uint(&b, 0, 4);
+  expect_fail_path(write_bytes(f, "more.ply", b.b, b.n), GLINT_E_PARSE,
+                   "more.ply: 13 bytes after the last element (the header's "
+                   "counts are too small)",
                    NULL);
 }
 
@@ -1251,6 +1262,25 @@ static void gzip_damage_is_an_error(void **state) {
   expect_fail_path(write_bytes(f, "crc.obj.gz", gz, size), GLINT_E_PARSE,
                    "crc.obj.gz: damaged compressed file", NULL);
   gz[size - 8] ^= 0x55;
+  /* Members may follow each other (gzip concatenates them), but anything
+   * else after the last is refused: zlib's gzread ignores it silently. */
+  unsigned char *twice = malloc(2 * size + 16);
+  assert_non_null(twice);
+  memcpy(twice, gz, size);
+  memcpy(twice + size, gz, size);
+  s = load(write_bytes(f, "twice.obj.gz", twice, 2 * size), 1, (V){0, 0, 0});
+  assert_int_equal(s->triangle_count, 2);
+  glint_scene_destroy(s);
+  memcpy(twice + size, "garbage!!!", 10);
+  expect_fail_path(
+      write_bytes(f, "tail.obj.gz", twice, size + 10), GLINT_E_PARSE,
+      "tail.obj.gz: data after the end of the compressed stream", NULL);
+  memcpy(twice + size, gz, size);
+  twice[2 * size] = 0x1f; /* half a member's magic */
+  expect_fail_path(write_bytes(f, "tail2.obj.gz", twice, 2 * size + 1),
+                   GLINT_E_PARSE, "data after the end of the compressed stream",
+                   NULL);
+  free(twice);
   for (size_t i = size / 3; i < size / 3 + 40; i++)
     gz[i] ^= 0xa5;
   expect_fail_path(write_bytes(f, "damaged.obj.gz", gz, size), GLINT_E_PARSE,

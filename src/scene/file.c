@@ -37,6 +37,61 @@ static glint_status too_large(glint_error *e, const char *path,
 #define UNPACK_RATIO 32
 #define UNPACK_FREE ((size_t)16 << 20)
 
+/* Whether the gzip file at `path` has bytes after its last member, which
+ * gzread ignores without a word: -1 when it cannot tell (reading failed).
+ * Members may follow each other (gzip concatenates them); anything else
+ * is garbage. Each member is inflated into a scratch buffer to find its
+ * end. */
+static int gzip_trailing_garbage(const char *path) {
+  FILE *raw = fopen(path, "rb");
+  if (!raw)
+    return -1;
+  z_stream z;
+  memset(&z, 0, sizeof z);
+  if (inflateInit2(&z, 15 + 16) != Z_OK) {
+    fclose(raw);
+    return -1;
+  }
+  unsigned char in[1 << 16], scratch[1 << 16];
+  int verdict = -1, ended = 0;
+  for (;;) {
+    if (z.avail_in == 0) {
+      size_t n = fread(in, 1, sizeof in, raw);
+      if (n == 0) {
+        verdict = ended ? 0 : -1;
+        break;
+      }
+      z.next_in = in;
+      z.avail_in = (uInt)n;
+    }
+    if (ended) { /* what follows a member: another, or garbage */
+      if (z.avail_in < 2 && !feof(raw)) {
+        memmove(in, z.next_in, z.avail_in);
+        size_t n = fread(in + z.avail_in, 1, sizeof in - z.avail_in, raw);
+        z.next_in = in;
+        z.avail_in += (uInt)n;
+      }
+      if (z.avail_in < 2 || z.next_in[0] != 0x1f || z.next_in[1] != 0x8b) {
+        verdict = 1;
+        break;
+      }
+      if (inflateReset(&z) != Z_OK)
+        break;
+      ended = 0;
+    }
+    z.next_out = scratch;
+    z.avail_out = sizeof scratch;
+    int zr = inflate(&z, Z_NO_FLUSH);
+    if (zr == Z_STREAM_END)
+      ended = 1;
+    else if (zr != Z_OK && zr != Z_BUF_ERROR)
+      break;
+  }
+  inflateEnd(&z);
+  fclose(raw);
+  return verdict;
+}
+
 glint_status gli_file_read_all(const char *path, size_t max_bytes, char **out,
                                size_t *out_size, glint_error *e) {
   struct stat sb;
@@ -115,6 +170,7 @@ glint_status gli_file_read_all(const char *path, size_t max_bytes, char **out,
   }
   /* A truncated gzip stream reads as a short file without an error from
    * gzread; only gzclose_r reports it. */
+  int direct = gzdirect(f);
   int zst = gzclose_r(f);
   if (zst != Z_OK) {
     free(data);
@@ -126,6 +182,27 @@ glint_status gli_file_read_all(const char *path, size_t max_bytes, char **out,
                ? io_fail(e, path, "cannot read: ", errno ? errno : EIO)
                : gli_fail(e, GLINT_E_PARSE, "%s: damaged compressed file",
                           path);
+  }
+  /* A single member ends with its length (mod 2^32): a file that does not
+   * is several members, or one with garbage after it, which the slow check
+   * tells apart. */
+  if (!direct) {
+    unsigned char tail[4] = {0, 0, 0, 0};
+    FILE *raw = fopen(path, "rb");
+    int single =
+        raw && sb.st_size >= 4 && fseeko(raw, sb.st_size - 4, SEEK_SET) == 0 &&
+        fread(tail, 1, 4, raw) == 4 &&
+        ((uint32_t)tail[0] | (uint32_t)tail[1] << 8 | (uint32_t)tail[2] << 16 |
+         (uint32_t)tail[3] << 24) == (uint32_t)size;
+    if (raw)
+      fclose(raw);
+    if (!single && gzip_trailing_garbage(path) != 0) {
+      free(data);
+      return gli_fail(e, GLINT_E_PARSE,
+                      "%s: data after the end of the compressed stream "
+                      "(a damaged or appended-to file)",
+                      path);
+    }
   }
   data[size] = '\0';
   *out = data;

@@ -862,7 +862,19 @@ glint_status gli_ply_parse(const char *path, const char *data, size_t size,
                   "header's counts are too small)",
                   path, r.line, gli_text_quote(q, sizeof q, t, len));
   }
-  /* Binary files may carry padding after the last element: ignored. */
+  /* A binary file may end with a line break or blanks after its last
+   * element; anything else there is data the header did not count (a
+   * count too small), which would be lost without a word. */
+  if (!st && r.format != PLY_ASCII) {
+    size_t end = r.pos;
+    while (end < r.size && strchr(" \t\r\n", r.data[end]) && r.data[end])
+      end++;
+    if (end < r.size)
+      st = gli_fail(e, GLINT_E_PARSE,
+                    "%s: %zu bytes after the last element (the header's "
+                    "counts are too small)",
+                    path, r.size - r.pos);
+  }
   if (!st && m->ntri == 0)
     st = gli_fail(e, GLINT_E_PARSE,
                   "%s: no faces (the face element is "
