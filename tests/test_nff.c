@@ -188,6 +188,10 @@ static void malformed_files(void **state) {
       "camera.nff:1: camera: 'from' and 'at' are the same point");
   EXPECT_FAIL("glass.nff", VIEW "f 1 1 1 1 0 1 0.5 0\n", GLINT_E_PARSE,
               "glass.nff:8: material ior = 0 must be a finite number > 0");
+  /* ior 0 stands for 'none' where nothing is transmitted (the SPD writes
+   * it), a negative one never (it read as 1). */
+  EXPECT_FAIL("opaque.nff", VIEW "f 1 1 1 1 0 1 0 -5\n", GLINT_E_PARSE,
+              "opaque.nff:8: material ior = -5 must be a finite number > 0");
   EXPECT_FAIL("patch.nff",
               VIEW "f 1 1 1 1 0 1 0 1\npp 3\n0 0 0 0 0 1e20\n1 0 0 0 0 1\n"
                    "0 1 0 0 0 1\n",

@@ -155,8 +155,9 @@ static glint_status read_material(nff_reader *r, glint_error *e) {
   m.ks = m.kr = v[4];
   m.h = v[5];
   m.kt = v[6];
-  /* SPD files write ior 0 for materials that transmit nothing. */
-  m.ior = v[6] == 0 && v[7] <= 0 ? 1 : v[7];
+  /* SPD files write ior 0 for materials that transmit nothing (and only
+   * 0: a negative ior is an error however little it transmits). */
+  m.ior = v[6] == 0 && v[7] == 0 ? 1 : v[7];
   glint_status st = glint_scene_add_material(r->scene, &m, &r->material, e);
   if (st)
     return at_line(r, line, st, e);
