@@ -371,6 +371,11 @@ glint_status glint_image_write_stream(const glint_image *image, FILE *stream,
                                       glint_error *error);
 glint_status glint_image_read(const char *path, glint_image **image,
                               glint_error *error);
+/* An image file's width and height from its header alone, checked as
+ * glint_image_read checks it (the pixels are not read: a damaged or short
+ * body is found by glint_image_read). */
+glint_status glint_image_read_size(const char *path, int *width, int *height,
+                                   glint_error *error);
 
 /* Peak signal-to-noise ratio in dB over all channels; INFINITY when equal,
  * a negative value when the sizes differ. */

@@ -1521,6 +1521,17 @@ static void compare_threshold_and_difference(void **state) {
   assert_non_null(strstr(err, "--min-psnr: 'x' is not a number"));
   assert_int_equal(run("compare", "a.png", "b.png", "a.png", NULL), 2);
   assert_non_null(strstr(err, "compare takes two images"));
+  /* Sizes are compared from the headers, before either image is decoded:
+   * this one, 16384 x 16384, was read (805 MB) before the sizes were
+   * compared, and found short. */
+  char huge[600];
+  snprintf(huge, sizeof huge, "%s/huge.ppm", dir);
+  FILE *hf = fopen(huge, "wb");
+  assert_non_null(hf);
+  fputs("P6\n16384 16384\n255\nabc", hf);
+  fclose(hf);
+  assert_int_equal(run("compare", "huge.ppm", "a.png", NULL), 2);
+  assert_non_null(strstr(err, "huge.ppm is 16384x16384 but a.png is 16x12"));
   /* A --diff that cannot be written fails before the comparison. */
   assert_int_equal(
       run("compare", "a.png", "b.png", "--diff", "no/such/d.png", NULL), 2);

@@ -72,6 +72,10 @@ static void round_trip(const char *name, int w, int h) {
   assert_memory_equal(glint_image_pixels_const(a), glint_image_pixels_const(b),
                       (size_t)w * h * 3);
   assert_true(isinf(glint_image_psnr(a, b)));
+  int rw = 0, rh = 0;
+  ASSERT_OK(glint_image_read_size(p, &rw, &rh, &e_));
+  assert_int_equal(rw, w);
+  assert_int_equal(rh, h);
   glint_image_destroy(a);
   glint_image_destroy(b);
 }
@@ -159,6 +163,18 @@ static void bad_paths_are_refused(void **state) {
   fclose(f);
   assert_int_equal(glint_image_read(path("trunc.ppm"), &r, &e), GLINT_E_PARSE);
   assert_null(r);
+  /* The size alone, from the header: a short body is not looked at, a bad
+   * header is refused as glint_image_read refuses it. */
+  int w = 0, h = 0;
+  ASSERT_OK(glint_image_read_size(path("trunc.ppm"), &w, &h, &e_));
+  assert_int_equal(w, 4);
+  assert_int_equal(h, 4);
+  assert_int_equal(glint_image_read_size(path("junk.png"), &w, &h, &e),
+                   GLINT_E_PARSE);
+  assert_int_equal(glint_image_read_size(path("missing.png"), &w, &h, &e),
+                   GLINT_E_IO);
+  assert_int_equal(glint_image_read_size(path("trunc.ppm"), NULL, &h, &e),
+                   GLINT_E_ARGUMENT);
   glint_image_destroy(a);
 }
 

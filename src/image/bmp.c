@@ -58,7 +58,7 @@ int gli_bmp_encode(const glint_image *im, FILE *f) {
 }
 
 glint_status gli_bmp_decode(FILE *f, const char *path, glint_image **out,
-                            glint_error *error) {
+                            int size[2], glint_error *error) {
   uint8_t hdr[54];
   if (fread(hdr, 1, sizeof hdr, f) != sizeof hdr || hdr[0] != 'B' ||
       hdr[1] != 'M')
@@ -89,6 +89,10 @@ glint_status gli_bmp_decode(FILE *f, const char *path, glint_image **out,
   int top_down = h < 0;
   if (top_down)
     h = -h;
+  size[0] = w;
+  size[1] = h;
+  if (!out)
+    return GLINT_OK;
   glint_image *im;
   glint_status st = glint_image_create(w, h, &im, error);
   if (st)

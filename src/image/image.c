@@ -427,10 +427,9 @@ glint_status glint_image_write(const glint_image *im, const char *path,
   return glint_image_write_with(im, path, GLINT_PNG_FAST, error);
 }
 
-glint_status glint_image_read(const char *path, glint_image **out,
-                              glint_error *error) {
-  GLI_NOT_NULL(path, "path", error);
-  GLI_NOT_NULL(out, "image", error);
+/* glint_image_read, or with out NULL glint_image_read_size. */
+static glint_status read_image(const char *path, glint_image **out, int size[2],
+                               glint_error *error) {
   glint_image_format fmt = glint_image_format_from_path(path);
   if (fmt == GLINT_FORMAT_UNKNOWN)
     return unknown_format(path, error);
@@ -447,10 +446,32 @@ glint_status glint_image_read(const char *path, glint_image **out,
   if (!f)
     return gli_fail(error, GLINT_E_IO, "%s: %s", path, strerror(errno));
   glint_status st =
-      fmt == GLINT_FORMAT_PNG   ? gli_png_decode(f, path, out, error)
-      : fmt == GLINT_FORMAT_BMP ? gli_bmp_decode(f, path, out, error)
-                                : gli_ppm_decode(f, path, out, error);
+      fmt == GLINT_FORMAT_PNG   ? gli_png_decode(f, path, out, size, error)
+      : fmt == GLINT_FORMAT_BMP ? gli_bmp_decode(f, path, out, size, error)
+                                : gli_ppm_decode(f, path, out, size, error);
   fclose(f);
+  return st;
+}
+
+glint_status glint_image_read(const char *path, glint_image **out,
+                              glint_error *error) {
+  GLI_NOT_NULL(path, "path", error);
+  GLI_NOT_NULL(out, "image", error);
+  int size[2];
+  return read_image(path, out, size, error);
+}
+
+glint_status glint_image_read_size(const char *path, int *width, int *height,
+                                   glint_error *error) {
+  GLI_NOT_NULL(path, "path", error);
+  GLI_NOT_NULL(width, "width", error);
+  GLI_NOT_NULL(height, "height", error);
+  int size[2];
+  glint_status st = read_image(path, NULL, size, error);
+  if (st == GLINT_OK) {
+    *width = size[0];
+    *height = size[1];
+  }
   return st;
 }
 

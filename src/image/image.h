@@ -90,12 +90,14 @@ int gli_bmp_encode(const glint_image *image, FILE *f);
 int gli_ppm_encode(const glint_image *image, FILE *f);
 int gli_ppm_header(FILE *f, int width, int height); /* before the rows */
 
-/* Decoders read a whole image; on failure they fill error naming `path`. */
+/* Decoders read a whole image, or with `image` NULL its header alone,
+ * checked as for reading it; `size` gets the width and height. On failure
+ * they fill error naming `path`. */
 glint_status gli_png_decode(FILE *f, const char *path, glint_image **image,
-                            glint_error *error);
+                            int size[2], glint_error *error);
 glint_status gli_bmp_decode(FILE *f, const char *path, glint_image **image,
-                            glint_error *error);
+                            int size[2], glint_error *error);
 glint_status gli_ppm_decode(FILE *f, const char *path, glint_image **image,
-                            glint_error *error);
+                            int size[2], glint_error *error);
 
 #endif

@@ -117,7 +117,7 @@ int gli_png_encode(const glint_image *im, glint_png_compression compression,
 }
 
 glint_status gli_png_decode(FILE *f, const char *path, glint_image **out,
-                            glint_error *error) {
+                            int size[2], glint_error *error) {
   png_complaint complaint = {"not a PNG file"};
   png_structp png = png_create_read_struct(PNG_LIBPNG_VER_STRING, &complaint,
                                            png_keep_error, png_drop_warning);
@@ -155,6 +155,12 @@ glint_status gli_png_decode(FILE *f, const char *path, glint_image **out,
   if (png_get_rowbytes(png, info) != (size_t)w * 3) {
     png_destroy_read_struct(&png, &info, NULL);
     return gli_fail(error, GLINT_E_PARSE, "%s: unsupported PNG layout", path);
+  }
+  size[0] = (int)w;
+  size[1] = (int)h;
+  if (!out) {
+    png_destroy_read_struct(&png, &info, NULL);
+    return GLINT_OK;
   }
   glint_image *tmp;
   if (glint_image_create((int)w, (int)h, &tmp, error)) {

@@ -55,7 +55,7 @@ static long ppm_number(FILE *f) {
 }
 
 glint_status gli_ppm_decode(FILE *f, const char *path, glint_image **out,
-                            glint_error *error) {
+                            int size[2], glint_error *error) {
   if (fgetc(f) != 'P' || fgetc(f) != '6')
     return gli_fail(error, GLINT_E_PARSE, "%s: not a binary PPM (P6) file",
                     path);
@@ -75,6 +75,10 @@ glint_status gli_ppm_decode(FILE *f, const char *path, glint_image **out,
                     "%s: a PPM of %ld x %ld pixels (glint reads 1 to %d a "
                     "side)",
                     path, w, h, GLINT_MAX_DIMENSION);
+  size[0] = (int)w;
+  size[1] = (int)h;
+  if (!out)
+    return GLINT_OK;
   glint_image *im;
   glint_status st = glint_image_create((int)w, (int)h, &im, error);
   if (st)
