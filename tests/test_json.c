@@ -496,6 +496,12 @@ static const bad_case syntax_cases[] = {
     {"{ }x", ":1:4: JSON syntax error: found 'x'"},
     {"{'a': {}]}", ":1:9: JSON syntax error: found ']'"},
     {"{'objects': [", ":1:14: JSON syntax error: the file ends early"},
+    /* ending after a closed string (it said the string never closed) and
+     * after a value inside an array (it said "found '0'", at the value) */
+    {"{'background'", ":1:14: JSON syntax error: the file ends early"},
+    {"{'background': [0, 0", ":1:21: JSON syntax error: the file ends early"},
+    {"{'a': {'b': true\n", ":2:1: JSON syntax error: the file ends early"},
+    {"{'a': [1, 2] 3", ":1:14: JSON syntax error: found '3'"},
     {"{objects: []}", ":1:2: JSON syntax error: found 'objects'"},
     {"{'a' 1}", ":1:6: JSON syntax error: found '1'"},
     {"{'a': tru}", ":1:7: JSON syntax error: found 'tru'"},

@@ -1005,8 +1005,45 @@ static int utf8_length(const char *p) {
   return n;
 }
 
+/* Whether the quote at q opens a string (rather than closing one): the
+ * quotes before it, escapes aside, are even in number. */
+static int opens_string(const char *data, const char *q) {
+  int in_string = 0;
+  for (const char *s = data; s < q; s++)
+    if (in_string && *s == '\\' && s + 1 < q)
+      s++;
+    else if (*s == '"')
+      in_string = !in_string;
+  return !in_string;
+}
+
+/* Whether p, in data, holds the last value of a file that ends inside an
+ * array or object: a number or literal where a value goes (after '[', ','
+ * or ':'), and nothing after it. cJSON points there, at a value it read
+ * well. */
+static int last_value(const char *data, const char *p) {
+  const char *b = p;
+  while (b > data && is_space(b[-1]))
+    b--;
+  if (b == data || !strchr("[,:", b[-1]))
+    return 0;
+  const char *q = p;
+  if (strncmp(p, "true", 4) == 0 || strncmp(p, "null", 4) == 0)
+    q = p + 4;
+  else if (strncmp(p, "false", 5) == 0)
+    q = p + 5;
+  else if (*p == '-' || (*p >= '0' && *p <= '9'))
+    strtod(p, (char **)&q);
+  if (q == p)
+    return 0;
+  while (*q && is_space(*q))
+    q++;
+  return !*q;
+}
+
 /* What cJSON stopped at, with a hint for the usual mistakes. `*at` may move
- * back to where the problem starts (an unclosed string's quote). */
+ * back to where the problem starts (an unclosed string's quote) or on to
+ * where it is (the end of a file that ends inside an array). */
 static void syntax_hint(const char *data, const char **at, char *out,
                         size_t size) {
   const char *p = *at;
@@ -1021,7 +1058,7 @@ static void syntax_hint(const char *data, const char **at, char *out,
   }
   /* cJSON points just after the opening quote of a string that never
    * closes. */
-  if (p > data && p[-1] == '"') {
+  if (p > data && p[-1] == '"' && opens_string(data, p - 1)) {
     const char *s = p;
     while (*s && *s != '"')
       s += s[0] == '\\' && s[1] ? 2 : 1;
@@ -1049,7 +1086,8 @@ static void syntax_hint(const char *data, const char **at, char *out,
                      (b[-1] == ',' && p[-1] != '[' && p[-1] != '{')))
       *at = p = p - 1;
   }
-  if (!*p) {
+  if (!*p || last_value(data, p)) {
+    *at = p + strlen(p);
     snprintf(out, size, "the file ends early");
     return;
   }
