@@ -185,7 +185,62 @@ static void malformed_files(void **state) {
       "camera.nff",
       "v\nfrom 0 0 0\nat 0 0 0\nup 0 1 0\nangle 45\nhither 1\nresolution 8 8\n",
       GLINT_E_PARSE,
-      "camera.nff:1: camera: 'from' and 'at' are the same point");
+      "camera.nff:3: camera: 'from' and 'at' are the same point");
+  /* The camera's errors at the value's own line (they all said line 1, the
+   * 'v'). */
+  EXPECT_FAIL("far.nff",
+              "v\nfrom 0 0 1e16\nat 0 0 0\nup 0 1 0\nangle 45\nhither 1\n"
+              "resolution 8 8\n",
+              GLINT_E_PARSE, "far.nff:2: camera: coordinates must be finite");
+  EXPECT_FAIL("up.nff",
+              "v\nfrom 0 0 1\nat 0 0 0\nup 0 0 0\nangle 45\nhither 1\n"
+              "resolution 8 8\n",
+              GLINT_E_PARSE, "up.nff:4: camera: 'up' is zero");
+  /* A whole number short, as a number short is (it said line 8, 'found
+   * 'b''). */
+  EXPECT_FAIL("res-short.nff",
+              "v\nfrom 0 0 10\nat 0 0 0\nup 0 1 0\nangle 45\nhither 1\n"
+              "resolution 64\nb 0 0 0\n",
+              GLINT_E_PARSE,
+              "res-short.nff:7: expected a whole number for the vertical "
+              "resolution, found the end of the line (line 8 begins 'b')");
+  /* A polygon's vertex line with a number too many or too few is named,
+   * though the error shows later (they named the line where it did). */
+  EXPECT_FAIL("vlong.nff",
+              VIEW "f 1 1 1 1 0 1 0 1\np 3\n0 0 0\n1 0 0 7\n0 1 0\n"
+                   "s 0 0 0 1\n",
+              GLINT_E_PARSE,
+              "vlong.nff:11: more numbers on the line than a polygon vertex "
+              "takes (vertex 2 of 3 of the polygon on line 9)");
+  EXPECT_FAIL("vshort.nff",
+              VIEW "f 1 1 1 1 0 1 0 1\np 3\n0 0 0\n1 0\n0 1 0\n"
+                   "s 0 0 0 1\n",
+              GLINT_E_PARSE,
+              "vshort.nff:11: fewer numbers on the line than a polygon vertex "
+              "takes (vertex 2 of 3 of the polygon on line 9)");
+  EXPECT_FAIL("pplong.nff",
+              VIEW "f 1 1 1 1 0 1 0 1\npp 3\n0 0 0 0 0 1\n1 0 0 0 0 1 5\n"
+                   "0 1 0 0 0 1\ns 0 0 0 1\n",
+              GLINT_E_PARSE,
+              "pplong.nff:11: more numbers on the line than a patch vertex "
+              "takes (vertex 2 of 3 of the patch on line 9)");
+  /* A vertex out of range at its line (it said the polygon's). */
+  EXPECT_FAIL("vfar.nff",
+              VIEW "f 1 1 1 1 0 1 0 1\np 3\n0 0 0\n1e40 0 0\n0 1 0\n",
+              GLINT_E_PARSE,
+              "vfar.nff:11: p vertex 2 of 3 (of line 9): coordinates must be "
+              "finite");
+  /* Vertices over lines in another layout that reads whole: accepted. */
+  {
+    const char *p =
+        write_file("layout.nff", VIEW "f 1 1 1 1 0 1 0 1\np 3\n0 0 0 1\n0 0 "
+                                      "0 1\n0\ns 0 0 0 1\n");
+    glint_scene *s = NULL;
+    ASSERT_OK(glint_scene_load(p, &s, &e_));
+    assert_int_equal(s->triangle_count, 1);
+    assert_int_equal(s->sphere_count, 1);
+    glint_scene_destroy(s);
+  }
   EXPECT_FAIL("glass.nff", VIEW "f 1 1 1 1 0 1 0.5 0\n", GLINT_E_PARSE,
               "glass.nff:8: material ior = 0 must be a finite number > 0");
   /* ior 0 stands for 'none' where nothing is transmitted (the SPD writes

@@ -140,6 +140,22 @@ static glint_status file_ends(const text_file *t, int last, const char *what,
                   last > 0 ? last : t->line, what);
 }
 
+/* `kind` ("a number", "a whole number") expected for `what`, `shown` found
+ * instead. A word on a later line than the token before (`last`): most
+ * likely the line before ended a number short (the next entity's name),
+ * said at that line, naming both. */
+static glint_status not_a_number(const text_file *t, int last, const char *kind,
+                                 const char *what, const char *shown,
+                                 glint_error *error) {
+  if (last > 0 && t->token_line > last)
+    return gli_fail(error, GLINT_E_PARSE,
+                    "%s:%d: expected %s for %s, found the end of the line "
+                    "(line %d begins '%s')",
+                    t->path, last, kind, what, t->token_line, shown);
+  return gli_fail(error, GLINT_E_PARSE, "%s:%d: expected %s for %s, found '%s'",
+                  t->path, t->token_line, kind, what, shown);
+}
+
 glint_status gli_text_number(text_file *t, const char *what, double *out,
                              glint_error *error) {
   size_t len;
@@ -152,17 +168,8 @@ glint_status gli_text_number(text_file *t, const char *what, double *out,
     return GLINT_OK;
   char shown[48];
   gli_text_quote(shown, sizeof shown, tok, len);
-  /* A word on a later line: most likely the line before ended a number
-   * short (the next entity's name), said at that line, naming both. */
-  if (r == NUMBER_BAD && last > 0 && t->token_line > last)
-    return gli_fail(error, GLINT_E_PARSE,
-                    "%s:%d: expected a number for %s, found the end of the "
-                    "line (line %d begins '%s')",
-                    t->path, last, what, t->token_line, shown);
   if (r == NUMBER_BAD)
-    return gli_fail(error, GLINT_E_PARSE,
-                    "%s:%d: expected a number for %s, found '%s'", t->path,
-                    t->token_line, what, shown);
+    return not_a_number(t, last, "a number", what, shown, error);
   return gli_fail(error, GLINT_E_PARSE,
                   "%s:%d: %s is '%s', not a finite number", t->path,
                   t->token_line, what, shown);
@@ -198,10 +205,14 @@ glint_status gli_text_int(text_file *t, const char *what, long min, long max,
   char *end;
   errno = 0;
   long v = strtol(tok, &end, 10);
-  if (end == tok || *end != '\0' || errno == ERANGE)
+  if (end == tok || *end != '\0' || errno == ERANGE) {
+    double any; /* a word, not a number of another kind: maybe a line short */
+    if (gli_number_parse(span, len, &any) == NUMBER_BAD)
+      return not_a_number(t, last, "a whole number", what, tok, error);
     return gli_fail(error, GLINT_E_PARSE,
                     "%s:%d: expected a whole number for %s, found '%s'",
                     t->path, t->token_line, what, tok);
+  }
   if (v < min || v > max)
     return gli_fail(error, GLINT_E_PARSE, "%s:%d: %s is %ld, outside %ld..%ld",
                     t->path, t->token_line, what, v, min, max);

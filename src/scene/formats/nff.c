@@ -45,7 +45,26 @@ typedef struct nff_reader {
   size_t uncoloured_lights;
   glint_vec3 *verts, *norms;
   size_t vert_cap;
+  /* The last polygon's first vertex line that holds too many numbers or
+   * too few (0: none): NFF is read word by word, so a vertex may run over
+   * lines, but a file that fails after such a line most likely went wrong
+   * there, and is told so. */
+  struct {
+    int line, too_many, polygon_line, patch;
+    long vertex, count;
+  } odd;
 } nff_reader;
+
+/* The error about the last polygon's odd line (see nff_reader.odd). */
+static glint_status odd_vertex_line(const nff_reader *r, glint_error *e) {
+  return gli_fail(e, GLINT_E_PARSE,
+                  "%s:%d: %s numbers on the line than a %s vertex takes "
+                  "(vertex %ld of %ld of the %s on line %d)",
+                  r->t.path, r->odd.line, r->odd.too_many ? "more" : "fewer",
+                  r->odd.patch ? "patch" : "polygon", r->odd.vertex,
+                  r->odd.count, r->odd.patch ? "patch" : "polygon",
+                  r->odd.polygon_line);
+}
 
 static glint_status expect_word(nff_reader *r, const char *word,
                                 glint_error *e) {
@@ -82,13 +101,17 @@ static glint_status read_view(nff_reader *r, glint_error *e) {
   double angle, hither;
   long w, h;
   glint_status st;
-  int line = r->t.token_line;
+  /* Each value's line, where an error about it is said. */
+  int from_line, at_line_, up_line;
   if ((st = expect_word(r, "from", e)) ||
-      (st = gli_text_vec3(&r->t, "'from'", &cam.from, e)) ||
+      (from_line = r->t.token_line,
+       st = gli_text_vec3(&r->t, "'from'", &cam.from, e)) ||
       (st = expect_word(r, "at", e)) ||
-      (st = gli_text_vec3(&r->t, "'at'", &cam.at, e)) ||
+      (at_line_ = r->t.token_line,
+       st = gli_text_vec3(&r->t, "'at'", &cam.at, e)) ||
       (st = expect_word(r, "up", e)) ||
-      (st = gli_text_vec3(&r->t, "'up'", &cam.up, e)) ||
+      (up_line = r->t.token_line,
+       st = gli_text_vec3(&r->t, "'up'", &cam.up, e)) ||
       (st = expect_word(r, "angle", e)) ||
       (st = gli_text_number(&r->t, "the view angle", &angle, e)))
     return st;
@@ -110,10 +133,21 @@ static glint_status read_view(nff_reader *r, glint_error *e) {
     half *= (double)w / (double)(w - 1);
   cam.fov_x_degrees = 2 * atan(half) * 180.0 / 3.14159265358979323846;
   (void)hither;
-  if ((st = glint_scene_set_camera(r->scene, &cam, e)) ||
-      (st = glint_scene_set_resolution(r->scene, (int)w, (int)h, e)))
-    return at_line(r, line, st, e);
-  return GLINT_OK;
+  if ((st = glint_scene_set_camera(r->scene, &cam, e))) {
+    /* The line of the value at fault, in gli_camera_check's order: the
+     * ranges, then 'from' and 'at' apart (said at 'at'), then 'up'. */
+    glint_vec3 d = {cam.at.x - cam.from.x, cam.at.y - cam.from.y,
+                    cam.at.z - cam.from.z};
+    int fault = !gli_vec3_in_range(cam.from)                   ? from_line
+                : !gli_vec3_in_range(cam.at)                   ? at_line_
+                : !gli_vec3_in_range(cam.up)                   ? up_line
+                : !isfinite(cam.fov_x_degrees)                 ? angle_line
+                : sqrt(d.x * d.x + d.y * d.y + d.z * d.z) == 0 ? at_line_
+                                                               : up_line;
+    return at_line(r, fault, st, e);
+  }
+  return at_line(r, r->t.token_line,
+                 glint_scene_set_resolution(r->scene, (int)w, (int)h, e), e);
 }
 
 static glint_status read_light(nff_reader *r, glint_error *e) {
@@ -249,10 +283,19 @@ static glint_status read_polygon(nff_reader *r, int patch, glint_error *e) {
                       line);
     r->vert_cap = (size_t)n;
   }
+  r->odd.line = 0;
+  int prev_end = line; /* the line of the last number read */
   for (long i = 0; i < n; i++) {
-    if ((st = gli_text_vec3(&r->t, "a polygon vertex", &r->verts[i], e)) ||
+    glint_vec3 *v = &r->verts[i];
+    int start = 0;
+    if ((st = gli_text_number(&r->t, "a polygon vertex", &v->x, e)) ||
+        (start = r->t.token_line,
+         st = gli_text_number(&r->t, "a polygon vertex", &v->y, e)) ||
+        (st = gli_text_number(&r->t, "a polygon vertex", &v->z, e)) ||
         (patch &&
          (st = gli_text_vec3(&r->t, "a patch normal", &r->norms[i], e)))) {
+      if (r->odd.line) /* where it went wrong */
+        return odd_vertex_line(r, e);
       /* Say which vertex of which polygon (the message is built only now,
        * not for every vertex read). */
       if (e) {
@@ -264,6 +307,22 @@ static glint_status read_polygon(nff_reader *r, int patch, glint_error *e) {
       }
       return st;
     }
+    int end = r->t.token_line;
+    if (!r->odd.line && (start == prev_end || end != start)) {
+      /* a line shared with the vertex before, or one it runs over */
+      r->odd.line = start == prev_end ? prev_end : start;
+      r->odd.too_many = start == prev_end;
+      r->odd.vertex = start == prev_end && i > 0 ? i : i + 1;
+      r->odd.count = n;
+      r->odd.polygon_line = line;
+      r->odd.patch = patch;
+    }
+    prev_end = end;
+    if (!gli_vec3_in_range(*v))
+      return gli_fail(e, GLINT_E_PARSE,
+                      "%s:%d: %s vertex %ld of %ld (of line %d): coordinates "
+                      "must be " GLI_RANGE_TEXT,
+                      r->t.path, end, entity, i + 1, n, line);
   }
   if ((st = gli_scene_begin_object(r->scene, GLI_SHAPE_TRIANGLE, r->material,
                                    e)))
@@ -292,6 +351,8 @@ static glint_status read_nff(nff_reader *r, glint_error *e) {
   while (!st && (last = r->t.token_line,
                  tok = gli_text_token(&r->t, buf, sizeof buf))) {
     entities++;
+    int odd = r->odd.line; /* the polygon just read's, if any */
+    r->odd.line = 0;
     if (strcmp(tok, "v") == 0)
       st = read_view(r, e);
     else if (strcmp(tok, "b") == 0) {
@@ -312,7 +373,8 @@ static glint_status read_nff(nff_reader *r, glint_error *e) {
     else if (strcmp(tok, "pp") == 0)
       st = read_polygon(r, 1, e);
     else if (gli_number_parse(tok, strlen(tok), &(double){0}) == NUMBER_OK)
-      st = r->t.token_line == last
+      st = odd ? (r->odd.line = odd, odd_vertex_line(r, e)) /* went wrong */
+           : r->t.token_line == last
                ? gli_fail(e, GLINT_E_PARSE,
                           "%s:%d: unexpected '%s': more numbers on the line "
                           "than its entity takes",
