@@ -190,11 +190,20 @@ static glint_status add_to_scene(glint_scene *s, const char *path, mesh_data *m,
     st = gli_scene_check_triangle(m->pos[v[0]], m->pos[v[1]], m->pos[v[2]],
                                   triangle_normals(m, i, n), e);
     if (st) {
-      /* A coordinate beyond GLINT_MAX_COORDINATE, in the file or scaled. */
+      /* A coordinate beyond GLINT_MAX_COORDINATE, in the file or scaled:
+       * named by the vertex's number, as the file's faces name it. */
       char msg[sizeof e->message];
       snprintf(msg, sizeof msg, "%s", e ? e->message : "");
-      st = gli_fail(e, st, "%s: triangle %zu, scaled by %g: %s", path, i, scale,
-                    msg);
+      int k = 0;
+      while (k < 2 && gli_vec3_in_range(m->pos[v[k]]))
+        k++;
+      if (!gli_vec3_in_range(m->pos[v[k]]))
+        st =
+            gli_fail(e, st, "%s: vertex %u (of triangle %zu), scaled by %g: %s",
+                     path, v[k] + 1, i + 1, scale, msg);
+      else
+        st = gli_fail(e, st, "%s: triangle %zu, scaled by %g: %s", path, i + 1,
+                      scale, msg);
       goto fail;
     }
   }
