@@ -140,6 +140,11 @@ static int parse_range_list(const char *option, char *text, long lo, long hi,
       if (parse_int(option, items[i], lo, hi, &a) ||
           parse_int(option, dash + 1, lo, hi, &b))
         return -1;
+      if (a > b) {
+        cli_error("%s: the range %d-%d runs backwards (write %d-%d)", option, a,
+                  b, b, a);
+        return -1;
+      }
     } else {
       if (parse_int(option, items[i], lo, hi, &a))
         return -1;
@@ -300,7 +305,12 @@ int bench_parse(int argc, char **argv, bench_options *o) {
         return EXIT_USAGE;
       continue;
     }
-    cli_error("unknown option '%s' (see glint bench --help)", a);
+    if (a[0] != '-' || a[1] == '\0')
+      cli_error("unexpected argument '%s': glint bench takes options only "
+                "(see glint bench --help)",
+                a);
+    else
+      cli_error("unknown option '%s' (see glint bench --help)", a);
     return EXIT_USAGE;
   }
 

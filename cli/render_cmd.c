@@ -650,7 +650,8 @@ int cmd_render(int argc, char **argv) {
   glint_image_destroy(image);
   glint_film_destroy(film);
   if (st) {
-    cli_error("%s", err.message);
+    /* The stream's message has no file name to give: the output's named. */
+    cli_error("%s%s", to_stdout ? "standard output (-o -): " : "", err.message);
     if (to_stdout) /* said: not again at exit (cli_write_errors_not_signals) */
       clearerr(stdout);
     return cli_exit_code(st);

@@ -513,6 +513,13 @@ static void bench_errors(void **state) {
   EXPECT_USAGE_ERROR("--runs: 0 is outside", "bench", "--runs", "0");
   EXPECT_USAGE_ERROR("--depths", "bench", "--depths", "0-3");
   EXPECT_USAGE_ERROR("--depths", "bench", "--depths", "x");
+  /* (it said "the list is empty") */
+  EXPECT_USAGE_ERROR("--depths: the range 5-1 runs backwards (write 1-5)",
+                     "bench", "--depths", "5-1");
+  /* (it said "unknown option 'extra'") */
+  EXPECT_USAGE_ERROR("unexpected argument 'extra': glint bench takes options "
+                     "only",
+                     "bench", "extra");
   EXPECT_USAGE_ERROR("unknown backend 'quantum'", "bench", "--backends",
                      "quantum");
   EXPECT_USAGE_ERROR("unknown scene 'atlantis'", "bench", "--scenes",
@@ -747,9 +754,12 @@ static void a_full_standard_output_is_an_error(void **state) {
   char a_png[600], err_path[600];
   snprintf(a_png, sizeof a_png, "%s/a.png", dir);
   snprintf(err_path, sizeof err_path, "%s/err.txt", dir);
-  const char *commands[][6] = {{"glint", "compare", a_png, a_png, NULL},
-                               {"glint", "--version", NULL},
-                               {"glint", "render", "--help", NULL}};
+  const char *commands[][10] = {
+      {"glint", "compare", a_png, a_png, NULL},
+      {"glint", "--version", NULL},
+      {"glint", "render", "--help", NULL},
+      /* an image: named as the output, which the message alone did not */
+      {"glint", "render", "-W", "8", "-H", "6", "-q", "-o", "-", NULL}};
   for (size_t i = 0; i < sizeof commands / sizeof *commands; i++) {
     pid_t pid =
         spawn_glint((char *const *)commands[i], environ, "/dev/full", err_path);
@@ -760,8 +770,10 @@ static void a_full_standard_output_is_an_error(void **state) {
     if (!WIFEXITED(status) || WEXITSTATUS(status) != 2)
       fail_msg("glint %s > /dev/full: status %d, want exit 2", commands[i][1],
                status);
-    if (!strstr(text, "glint: writing to standard output failed: No space "
-                      "left on device"))
+    if (!strstr(text, i == 3 ? "glint: standard output (-o -): writing the "
+                               "image failed: No space left on device"
+                             : "glint: writing to standard output failed: No "
+                               "space left on device"))
       fail_msg("glint %s > /dev/full: stderr '%s'", commands[i][1], text);
   }
   assert_int_equal(remove_in_folder("err.txt"), 0);

@@ -572,6 +572,11 @@ static const bad_case structure_cases[] = {
      ": image.height: 1000000000 is outside 1..16384"},
     {"{'image': {'width': 640.5, 'height': 480}}",
      ": image.width: expected a whole number, found 640.5"},
+    /* as few digits as say the number (it said 1.0000000000000001e+300) */
+    {"{'image': {'width': 1e300, 'height': 480}}",
+     ": image.width: 1e+300 is outside 1..16384"},
+    {"{'image': {'width': 2.0000000000000004, 'height': 480}}",
+     ": image.width: expected a whole number, found 2.0000000000000004"},
     {"{'image': {'width': '640', 'height': 480}}",
      ": image.width: expected a number, found a string (\"640\")"},
     {"{'image': {'width': 640}}", ": image: missing \"height\""},

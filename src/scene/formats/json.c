@@ -246,16 +246,31 @@ static glint_status get_number(json_reader *r, const cJSON *v, double *out) {
   return GLINT_OK;
 }
 
+/* d in the fewest digits that read back as d (1e300, not
+ * 1.0000000000000001e+300; 2.0000000000000004, not 2). */
+static const char *shortest(char buf[32], double d) {
+  for (int digits = 15; digits < 17; digits++) {
+    snprintf(buf, 32, "%.*g", digits, d);
+    if (strtod(buf, NULL) == d)
+      return buf;
+  }
+  snprintf(buf, 32, "%.17g", d);
+  return buf;
+}
+
 static glint_status get_int(json_reader *r, const cJSON *v, int min, int max,
                             int *out) {
   double d = 0;
   glint_status st = get_number(r, v, &d);
   if (st)
     return st;
+  char shown[32];
   if (d != floor(d))
-    return fail(r, GLINT_E_PARSE, "expected a whole number, found %.17g", d);
+    return fail(r, GLINT_E_PARSE, "expected a whole number, found %s",
+                shortest(shown, d));
   if (d < min || d > max)
-    return fail(r, GLINT_E_PARSE, "%.17g is outside %d..%d", d, min, max);
+    return fail(r, GLINT_E_PARSE, "%s is outside %d..%d", shortest(shown, d),
+                min, max);
   *out = (int)d;
   return GLINT_OK;
 }
