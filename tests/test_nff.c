@@ -230,6 +230,11 @@ static void malformed_files(void **state) {
               GLINT_E_PARSE,
               "vfar.nff:11: p vertex 2 of 3 (of line 9): coordinates must be "
               "finite");
+  /* ...but a number that is not finite is its own error, said as such. */
+  EXPECT_FAIL("vnan.nff",
+              VIEW "f 1 1 1 1 0 1 0 1\np 4\n0 0 0 1\n0 0 0 1\n0\n5 nan 0\n",
+              GLINT_E_PARSE,
+              "vnan.nff:13: a polygon vertex is 'nan', not a finite number");
   /* Vertices over lines in another layout that reads whole: accepted. */
   {
     const char *p =

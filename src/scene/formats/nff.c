@@ -30,6 +30,7 @@
 #include "scene/scene.h"
 #include "scene/text.h"
 
+#include <ctype.h>
 #include <math.h>
 #include <stdio.h>
 #include <stdlib.h>
@@ -64,6 +65,18 @@ static glint_status odd_vertex_line(const nff_reader *r, glint_error *e) {
                   r->odd.patch ? "patch" : "polygon", r->odd.vertex,
                   r->odd.count, r->odd.patch ? "patch" : "polygon",
                   r->odd.polygon_line);
+}
+
+/* Whether the token that a number read just failed at was a word (or the
+ * file's end), as when vertices and lines have gone out of step; not a
+ * number that is not finite, which is its own error. */
+static int failed_at_word(const text_file *t) {
+  const char *end = t->pos, *start = end;
+  while (start > t->data && !isspace((unsigned char)start[-1]))
+    start--;
+  double unused;
+  return start == end ||
+         gli_number_parse(start, (size_t)(end - start), &unused) == NUMBER_BAD;
 }
 
 static glint_status expect_word(nff_reader *r, const char *word,
@@ -294,7 +307,7 @@ static glint_status read_polygon(nff_reader *r, int patch, glint_error *e) {
         (st = gli_text_number(&r->t, "a polygon vertex", &v->z, e)) ||
         (patch &&
          (st = gli_text_vec3(&r->t, "a patch normal", &r->norms[i], e)))) {
-      if (r->odd.line) /* where it went wrong */
+      if (r->odd.line && failed_at_word(&r->t)) /* where it went wrong */
         return odd_vertex_line(r, e);
       /* Say which vertex of which polygon (the message is built only now,
        * not for every vertex read). */
