@@ -163,6 +163,20 @@ static void bad_paths_are_refused(void **state) {
   fclose(f);
   assert_int_equal(glint_image_read(path("trunc.ppm"), &r, &e), GLINT_E_PARSE);
   assert_null(r);
+  /* Bytes after the pixels: a line break is fine, more is refused (they
+   * were ignored). */
+  f = fopen(path("long.ppm"), "wb");
+  fputs("P6\n1 1\n255\nabc\n", f);
+  fclose(f);
+  ASSERT_OK(glint_image_read(path("long.ppm"), &r, &e_));
+  glint_image_destroy(r);
+  r = NULL;
+  f = fopen(path("long.ppm"), "ab");
+  fputs("P6\n1 1\n255\nabc", f);
+  fclose(f);
+  assert_int_equal(glint_image_read(path("long.ppm"), &r, &e), GLINT_E_PARSE);
+  assert_non_null(strstr(e.message, "long.ppm: data after the 1 x 1 pixels"));
+  assert_null(r);
   /* The size alone, from the header: a short body is not looked at, a bad
    * header is refused as glint_image_read refuses it. */
   int w = 0, h = 0;

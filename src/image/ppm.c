@@ -88,6 +88,18 @@ glint_status gli_ppm_decode(FILE *f, const char *path, glint_image **out,
     glint_image_destroy(im);
     return gli_fail(error, GLINT_E_PARSE, "%s: truncated PPM file", path);
   }
+  /* A line break may follow the pixels; more is a second image or a
+   * header whose size is too small, which reading on would hide. */
+  int c;
+  while ((c = fgetc(f)) == '\n' || c == '\r' || c == ' ' || c == '\t')
+    ;
+  if (c != EOF) {
+    glint_image_destroy(im);
+    return gli_fail(error, GLINT_E_PARSE,
+                    "%s: data after the %ld x %ld pixels the PPM header gives "
+                    "(a second image, or a wrong size)",
+                    path, w, h);
+  }
   *out = im;
   return GLINT_OK;
 }
