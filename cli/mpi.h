@@ -89,10 +89,10 @@ typedef struct mpi_job {
 } mpi_job;
 
 /* Runs the job on every rank; returns once every unit is taken. A failure
- * anywhere (a unit's error, a silent rank, a stop signal) does not return:
- * it prints why and ends the job; but a rank silent only once every unit is
- * in (its results were rendered by rank 0 meanwhile) is noted in
- * silent_rank, so that the output is finished first ... */
+ * anywhere (a unit's error, a silent rank of the static schedule, a stop
+ * signal) does not return: it prints why and ends the job; but a rank that
+ * goes silent in the dynamic schedule (rank 0 renders the units it holds)
+ * is noted in silent_rank, so that the output is finished first ... */
 void mpi_run(mpi_job *job);
 /* ... and then the job ended with a message naming it (rank 0; `written`
  * says what was written). Returns when no rank was silent. */

@@ -193,6 +193,23 @@ static void serve(master *m) {
       MPI_Request_free(&m->byes[w]);
       continue;
     }
+    if (job->dynamic) {
+      /* Rank 0 renders what it holds (tail_unit), so nothing is lost: the
+       * output is written whole, and the job ends naming the rank after
+       * (mpi_end_if_silent). A result it sends later is taken or dropped
+       * as any other. */
+      fprintf(stderr,
+              "glint-mpi: rank %d (%s) has sent nothing for %.0f s while it "
+              "owes %d %s%s (is it hung? --timeout sets the limit); rank 0 "
+              "renders them\n",
+              w + 1, world->hosts[w + 1], job->timeout, m->owed[w], job->noun,
+              m->owed[w] == 1 ? "" : "s");
+      fflush(stderr);
+      if (!job->silent_rank)
+        job->silent_rank = w + 1;
+      m->owed[w] = 0;
+      continue;
+    }
     mpi_fail(world, EXIT_USAGE,
              "rank %d (%s) has sent nothing for %.0f s while it owes %d "
              "%s%s (is it hung? --timeout sets the limit); ending the job",
@@ -461,9 +478,9 @@ void mpi_end_if_silent(const mpi_job *job, const char *written) {
     return;
   int r = job->silent_rank;
   fprintf(stderr,
-          "glint-mpi: rank %d (%s) has not answered for %.0f s at the end of "
-          "the job (is it hung? --timeout sets the limit); every %s was in "
-          "and %s was written whole; ending the job\n",
+          "glint-mpi: rank %d (%s) went silent for %.0f s (is it hung? "
+          "--timeout sets the limit); every %s was in and %s was written "
+          "whole; ending the job\n",
           r, world->hosts[r], job->timeout, job->noun, written);
   fflush(stderr);
   MPI_Abort(world->comm, EXIT_USAGE);
