@@ -93,7 +93,7 @@ static void view_usage(FILE *f) {
       "  copy FROM TO         copy a file (to change the scene on disk)\n"
       "  print camera|state   the camera as JSON (as P); or the frames\n"
       "                       rendered, samples, depth, scale, backend\n"
-      "  capture FILE         write what the window shows (.png, .ppm)\n"
+      "  capture FILE         write what the window shows (.png, .bmp, .ppm)\n"
       "  quit                 end, as Esc does (without it the window\n"
       "                       stays, where there is one to show)\n"
       "\n"

@@ -485,6 +485,9 @@ static void refuses_bad_opens(void **state) {
                     "gamma 1e-308 is outside 0.01..100");
   expect_open_error(in_folder("x.ppm"), W, H, 1e308, 0,
                     "gamma 1e+308 is outside 0.01..100");
+  /* not rounded into the range it is outside of (it said "gamma 100") */
+  expect_open_error(in_folder("x.ppm"), W, H, 100.0001, 0,
+                    "gamma 100.0001 is outside 0.01..100");
   expect_open_error(in_folder("x.png"), W, H, 1, 7, "unknown PNG compression");
   /* into memory: a format that is none of the three */
   glint_image_writer *writer = NULL;

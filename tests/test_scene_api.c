@@ -136,6 +136,9 @@ static void null_and_overflowing_arguments_are_refused(void **state) {
       GLINT_E_ARGUMENT, "glint_scene_set_camera_keys: scene is NULL");
   EXPECT_ERR(glint_scene_set_animation(s, NULL, &e_), GLINT_E_ARGUMENT,
              "glint_scene_set_animation: animation is NULL");
+  /* (it said "mesh: missing arrays") */
+  EXPECT_ERR(glint_scene_add_mesh(s, NULL, m, &e_), GLINT_E_ARGUMENT,
+             "glint_scene_add_mesh: mesh is NULL");
   EXPECT_ERR(glint_scene_load_memory("{}", 2, NULL, &out, &e_),
              GLINT_E_ARGUMENT, "glint_scene_load_memory: name is NULL");
   EXPECT_ERR(glint_scene_load_packed(NULL, 8, &out, &e_), GLINT_E_ARGUMENT,

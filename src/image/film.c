@@ -50,7 +50,7 @@ const float *glint_film_pixels_const(const glint_film *film) {
 
 glint_status gli_gamma_check(double gamma, glint_error *error) {
   if (!(gamma >= GLINT_MIN_GAMMA && gamma <= GLINT_MAX_GAMMA))
-    return gli_fail(error, GLINT_E_ARGUMENT, "gamma %g is outside %g..%g",
+    return gli_fail(error, GLINT_E_ARGUMENT, "gamma %.10g is outside %g..%g",
                     gamma, GLINT_MIN_GAMMA, GLINT_MAX_GAMMA);
   return GLINT_OK;
 }

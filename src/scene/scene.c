@@ -489,7 +489,8 @@ glint_status glint_scene_add_cone(glint_scene *s, glint_vec3 base, double rb,
 glint_status glint_scene_add_mesh(glint_scene *s, const glint_mesh *m,
                                   uint32_t material, glint_error *error) {
   GLI_NOT_NULL(s, "scene", error);
-  if (!m || !m->positions || (!m->indices && m->triangle_count))
+  GLI_NOT_NULL(m, "mesh", error);
+  if (!m->positions || (!m->indices && m->triangle_count))
     return gli_fail(error, GLINT_E_ARGUMENT, "mesh: missing arrays");
   /* 3 * triangle_count must not wrap (past it the loop below would check
    * a few indices and the copy read beyond them) */
