@@ -43,20 +43,21 @@ static glint_status too_large(glint_error *e, const char *path,
  * is garbage. Each member is inflated into a scratch buffer to find its
  * end. */
 static int gzip_trailing_garbage(const char *path) {
+  enum { CHUNK = 1 << 16 };
   FILE *raw = fopen(path, "rb");
-  if (!raw)
-    return -1;
+  unsigned char *in = malloc(2 * CHUNK), *scratch = in + CHUNK;
   z_stream z;
   memset(&z, 0, sizeof z);
-  if (inflateInit2(&z, 15 + 16) != Z_OK) {
-    fclose(raw);
+  if (!raw || !in || inflateInit2(&z, 15 + 16) != Z_OK) {
+    if (raw)
+      fclose(raw);
+    free(in);
     return -1;
   }
-  unsigned char in[1 << 16], scratch[1 << 16];
   int verdict = -1, ended = 0;
   for (;;) {
     if (z.avail_in == 0) {
-      size_t n = fread(in, 1, sizeof in, raw);
+      size_t n = fread(in, 1, CHUNK, raw);
       if (n == 0) {
         verdict = ended ? 0 : -1;
         break;
@@ -67,7 +68,7 @@ static int gzip_trailing_garbage(const char *path) {
     if (ended) { /* what follows a member: another, or garbage */
       if (z.avail_in < 2 && !feof(raw)) {
         memmove(in, z.next_in, z.avail_in);
-        size_t n = fread(in + z.avail_in, 1, sizeof in - z.avail_in, raw);
+        size_t n = fread(in + z.avail_in, 1, CHUNK - z.avail_in, raw);
         z.next_in = in;
         z.avail_in += (uInt)n;
       }
@@ -80,7 +81,7 @@ static int gzip_trailing_garbage(const char *path) {
       ended = 0;
     }
     z.next_out = scratch;
-    z.avail_out = sizeof scratch;
+    z.avail_out = CHUNK;
     int zr = inflate(&z, Z_NO_FLUSH);
     if (zr == Z_STREAM_END)
       ended = 1;
@@ -89,6 +90,7 @@ static int gzip_trailing_garbage(const char *path) {
   }
   inflateEnd(&z);
   fclose(raw);
+  free(in);
   return verdict;
 }
 

@@ -1048,7 +1048,7 @@ static int last_value(const char *data, const char *p) {
   else if (strncmp(p, "false", 5) == 0)
     q = p + 5;
   else if (*p == '-' || (*p >= '0' && *p <= '9'))
-    strtod(p, (char **)&q);
+    q = p + strspn(p, "0123456789+-.eE"); /* grammar_problem checked it */
   if (q == p)
     return 0;
   while (*q && is_space(*q))
