@@ -83,11 +83,17 @@ static glint_status oom(glint_error *error) {
   return gli_fail(error, GLINT_E_MEMORY, "out of memory building the scene");
 }
 
-glint_status gli_camera_check(const glint_camera *c, glint_error *error) {
+glint_status gli_camera_check_field(const glint_camera *c,
+                                    gli_camera_field *field,
+                                    glint_error *error) {
+  *field = !gli_vec3_in_range(c->from) ? GLI_CAMERA_FROM
+           : !gli_vec3_in_range(c->at) ? GLI_CAMERA_AT
+                                       : GLI_CAMERA_UP;
   if (!gli_vec3_in_range(c->from) || !gli_vec3_in_range(c->at) ||
       !gli_vec3_in_range(c->up))
     return gli_fail(error, GLINT_E_ARGUMENT,
                     "camera: coordinates must be " GLI_RANGE_TEXT);
+  *field = GLI_CAMERA_FOV;
   if (!isfinite(c->fov_x_degrees))
     return gli_fail(error, GLINT_E_ARGUMENT,
                     "camera: the field of view is not a finite number");
@@ -96,18 +102,25 @@ glint_status gli_camera_check(const glint_camera *c, glint_error *error) {
                     "camera: field of view %g is not between 0 and 180 "
                     "degrees",
                     c->fov_x_degrees);
+  *field = GLI_CAMERA_AT;
   glint_vec3 d = vsub(c->at, c->from);
   if (vlen(d) == 0)
     return gli_fail(error, GLINT_E_ARGUMENT, "camera: 'from' and 'at' are %s",
                     d.x == 0 && d.y == 0 && d.z == 0
                         ? "the same point"
                         : "too close for a direction between them");
+  *field = GLI_CAMERA_UP;
   double dl = vlen(d), ul = vlen(c->up);
   if (ul == 0 || vlen(vcross(d, c->up)) <= 1e-9 * dl * ul)
     return gli_fail(error, GLINT_E_ARGUMENT,
                     "camera: 'up' is zero or parallel to the view "
                     "direction");
   return GLINT_OK;
+}
+
+glint_status gli_camera_check(const glint_camera *c, glint_error *error) {
+  gli_camera_field unused;
+  return gli_camera_check_field(c, &unused, error);
 }
 
 glint_status glint_scene_set_camera(glint_scene *s, const glint_camera *c,

@@ -182,6 +182,20 @@ glint_status gli_scene_load_from(const struct gli_file_source *files,
  * from != at, up not parallel to the view). */
 glint_status gli_camera_check(const glint_camera *camera, glint_error *error);
 
+/* A camera's values, as gli_camera_check_field names the one at fault
+ * ('from' and 'at' together too close: 'at'). */
+typedef enum gli_camera_field {
+  GLI_CAMERA_FROM,
+  GLI_CAMERA_AT,
+  GLI_CAMERA_UP,
+  GLI_CAMERA_FOV
+} gli_camera_field;
+
+/* gli_camera_check, which on failure also sets *field. */
+glint_status gli_camera_check_field(const glint_camera *camera,
+                                    gli_camera_field *field,
+                                    glint_error *error);
+
 /* A deep copy (scene/copy.c). */
 glint_status gli_scene_copy(const glint_scene *scene, glint_scene **copy,
                             glint_error *error);

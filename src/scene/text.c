@@ -207,11 +207,8 @@ glint_status gli_text_int(text_file *t, const char *what, long min, long max,
   long v = strtol(tok, &end, 10);
   if (end == tok || *end != '\0' || errno == ERANGE) {
     double any; /* a word, not a number of another kind: maybe a line short */
-    if (gli_number_parse(span, len, &any) == NUMBER_BAD)
-      return not_a_number(t, last, "a whole number", what, tok, error);
-    return gli_fail(error, GLINT_E_PARSE,
-                    "%s:%d: expected a whole number for %s, found '%s'",
-                    t->path, t->token_line, what, tok);
+    int word = gli_number_parse(span, len, &any) == NUMBER_BAD;
+    return not_a_number(t, word ? last : 0, "a whole number", what, tok, error);
   }
   if (v < min || v > max)
     return gli_fail(error, GLINT_E_PARSE, "%s:%d: %s is %ld, outside %ld..%ld",

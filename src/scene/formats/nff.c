@@ -114,21 +114,22 @@ static glint_status read_view(nff_reader *r, glint_error *e) {
   double angle, hither;
   long w, h;
   glint_status st;
-  /* Each value's line, where an error about it is said. */
-  int from_line, at_line_, up_line;
+  /* Each value's line (gli_camera_field's order), where an error about it
+   * is said. */
+  int lines[4];
   if ((st = expect_word(r, "from", e)) ||
-      (from_line = r->t.token_line,
+      (lines[GLI_CAMERA_FROM] = r->t.token_line,
        st = gli_text_vec3(&r->t, "'from'", &cam.from, e)) ||
       (st = expect_word(r, "at", e)) ||
-      (at_line_ = r->t.token_line,
+      (lines[GLI_CAMERA_AT] = r->t.token_line,
        st = gli_text_vec3(&r->t, "'at'", &cam.at, e)) ||
       (st = expect_word(r, "up", e)) ||
-      (up_line = r->t.token_line,
+      (lines[GLI_CAMERA_UP] = r->t.token_line,
        st = gli_text_vec3(&r->t, "'up'", &cam.up, e)) ||
       (st = expect_word(r, "angle", e)) ||
       (st = gli_text_number(&r->t, "the view angle", &angle, e)))
     return st;
-  int angle_line = r->t.token_line;
+  int angle_line = lines[GLI_CAMERA_FOV] = r->t.token_line;
   if ((st = expect_word(r, "hither", e)) ||
       (st = gli_text_number(&r->t, "hither", &hither, e)) ||
       (st = expect_word(r, "resolution", e)) ||
@@ -146,19 +147,10 @@ static glint_status read_view(nff_reader *r, glint_error *e) {
     half *= (double)w / (double)(w - 1);
   cam.fov_x_degrees = 2 * atan(half) * 180.0 / 3.14159265358979323846;
   (void)hither;
-  if ((st = glint_scene_set_camera(r->scene, &cam, e))) {
-    /* The line of the value at fault, in gli_camera_check's order: the
-     * ranges, then 'from' and 'at' apart (said at 'at'), then 'up'. */
-    glint_vec3 d = {cam.at.x - cam.from.x, cam.at.y - cam.from.y,
-                    cam.at.z - cam.from.z};
-    int fault = !gli_vec3_in_range(cam.from)                   ? from_line
-                : !gli_vec3_in_range(cam.at)                   ? at_line_
-                : !gli_vec3_in_range(cam.up)                   ? up_line
-                : !isfinite(cam.fov_x_degrees)                 ? angle_line
-                : sqrt(d.x * d.x + d.y * d.y + d.z * d.z) == 0 ? at_line_
-                                                               : up_line;
-    return at_line(r, fault, st, e);
-  }
+  gli_camera_field fault;
+  if ((st = gli_camera_check_field(&cam, &fault, e)) ||
+      (st = glint_scene_set_camera(r->scene, &cam, e)))
+    return at_line(r, lines[fault], st, e);
   return at_line(r, r->t.token_line,
                  glint_scene_set_resolution(r->scene, (int)w, (int)h, e), e);
 }
