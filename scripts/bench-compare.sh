@@ -1,8 +1,12 @@
 #!/usr/bin/env bash
 # Two glint binaries, the same renders, interleaved: the median render time
-# (glint render's own, without loading or writing) of each case and backend
-# over RUNS runs, and old/new. For a closing note's "before and after in one
-# run". Usage:
+# of each case and backend over RUNS runs, and old/new. For a closing note's
+# "before and after in one run". Each run is one `glint bench` process (an
+# untimed warm-up render, then the timed one): its time is the render's
+# alone, with no image written. (`glint render --stats` times the render
+# while its image writer encodes the tiles on a thread of its own: pinned
+# to one CPU, that thread's work lands in the render time, and a binary
+# older than the writer would be measured without it.) Usage:
 #   scripts/bench-compare.sh OLD_GLINT NEW_GLINT [CASE ...]
 # CASE is SCENE@DEPTH[@SPP] (a built-in name or a scene file; SPP default 1).
 # Environment: RUNS (3), THREADS (1), BACKENDS (auto,avx512,stream-avx512,
@@ -30,10 +34,11 @@ one() {
   local bin=$1 scene=$2 depth=$3 spp=$4 backend=$5 cpu=$6 dir=$7
   local pin=()
   [[ -n $cpu ]] && pin=(taskset -c "$cpu")
-  "${pin[@]}" "$bin" render "$scene" -b "$backend" -d "$depth" -s "$spp" \
-    -t "$threads" "${size[@]}" --stats -o "$dir/image.ppm" 2>&1 |
-    awk '$1 == "render" {s = $2} $1 == "backend" {b = $2; sub(",", "", b)}
-         END {print s, b}'
+  "${pin[@]}" "$bin" bench --scenes "$scene" --depths "$depth" \
+    --backends "$backend" -s "$spp" -t "$threads" "${size[@]}" --runs 1 \
+    --csv "$dir/run.csv" >/dev/null 2>&1
+  # scene,depth,backend,width,height,spp,threads,runs,median_s,...
+  awk -F, 'NR == 2 {print $9, $3}' "$dir/run.csv"
 }
 
 median() { sort -g | awk '{a[NR]=$1} END {print a[int((NR+1)/2)]}'; }
