@@ -34,6 +34,7 @@ one() {
   local bin=$1 scene=$2 depth=$3 spp=$4 backend=$5 cpu=$6 dir=$7
   local pin=()
   [[ -n $cpu ]] && pin=(taskset -c "$cpu")
+  rm -f "$dir/run.csv" # a run that fails prints nothing, not the last one's
   "${pin[@]}" "$bin" bench --scenes "$scene" --depths "$depth" \
     --backends "$backend" -s "$spp" -t "$threads" "${size[@]}" --runs 1 \
     --csv "$dir/run.csv" >/dev/null 2>&1

@@ -88,12 +88,11 @@ glint_status gli_camera_check_field(const glint_camera *c,
                                     glint_error *error) {
   *field = !gli_vec3_in_range(c->from) ? GLI_CAMERA_FROM
            : !gli_vec3_in_range(c->at) ? GLI_CAMERA_AT
-                                       : GLI_CAMERA_UP;
-  if (!gli_vec3_in_range(c->from) || !gli_vec3_in_range(c->at) ||
-      !gli_vec3_in_range(c->up))
+           : !gli_vec3_in_range(c->up) ? GLI_CAMERA_UP
+                                       : GLI_CAMERA_FOV;
+  if (*field != GLI_CAMERA_FOV)
     return gli_fail(error, GLINT_E_ARGUMENT,
                     "camera: coordinates must be " GLI_RANGE_TEXT);
-  *field = GLI_CAMERA_FOV;
   if (!isfinite(c->fov_x_degrees))
     return gli_fail(error, GLINT_E_ARGUMENT,
                     "camera: the field of view is not a finite number");
