@@ -753,7 +753,9 @@ glint_status glint_image_writer_open(const char *path, int width, int height,
  * the image: for a frame's region, subtract the region's origin. Each pixel
  * is put once. Returns an error at once when the tile lies outside the image
  * or writing has failed (a full disk): a tile callback then cancels the
- * frame. */
+ * frame. A PNG or PPM writer holds only the rows not yet encoded (a BMP, the
+ * whole image): a put that finds 8 MiB of them held while the encoder has
+ * complete rows to encode waits for it; tiles out of order never wait. */
 glint_status glint_image_writer_put(glint_image_writer *writer,
                                     const glint_tile *tile, glint_error *error);
 /* Waits for the encoder, then flushes, syncs and renames the file into

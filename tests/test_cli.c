@@ -814,7 +814,8 @@ static void a_file_past_the_size_limit_is_an_error(void **state) {
 }
 
 /* Memory that cannot be had is exit status 1 (glint --help), from every
- * place that asks for it: the image, a scene's meshes. (Not under
+ * place that asks for it: the image, a scene's meshes. A BMP is held whole
+ * (bottom row first); a PNG would need only bands of it. (Not under
  * AddressSanitizer, which reserves terabytes of address space.) */
 static void out_of_memory_exits_1(void **state) {
   (void)state;
@@ -828,10 +829,10 @@ static void out_of_memory_exits_1(void **state) {
   struct rlimit saved, small;
   getrlimit(RLIMIT_AS, &saved);
   small = saved;
-  small.rlim_cur = (rlim_t)600 << 20; /* a 16384x16384 image needs more */
+  small.rlim_cur = (rlim_t)600 << 20; /* a 16384x16384 BMP needs more */
   setrlimit(RLIMIT_AS, &small);
   int rc = run("render", "whitted", "-W", "16384", "-H", "16384", "-d", "1",
-               "-s", "1", "-o", "big.png", NULL);
+               "-s", "1", "-o", "big.bmp", NULL);
   setrlimit(RLIMIT_AS, &saved);
   assert_int_equal(rc, 1);
   assert_non_null(strstr(err, "out of memory"));

@@ -162,7 +162,18 @@ static void encoding_matches_the_formula(void **state) {
     gli_byte_encode(&enc, edge, out, 8);
     const uint8_t want[] = {0, 0, 0, 0, 0, 255, 255, 255};
     assert_memory_equal(out, want, 8);
+    for (int i = 0; i < 8; i++) { /* one at a time: the scalar tail */
+      gli_byte_encode(&enc, edge + i, out + i, 1);
+      assert_int_equal(out[i], want[i]);
+    }
   }
+  /* The one-comparison path is the one the usual gammas take (the sweeps
+   * above test it for 2.2, 1.8 and 3.7, and the general loop for the
+   * others). */
+  gli_byte_encoding_init(&enc, 2.2);
+  assert_true(enc.one_step);
+  gli_byte_encoding_init(&enc, 0.37);
+  assert_false(enc.one_step);
 }
 
 static void writes_pfm(void **state) {

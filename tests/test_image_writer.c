@@ -4,7 +4,7 @@
  *    file glint_render and glint_image_write_with make, byte for byte, for
  *    PNG (gamma 1 and 2.2, both compressions), BMP and PPM;
  *  - tiles of any size in any order give the image glint_film_to_image
- *    gives;
+ *    gives, and a PNG is held in bands of rows, not whole;
  *  - a writer missing pixels, or discarded, writes nothing, leaves the
  *    existing file as it was and no temporary file beside it;
  *  - writing that fails part-way (a full disk) is reported and keeps the
@@ -501,6 +501,39 @@ static void refuses_bad_opens(void **state) {
   assert_int_equal(leftovers(), 0);
 }
 
+/* A PNG is held in bands of rows while it is written, not whole: writing
+ * an image of 192 MiB of 8-bit pixels leaves the process's peak memory a
+ * fraction of that. (This test runs first, so that no other test's memory
+ * is the peak.) */
+static void a_png_holds_bands_not_the_image(void **state) {
+  (void)state;
+  enum { BW = 8192, BH = 8192, ROWS = 32 };
+  float *rows = malloc(sizeof(float) * BW * ROWS * 3);
+  assert_non_null(rows);
+  for (int i = 0; i < BW * ROWS * 3; i++)
+    rows[i] = (float)(i % (BW * 3)) / (BW * 3);
+  const char *path = in_folder("big.png");
+  glint_image_writer *writer;
+  ASSERT_OK(
+      glint_image_writer_open(path, BW, BH, 2.2, GLINT_PNG_FAST, &writer, &e_));
+  for (int y = 0; y < BH; y += ROWS) {
+    glint_tile t = {0, y, BW, ROWS, rows, (size_t)BW * 3};
+    ASSERT_OK(glint_image_writer_put(writer, &t, &e_));
+  }
+  ASSERT_OK(glint_image_writer_finish(writer, &e_));
+  free(rows);
+  struct rusage usage;
+  assert_int_equal(getrusage(RUSAGE_SELF, &usage), 0);
+  long image_kib = (long)BW * BH * 3 / 1024;
+  if (usage.ru_maxrss >= image_kib / 4)
+    fail_msg("peak memory %ld KiB for an image of %ld KiB", usage.ru_maxrss,
+             image_kib);
+  struct stat sb;
+  assert_int_equal(stat(path, &sb), 0);
+  assert_true(sb.st_size > 0);
+  unlink(path);
+}
+
 /* A renderer needs somewhere to put the frame: a film or a tile callback. */
 static void needs_a_film_or_tiles(void **state) {
   (void)state;
@@ -521,6 +554,7 @@ static void needs_a_film_or_tiles(void **state) {
 
 int main(void) {
   const struct CMUnitTest tests[] = {
+      cmocka_unit_test(a_png_holds_bands_not_the_image),
       cmocka_unit_test(same_file_as_glint_render),
       cmocka_unit_test(tiles_in_any_order),
       cmocka_unit_test(memory_holds_the_file),

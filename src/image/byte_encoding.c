@@ -3,13 +3,20 @@
  * frame of every backend passes through here, tile by tile, so neither
  * case may cost much per value:
  *  - gamma 1: 16 values at a time in SSE2;
- *  - any other gamma: powf runs once per step of the output, not once per
- *    value. The encoding is monotone, so a value's byte is the number of
- *    thresholds (the least value reaching each byte 1..255) at or below
- *    it; a table indexed by the value's top 16 bits (its exponent and 7
- *    bits of mantissa) gives the byte at the start of its bin, and a step
- *    or two of comparison finishes. The bytes are those of powf itself:
- *    each threshold is found by bisection on powf's own results. */
+ *  - any other gamma: powf runs a few times per step of the output, not
+ *    once per value. The encoding is monotone, so a value's byte is the
+ *    number of thresholds (the least value reaching each byte 1..255) at
+ *    or below it; a table indexed by the value's top 16 bits (its exponent
+ *    and 7 bits of mantissa) gives the byte at the start of its bin, and
+ *    comparisons with the next thresholds finish. Where no bin holds more
+ *    than one threshold (gamma 1 to 18, the usual 2.2 included) that is
+ *    one comparison, made 4 values at a time without a branch: a branch
+ *    on each value's bin mispredicts along every gradient of an image, and
+ *    the branching loop took 1.75 ms for a 640x480 frame of Whitted's
+ *    scene where this takes 0.9 ms (gamma 2.2, best of 9, Zen 5). The
+ *    bytes are those of powf itself: each threshold is found on powf's own
+ *    results, from the inverse formula's estimate by doubling steps and
+ *    bisection. */
 #include "image/image.h"
 
 #include <emmintrin.h>
@@ -62,6 +69,7 @@ static uint32_t bits_of(float f) {
 
 #define ONE_BITS 0x3F800000u /* 1.0f; positive floats order as their bits */
 #define BIN_SHIFT 16
+#define BELOW_ONE 0x1.fffffep-1f /* the float below 1 */
 
 uint8_t gli_byte_encode_one(float c, double gamma) {
   if (!(c > 0))
@@ -69,22 +77,60 @@ uint8_t gli_byte_encode_one(float c, double gamma) {
   return to_byte(powf(c < 1 ? c : 1.0f, (float)(1.0 / gamma)));
 }
 
+/* Whether c (in (0, 1]) encodes as k or more. */
+static int reaches(uint32_t bits, int k, double gamma) {
+  return gli_byte_encode_one(float_of(bits), gamma) >= k;
+}
+
+/* The least float in (lo, ONE_BITS] that encodes as k or more, where lo
+ * encodes as less than k (lo may be 0) and 1 as 255. The inverse of the
+ * formula, ((k - 1/2) / 255)^gamma, lands within a few ulps of it for
+ * every gamma; steps of 1, 2, 4, ... ulps from there bracket it, and
+ * bisection closes the bracket: about 2 log2(distance) + 2 powf. */
+static uint32_t threshold_bits(int k, double gamma, uint32_t lo) {
+  float guess = (float)pow((k - 0.5) / 255.0, gamma);
+  uint32_t g = bits_of(guess);
+  g = g <= lo ? lo + 1 : g > ONE_BITS ? ONE_BITS : g;
+  uint32_t hi;
+  if (reaches(g, k, gamma)) {
+    hi = g; /* step down until below */
+    for (uint32_t step = 1;; step *= 2) {
+      uint32_t below = hi - lo > step ? hi - step : lo;
+      if (below == lo || !reaches(below, k, gamma)) {
+        lo = below;
+        break;
+      }
+      hi = below;
+    }
+  } else {
+    lo = g; /* step up until reached */
+    for (uint32_t step = 1;; step *= 2) {
+      uint32_t above = ONE_BITS - lo > step ? lo + step : ONE_BITS;
+      if (above == ONE_BITS || reaches(above, k, gamma)) {
+        hi = above;
+        break;
+      }
+      lo = above;
+    }
+  }
+  while (hi - lo > 1) {
+    uint32_t mid = lo + (hi - lo) / 2;
+    if (reaches(mid, k, gamma))
+      hi = mid;
+    else
+      lo = mid;
+  }
+  return hi;
+}
+
 void gli_byte_encoding_init(gli_byte_encoding *enc, double gamma) {
   enc->gamma = gamma;
+  enc->one_step = 0;
   if (gamma == 1)
     return;
-  /* threshold[k]: the least float in (0, 1] encoded as k or more, found by
-   * bisection between the last threshold and 1 (which encodes as 255). */
   uint32_t lo = 0;
   for (int k = 1; k <= 255; k++) {
-    uint32_t hi = ONE_BITS;
-    while (hi - lo > 1) {
-      uint32_t mid = lo + (hi - lo) / 2;
-      if (gli_byte_encode_one(float_of(mid), gamma) >= k)
-        hi = mid;
-      else
-        lo = mid;
-    }
+    uint32_t hi = threshold_bits(k, gamma, lo);
     enc->threshold[k] = float_of(hi);
     lo = hi - 1; /* encodes as less than k, so less than k + 1 */
   }
@@ -97,6 +143,56 @@ void gli_byte_encoding_init(gli_byte_encoding *enc, double gamma) {
       k++;
     enc->start[bin] = (uint8_t)k;
   }
+  /* One comparison finishes every value when no bin holds two thresholds
+   * (a bin's bytes run from its start to the next bin's, 255 at 1) and the
+   * float below 1, which stands for every value from 1 up, encodes as
+   * 255. */
+  int one_step = enc->threshold[255] <= BELOW_ONE;
+  for (uint32_t bin = 0; bin < GLI_BYTE_BINS && one_step; bin++) {
+    int next = bin + 1 < GLI_BYTE_BINS ? enc->start[bin + 1] : 255;
+    one_step = next - enc->start[bin] <= 1;
+  }
+  enc->one_step = one_step;
+}
+
+/* A value's byte where no bin holds two thresholds: v's lowest lane
+ * clamped to [0, BELOW_ONE] (maxss takes its second operand for a NaN),
+ * its bin's start, and one comparison. No branch: a branch on each value's
+ * bin mispredicts along every gradient of an image. */
+static inline uint8_t encode_one_step(const gli_byte_encoding *enc, __m128 v) {
+  float c = _mm_cvtss_f32(
+      _mm_min_ss(_mm_max_ss(v, _mm_setzero_ps()), _mm_set_ss(BELOW_ONE)));
+  unsigned b = enc->start[bits_of(c) >> BIN_SHIFT];
+  return (uint8_t)(b + (c >= enc->threshold[b + 1]));
+}
+
+/* encode_one_step for 4 values at a time: the clamps, bins and comparisons
+ * in SSE2, the two table reads a lane (SSE2 has no gather). Returns how
+ * many values it encoded. */
+static size_t encode_one_step_sse2(const gli_byte_encoding *enc,
+                                   const float *src, uint8_t *dst, size_t n) {
+  const __m128 zero = _mm_setzero_ps(), below_one = _mm_set1_ps(BELOW_ONE);
+  size_t i = 0;
+  for (; i + 4 <= n; i += 4) {
+    __m128 c = _mm_min_ps(_mm_max_ps(_mm_loadu_ps(src + i), zero), below_one);
+    uint32_t bin[4];
+    _mm_storeu_si128((__m128i *)bin,
+                     _mm_srli_epi32(_mm_castps_si128(c), BIN_SHIFT));
+    int b[4];
+    float next[4];
+    for (int k = 0; k < 4; k++) {
+      b[k] = enc->start[bin[k]];
+      next[k] = enc->threshold[b[k] + 1];
+    }
+    /* b - (c >= next), the comparison's mask being -1 */
+    __m128i byte =
+        _mm_sub_epi32(_mm_loadu_si128((const __m128i *)b),
+                      _mm_castps_si128(_mm_cmpge_ps(c, _mm_loadu_ps(next))));
+    byte = _mm_packs_epi32(byte, byte);
+    uint32_t four = (uint32_t)_mm_cvtsi128_si32(_mm_packus_epi16(byte, byte));
+    memcpy(dst + i, &four, sizeof four);
+  }
+  return i;
 }
 
 void gli_byte_encode(const gli_byte_encoding *enc, const float *src,
@@ -104,6 +200,11 @@ void gli_byte_encode(const gli_byte_encoding *enc, const float *src,
   if (enc->gamma == 1) {
     for (size_t i = to_bytes_sse2(src, dst, n); i < n; i++)
       dst[i] = to_byte(src[i]);
+    return;
+  }
+  if (enc->one_step) {
+    for (size_t i = encode_one_step_sse2(enc, src, dst, n); i < n; i++)
+      dst[i] = encode_one_step(enc, _mm_load_ss(src + i));
     return;
   }
   for (size_t i = 0; i < n; i++) {

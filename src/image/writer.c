@@ -1,17 +1,35 @@
 /* Image files written while a frame renders (glint_image_writer): tiles are
  * converted to 8 bits as they arrive, and a thread of the writer's own
- * encodes each band of complete rows at once, so that encoding overlaps
+ * encodes each batch of complete rows at once, so that encoding overlaps
  * rendering and the file is finished moments after the last tile. The file
  * itself is atomic (gli_atomic_open): it appears whole at finish or not at
- * all. */
+ * all.
+ *
+ * A PNG or PPM is written top row first, so the 8-bit pixels live in bands
+ * of BAND_ROWS rows that are taken when a tile first reaches them and
+ * reused once encoded: the writer holds a few bands, not the image (a
+ * 16384x16384 image needs 768 MiB of 8-bit pixels but a few MiB of bands),
+ * and touches the same memory again (on the virtual machine where this was
+ * measured, each 4 KiB page a process touches first costs it about 13 us:
+ * 2.6 ms of 640x480 when every page was new). Tiles that come faster than
+ * they are encoded wait for the encoder once BANDS_AHEAD bytes of bands
+ * are held, if it has rows to encode; tiles out of order never wait, and
+ * take what bands they need. A BMP, bottom row first, keeps the whole image
+ * as one band. */
 #include "image/image.h"
 
 #include "core/error.h"
 
 #include <errno.h>
+#include <limits.h>
 #include <pthread.h>
 #include <stdlib.h>
 #include <string.h>
+
+/* Rows a band of a PNG or PPM holds: 30 KiB at 640 pixels a row. */
+#define BAND_ROWS 16
+/* The bands held before a tile waits for the encoder (at least 4). */
+#define BANDS_AHEAD ((size_t)8 << 20)
 
 struct glint_image_writer {
   int width, height;
@@ -23,17 +41,25 @@ struct glint_image_writer {
   int in_memory;
   char *memory;
   size_t memory_size;
-  glint_image image;   /* the 8-bit pixels, filled by put */
+  glint_image image;   /* size and gamma; BMP: the 8-bit pixels (band 0) */
+  int band_rows;       /* rows of the image a band holds */
+  int most_taken;      /* bands held before a tile waits for the encoder */
   int *row_pixels;     /* pixels converted in each row so far */
   uint64_t *given;     /* a bit a pixel: given by a put (under `lock`) */
   gli_png_writer *png; /* PNG only, owned by the encoder thread */
   pthread_t encoder;
   pthread_mutex_t lock; /* guards everything below */
   pthread_cond_t wake;  /* rows became ready, or the writer is closing */
-  int ready;            /* rows [0, ready) are complete */
-  int encoded;          /* rows [0, encoded) are encoded */
-  int signalled;        /* ready when the encoder was last woken */
-  int batch_rows;       /* rows worth waking the encoder for */
+  pthread_cond_t room;  /* the encoder released bands, or stopped */
+  uint8_t **bands;      /* [band]: its 8-bit pixels, or NULL (untouched or
+                           encoded) */
+  uint8_t **spare;      /* released bands, for the next to be taken */
+  int spare_count;
+  int taken;      /* bands held */
+  int ready;      /* rows [0, ready) are complete */
+  int encoded;    /* rows [0, encoded) are encoded */
+  int signalled;  /* ready when the encoder was last woken */
+  int batch_rows; /* rows worth waking the encoder for */
   int closing, discarding;
   int failed, failed_errno; /* the encoder could not write */
   int bad_put;              /* a put outside the image or repeated */
@@ -59,28 +85,78 @@ static int give_pixels(uint64_t *given, size_t from, size_t n) {
   return 0;
 }
 
-/* Encodes rows [from, to); a PNG or PPM row by row, a BMP (bottom row
- * first) once every row is there. 0 on success. */
+static int band_count(const glint_image_writer *w) {
+  return (w->height + w->band_rows - 1) / w->band_rows;
+}
+
+static size_t band_bytes(const glint_image_writer *w) {
+  return (size_t)w->band_rows * (size_t)w->width * 3;
+}
+
+/* Row y's first pixel, in the band that holds it (taken). */
+static uint8_t *row_of(const glint_image_writer *w, int y) {
+  return w->bands[y / w->band_rows] +
+         (size_t)(y % w->band_rows) * (size_t)w->width * 3;
+}
+
+/* Takes the bands that rows [from, to) lie in (under `lock`): a spare one
+ * or a new one, after waiting for the encoder to release some where many
+ * are held and it has rows to encode (which needs no other tile, so the
+ * wait ends). 0 on success, -1 out of memory. */
+static int take_bands(glint_image_writer *w, int from, int to) {
+  for (int b = from / w->band_rows; b <= (to - 1) / w->band_rows; b++) {
+    if (w->bands[b])
+      continue;
+    while (!w->spare_count && w->taken >= w->most_taken &&
+           w->ready > w->encoded && !w->failed) {
+      pthread_cond_signal(&w->wake);
+      w->signalled = w->ready;
+      pthread_cond_wait(&w->room, &w->lock);
+    }
+    w->bands[b] =
+        w->spare_count ? w->spare[--w->spare_count] : malloc(band_bytes(w));
+    if (!w->bands[b])
+      return -1;
+    w->taken++;
+  }
+  return 0;
+}
+
+/* Releases, for reuse, the bands whose rows were all encoded now that
+ * rows [from, to) are (under `lock`; a BMP's one band stays to the end). */
+static void release_bands(glint_image_writer *w, int from, int to) {
+  if (w->format == GLINT_FORMAT_BMP)
+    return;
+  for (int b = from / w->band_rows; b < to / w->band_rows; b++)
+    if (w->bands[b]) {
+      w->spare[w->spare_count++] = w->bands[b];
+      w->bands[b] = NULL;
+      w->taken--;
+    }
+}
+
+/* Encodes rows [from, to); a PNG or PPM a band's part at a time, a BMP
+ * (bottom row first) once every row is there. 0 on success. */
 static int encode_rows(glint_image_writer *w, int from, int to) {
   size_t row_bytes = (size_t)w->width * 3;
-  const uint8_t *rows = w->image.rgb + (size_t)from * row_bytes;
-  switch (w->format) {
-  case GLINT_FORMAT_PNG:
-    if (gli_png_rows(w->png, rows, to - from, row_bytes))
+  if (w->format == GLINT_FORMAT_BMP)
+    return to == w->height ? gli_bmp_encode(&w->image, w->file.f) : 0;
+  for (int y = from; y < to;) {
+    int band_end = (y / w->band_rows + 1) * w->band_rows;
+    int n = (band_end < to ? band_end : to) - y;
+    const uint8_t *rows = row_of(w, y);
+    if (w->format == GLINT_FORMAT_PNG
+            ? gli_png_rows(w->png, rows, n, row_bytes) != 0
+            : fwrite(rows, row_bytes, (size_t)n, w->file.f) != (size_t)n)
       return -1;
-    if (to == w->height) {
-      gli_png_writer *png = w->png;
-      w->png = NULL; /* gli_png_end frees it, whatever it returns */
-      return gli_png_end(png);
-    }
-    return 0;
-  case GLINT_FORMAT_PPM:
-    return fwrite(rows, row_bytes, (size_t)(to - from), w->file.f) ==
-                   (size_t)(to - from)
-               ? 0
-               : -1;
-  default: return to == w->height ? gli_bmp_encode(&w->image, w->file.f) : 0;
+    y += n;
   }
+  if (w->format == GLINT_FORMAT_PNG && to == w->height) {
+    gli_png_writer *png = w->png;
+    w->png = NULL; /* gli_png_end frees it, whatever it returns */
+    return gli_png_end(png);
+  }
+  return 0;
 }
 
 static void *encode_loop(void *arg) {
@@ -105,7 +181,10 @@ static void *encode_loop(void *arg) {
       break;
     }
     w->encoded = to;
+    release_bands(w, from, to);
+    pthread_cond_broadcast(&w->room);
   }
+  pthread_cond_broadcast(&w->room); /* no tile waits for a stopped encoder */
   pthread_mutex_unlock(&w->lock);
   return NULL;
 }
@@ -114,7 +193,14 @@ static void writer_free(glint_image_writer *w) {
   gli_png_abort(w->png);
   pthread_mutex_destroy(&w->lock);
   pthread_cond_destroy(&w->wake);
-  free(w->image.rgb);
+  pthread_cond_destroy(&w->room);
+  if (w->bands)
+    for (int b = 0; b < band_count(w); b++)
+      free(w->bands[b]);
+  for (int k = 0; k < w->spare_count; k++)
+    free(w->spare[k]);
+  free(w->bands);
+  free(w->spare);
   free(w->row_pixels);
   free(w->given);
   free(w);
@@ -152,13 +238,21 @@ static glint_status writer_create(const char *label, glint_image_format format,
   w->compression = compression;
   w->batch_rows = height / 16 > 16 ? height / 16 : 16;
   w->image = (glint_image){width, height, gamma, NULL};
-  w->image.rgb = malloc((size_t)width * (size_t)height * 3);
+  w->band_rows = format == GLINT_FORMAT_BMP ? height : BAND_ROWS;
+  size_t ahead = BANDS_AHEAD / band_bytes(w);
+  w->most_taken = ahead > 4 ? (int)(ahead < INT_MAX ? ahead : INT_MAX) : 4;
+  w->bands = calloc((size_t)band_count(w), sizeof *w->bands);
+  w->spare = calloc((size_t)band_count(w), sizeof *w->spare);
   w->row_pixels = calloc((size_t)height, sizeof *w->row_pixels);
   w->given =
       calloc(((size_t)width * (size_t)height + 63) / 64, sizeof *w->given);
   pthread_mutex_init(&w->lock, NULL);
   pthread_cond_init(&w->wake, NULL);
-  if (!w->image.rgb || !w->row_pixels || !w->given) {
+  pthread_cond_init(&w->room, NULL);
+  if (w->bands && format == GLINT_FORMAT_BMP) /* whole: refused now */
+    w->image.rgb = w->bands[0] = malloc(band_bytes(w));
+  if (!w->bands || !w->spare || !w->row_pixels || !w->given ||
+      (format == GLINT_FORMAT_BMP && !w->bands[0])) {
     writer_free(w);
     return gli_fail(error, GLINT_E_MEMORY, "out of memory for a %dx%d image",
                     width, height);
@@ -291,6 +385,13 @@ glint_status glint_image_writer_put(glint_image_writer *w,
                     "%s: tile %dx%d at (%d, %d) repeats pixels already given",
                     w->file.path, tile->width, tile->height, tile->x, tile->y);
   }
+  if (!w->bad_put && take_bands(w, tile->y, tile->y + tile->height)) {
+    w->bad_put = 1; /* its pixels are marked given but have nowhere to go */
+    pthread_mutex_unlock(&w->lock);
+    return gli_fail(error, GLINT_E_MEMORY,
+                    "%s: out of memory for the image's rows %d to %d",
+                    w->file.path, tile->y, tile->y + tile->height - 1);
+  }
   int spoilt = w->bad_put;
   pthread_mutex_unlock(&w->lock);
   if (spoilt)
@@ -298,11 +399,11 @@ glint_status glint_image_writer_put(glint_image_writer *w,
                     "%s: an earlier tile was refused, so the image cannot be "
                     "finished",
                     w->file.path);
-  /* Tiles are disjoint now: the conversion needs no lock. */
+  /* Tiles are disjoint now, and their bands stay until their rows are
+   * encoded: the conversion needs no lock. */
   for (int y = 0; y < tile->height; y++)
     gli_byte_encode(&w->encoding, tile->pixels + (size_t)y * tile->stride,
-                    w->image.rgb +
-                        ((size_t)(tile->y + y) * w->width + tile->x) * 3,
+                    row_of(w, tile->y + y) + (size_t)tile->x * 3,
                     (size_t)tile->width * 3);
   pthread_mutex_lock(&w->lock);
   for (int y = tile->y; y < tile->y + tile->height; y++)
