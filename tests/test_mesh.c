@@ -1364,6 +1364,44 @@ static void a_file_past_the_limit_is_refused_unread(void **state) {
              (after.ru_maxrss - before.ru_maxrss) >> 10);
 }
 
+/* A text file of 1 GiB of NUL bytes (sparse), under the limit, is refused
+ * at its first line without being read whole (1 GiB of memory, and 18 s
+ * for 3 GiB, before); the first NUL of a text file is reported on its line
+ * wherever it lies. */
+static void a_binary_file_for_a_text_one_is_refused_unread(void **state) {
+  fixture *f = *state;
+  const char *path = path_of(f, "zeros.obj");
+  int fd = open(path, O_WRONLY | O_CREAT | O_TRUNC, 0644);
+  assert_true(fd >= 0);
+  if (ftruncate(fd, (off_t)1 << 30) != 0) {
+    close(fd);
+    unlink(path);
+    print_message("no file of 1 GiB here (%s)\n", strerror(errno));
+    skip();
+  }
+  close(fd);
+  struct rusage before, after;
+  getrusage(RUSAGE_SELF, &before);
+  expect_fail_path(path, GLINT_E_PARSE,
+                   "zeros.obj:1: binary data where text was expected", NULL);
+  getrusage(RUSAGE_SELF, &after);
+  unlink(path);
+  if (after.ru_maxrss - before.ru_maxrss > 64 << 10)
+    fail_msg("refusing it took %ld MiB",
+             (after.ru_maxrss - before.ru_maxrss) >> 10);
+  /* A NUL past the first read, on line 3. */
+  FILE *w = fopen(path, "wb");
+  assert_non_null(w);
+  fputs("v 0 0 0\nv 1 0 0\n", w);
+  for (int i = 0; i < 100000; i++)
+    fputc(' ', w);
+  fputc('\0', w);
+  fclose(w);
+  expect_fail_path(path, GLINT_E_PARSE,
+                   "zeros.obj:3: binary data where text was expected", NULL);
+  unlink(path);
+}
+
 /* ------------------------------------------------------------------------ */
 /* Packed scenes (src/scene/pack.c)                                         */
 /* ------------------------------------------------------------------------ */
@@ -1545,6 +1583,7 @@ int main(int argc, char **argv) {
       cmocka_unit_test(files_of_every_kind_of_wrong),
       cmocka_unit_test(gzip_damage_is_an_error),
       cmocka_unit_test(a_file_past_the_limit_is_refused_unread),
+      cmocka_unit_test(a_binary_file_for_a_text_one_is_refused_unread),
       cmocka_unit_test(nonfinite_vertices_no_face_uses),
       cmocka_unit_test(ply_faces_before_vertices),
       cmocka_unit_test(ply_tristrips),

@@ -37,6 +37,9 @@ static glint_status too_large(glint_error *e, const char *path,
 #define UNPACK_RATIO 32
 #define UNPACK_FREE ((size_t)16 << 20)
 
+/* A text file's first read, which a binary file fails. */
+#define FIRST_TEXT_BYTES ((size_t)64 << 10)
+
 /* Whether the gzip file at `path` has bytes after its last member, which
  * gzread ignores without a word: -1 when it cannot tell (reading failed).
  * Members may follow each other (gzip concatenates them); anything else
@@ -94,8 +97,8 @@ static int gzip_trailing_garbage(const char *path) {
   return verdict;
 }
 
-glint_status gli_file_read_all(const char *path, size_t max_bytes, char **out,
-                               size_t *out_size, glint_error *e) {
+glint_status gli_file_read_all(const char *path, size_t max_bytes, int text,
+                               char **out, size_t *out_size, glint_error *e) {
   struct stat sb;
   if (stat(path, &sb) != 0)
     return io_fail(e, path, "", errno);
@@ -127,6 +130,8 @@ glint_status gli_file_read_all(const char *path, size_t max_bytes, char **out,
       return gli_fail(e, GLINT_E_MEMORY, "%s: out of memory", path);
     }
     size_t want = cap - size;
+    if (text && size == 0 && want > FIRST_TEXT_BYTES)
+      want = FIRST_TEXT_BYTES;
     int n =
         gzread(f, data + size, (unsigned)(want < (1u << 30) ? want : 1u << 30));
     if (n < 0) {
@@ -141,6 +146,12 @@ glint_status gli_file_read_all(const char *path, size_t max_bytes, char **out,
               ? io_fail(e, path, "cannot read: ", errno ? errno : EIO)
               : gli_fail(e, GLINT_E_PARSE, "%s: damaged compressed file: %s",
                          path, msg);
+      gzclose(f);
+      free(data);
+      return st;
+    }
+    if (text && memchr(data + size, '\0', (size_t)n)) {
+      glint_status st = gli_file_check_text(path, data, size + (size_t)n, 1, e);
       gzclose(f);
       free(data);
       return st;
@@ -213,12 +224,13 @@ glint_status gli_file_read_all(const char *path, size_t max_bytes, char **out,
 }
 
 glint_status gli_file_source_read(const gli_file_source *source,
-                                  const char *path, size_t max_bytes,
+                                  const char *path, size_t max_bytes, int text,
                                   char **data, size_t *size,
                                   glint_error *error) {
   if (!source)
-    return gli_file_read_all(path, max_bytes, data, size, error);
-  return source->read(source->context, path, max_bytes, data, size, error);
+    return gli_file_read_all(path, max_bytes, text, data, size, error);
+  return source->read(source->context, path, max_bytes, text, data, size,
+                      error);
 }
 
 void gli_file_skip_bom(const char **data, size_t *size) {

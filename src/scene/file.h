@@ -11,12 +11,16 @@
 #include <stddef.h>
 
 /* The whole of `path` in *data (malloc'ed, to be freed by the caller), with
- * a NUL one past the last of its *size bytes; NUL bytes inside are kept.
- * Files of more than max_bytes (after decompression) are refused, naming
- * the limit. GLINT_E_IO when the system cannot read the file, GLINT_E_PARSE
- * for a damaged or truncated compressed stream. Thread-safe. */
-glint_status gli_file_read_all(const char *path, size_t max_bytes, char **data,
-                               size_t *size, glint_error *error);
+ * a NUL one past the last of its *size bytes. Files of more than max_bytes
+ * (after decompression) are refused, naming the limit. A `text` file is
+ * refused at its first NUL byte as gli_file_check_text says, as soon as
+ * that part is read (its first 64 KiB are read alone first): a large
+ * binary file named as a text one is refused unread, not read whole first
+ * (a sparse file of 3 GB took 18 s). Otherwise NUL bytes are kept.
+ * GLINT_E_IO when the system cannot read the file, GLINT_E_PARSE for a
+ * damaged or truncated compressed stream. Thread-safe. */
+glint_status gli_file_read_all(const char *path, size_t max_bytes, int text,
+                               char **data, size_t *size, glint_error *error);
 
 /* Where a loader gets the files it reads: the scene file and the files it
  * refers to (a JSON scene's meshes). NULL is the file system
@@ -26,12 +30,12 @@ glint_status gli_file_read_all(const char *path, size_t max_bytes, char **data,
  * bytes rank 0 read. `read` keeps gli_file_read_all's contract. */
 typedef struct gli_file_source {
   glint_status (*read)(void *context, const char *path, size_t max_bytes,
-                       char **data, size_t *size, glint_error *error);
+                       int text, char **data, size_t *size, glint_error *error);
   void *context;
 } gli_file_source;
 
 glint_status gli_file_source_read(const gli_file_source *source,
-                                  const char *path, size_t max_bytes,
+                                  const char *path, size_t max_bytes, int text,
                                   char **data, size_t *size,
                                   glint_error *error);
 

@@ -324,8 +324,9 @@ glint_status gli_scene_add_mesh_from(glint_scene *scene,
     return st;
   char *data = NULL;
   size_t size = 0;
-  if ((st = gli_file_source_read(files, path, MAX_FILE_BYTES, &data, &size,
-                                 error)))
+  int text = read != gli_ply_parse; /* a PLY's body may be binary */
+  if ((st = gli_file_source_read(files, path, MAX_FILE_BYTES, text, &data,
+                                 &size, error)))
     return st;
   st = add_mesh_text(scene, path, read, data, size, scale, translate,
                      material_id, error);

@@ -71,8 +71,8 @@ static glint_status copy_out(const packed_file *f, const char *path,
 /* Packing's source: the file system, each file kept once (a mesh used
  * twice is read once). */
 static glint_status read_and_keep(void *context, const char *path,
-                                  size_t max_bytes, char **data, size_t *size,
-                                  glint_error *error) {
+                                  size_t max_bytes, int text, char **data,
+                                  size_t *size, glint_error *error) {
   file_list *l = context;
   const packed_file *kept = find(l, path);
   if (kept)
@@ -85,7 +85,7 @@ static glint_status read_and_keep(void *context, const char *path,
     l->files = grown;
     l->capacity = capacity;
   }
-  glint_status st = gli_file_read_all(path, max_bytes, data, size, error);
+  glint_status st = gli_file_read_all(path, max_bytes, text, data, size, error);
   if (st)
     return st;
   packed_file f = {strdup(path), malloc(*size + 1), *size, 1};
@@ -100,10 +100,12 @@ static glint_status read_and_keep(void *context, const char *path,
   return GLINT_OK;
 }
 
-/* Loading's source: the block's files only. */
+/* Loading's source: the block's files only (their text the readers check
+ * as they parse). */
 static glint_status serve_packed(void *context, const char *path,
-                                 size_t max_bytes, char **data, size_t *size,
-                                 glint_error *error) {
+                                 size_t max_bytes, int text, char **data,
+                                 size_t *size, glint_error *error) {
+  (void)text;
   const packed_file *f = find(context, path);
   if (!f)
     return gli_fail(error, GLINT_E_IO,

@@ -81,7 +81,7 @@ glint_status gli_scene_load_from(const gli_file_source *files, const char *path,
   char *data;
   size_t size;
   glint_status st =
-      gli_file_source_read(files, path, f->max_bytes, &data, &size, error);
+      gli_file_source_read(files, path, f->max_bytes, 1, &data, &size, error);
   if (st)
     return st;
   st = f->read(files, path, data, size, out, error);
