@@ -1220,9 +1220,11 @@ static void files_of_every_kind_of_wrong(void **state) {
   /* A binary PLY header with a NUL in it. */
   static const char nul_head[] = "ply\nformat binary_little_endian 1.0\n"
                                  "element vertex 1\0\n";
-  expect_fail_path(write_bytes(f, "nulhead.ply", nul_head, sizeof nul_head - 1),
-                   GLINT_E_PARSE,
-                   "nulhead.ply:3: binary data where text was expected", NULL);
+  expect_fail_path(
+      write_bytes(f, "nulhead.ply", nul_head, sizeof nul_head - 1),
+      GLINT_E_PARSE,
+      "nulhead.ply:3:17: a NUL byte: binary data where text was expected",
+      NULL);
   /* Not a mesh extension. */
   expect_fail(f, "mesh.stl", "solid\n", GLINT_E_ARGUMENT, "not a mesh file",
               NULL);
@@ -1382,8 +1384,7 @@ static void a_binary_file_for_a_text_one_is_refused_unread(void **state) {
   close(fd);
   struct rusage before, after;
   getrusage(RUSAGE_SELF, &before);
-  expect_fail_path(path, GLINT_E_PARSE,
-                   "zeros.obj:1: binary data where text was expected", NULL);
+  expect_fail_path(path, GLINT_E_PARSE, "zeros.obj:1:1: a NUL byte", NULL);
   getrusage(RUSAGE_SELF, &after);
   unlink(path);
   if (after.ru_maxrss - before.ru_maxrss > 64 << 10)
@@ -1397,8 +1398,15 @@ static void a_binary_file_for_a_text_one_is_refused_unread(void **state) {
     fputc(' ', w);
   fputc('\0', w);
   fclose(w);
-  expect_fail_path(path, GLINT_E_PARSE,
-                   "zeros.obj:3: binary data where text was expected", NULL);
+  expect_fail_path(path, GLINT_E_PARSE, "zeros.obj:3:100001: a NUL byte", NULL);
+  /* UTF-16 (a byte-order mark) is named as such. */
+  w = fopen(path, "wb");
+  assert_non_null(w);
+  fwrite("\xff\xfev\0 \0"
+         "1\0",
+         1, 8, w);
+  fclose(w);
+  expect_fail_path(path, GLINT_E_PARSE, "zeros.obj: UTF-16 text", NULL);
   unlink(path);
 }
 

@@ -243,12 +243,22 @@ void gli_file_skip_bom(const char **data, size_t *size) {
 glint_status gli_file_check_text(const char *path, const char *data,
                                  size_t size, size_t first_line,
                                  glint_error *e) {
+  const unsigned char *u = (const unsigned char *)data;
+  if (first_line == 1 && size >= 2 &&
+      ((u[0] == 0xFF && u[1] == 0xFE) || (u[0] == 0xFE && u[1] == 0xFF)))
+    return gli_fail(e, GLINT_E_PARSE,
+                    "%s: UTF-16 text; glint reads text files in UTF-8", path);
   const char *nul = memchr(data, '\0', size);
   if (!nul)
     return GLINT_OK;
   size_t line = first_line;
+  const char *line_start = data;
   for (const char *p = data; p < nul; p++)
-    line += *p == '\n';
+    if (*p == '\n') {
+      line++;
+      line_start = p + 1;
+    }
   return gli_fail(e, GLINT_E_PARSE,
-                  "%s:%zu: binary data where text was expected", path, line);
+                  "%s:%zu:%zu: a NUL byte: binary data where text was expected",
+                  path, line, (size_t)(nul - line_start) + 1);
 }

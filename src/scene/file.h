@@ -13,7 +13,7 @@
 /* The whole of `path` in *data (malloc'ed, to be freed by the caller), with
  * a NUL one past the last of its *size bytes. Files of more than max_bytes
  * (after decompression) are refused, naming the limit. A `text` file is
- * refused at its first NUL byte as gli_file_check_text says, as soon as
+ * refused at its first NUL byte, as gli_file_check_text says,, as soon as
  * that part is read (its first 64 KiB are read alone first): a large
  * binary file named as a text one is refused unread, not read whole first
  * (a sparse file of 3 GB took 18 s). Otherwise NUL bytes are kept.
@@ -42,9 +42,11 @@ glint_status gli_file_source_read(const gli_file_source *source,
 /* Steps over a UTF-8 byte-order mark at the start of a text file, if any. */
 void gli_file_skip_bom(const char **data, size_t *size);
 
-/* GLINT_E_PARSE "PATH:LINE: binary data where text was expected" if data
- * holds a NUL byte (it would end a number early and hide the rest of the
- * line); LINE counts from first_line. */
+/* GLINT_E_PARSE "PATH:LINE:COLUMN: a NUL byte: binary data where text was
+ * expected" if data holds a NUL byte (it would end a number early and hide
+ * the rest of the line), LINE counting from first_line and COLUMN in bytes
+ * from 1; "PATH: UTF-16 text" if data from a file's first line
+ * (first_line 1) starts with a UTF-16 byte-order mark. */
 glint_status gli_file_check_text(const char *path, const char *data,
                                  size_t size, size_t first_line,
                                  glint_error *error);

@@ -1279,20 +1279,10 @@ static const char *grammar_problem(const char *data, size_t size,
 
 static glint_status parse_text(const char *path, const char *data, size_t size,
                                cJSON **out, glint_error *e) {
-  const unsigned char *u = (const unsigned char *)data;
-  if (size >= 2 &&
-      ((u[0] == 0xFF && u[1] == 0xFE) || (u[0] == 0xFE && u[1] == 0xFF)))
-    return gli_fail(e, GLINT_E_PARSE,
-                    "%s: UTF-16 text; glint reads JSON in UTF-8", path);
-  const char *nul = memchr(data, '\0', size);
+  glint_status st = gli_file_check_text(path, data, size, 1, e);
+  if (st)
+    return st;
   size_t line, column;
-  if (nul) {
-    line_column(data, nul, &line, &column);
-    return gli_fail(e, GLINT_E_PARSE,
-                    "%s:%zu:%zu: a NUL byte: binary data where JSON text "
-                    "was expected",
-                    path, line, column);
-  }
   const char *what, *bad = grammar_problem(data, size, &what);
   if (bad) {
     line_column(data, bad, &line, &column);
