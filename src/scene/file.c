@@ -117,12 +117,15 @@ glint_status gli_file_read_all(const char *path, size_t max_bytes, int text,
     gzclose(f);
     return too_large(e, path, max_bytes);
   }
-  /* A plain file fits exactly; a compressed one grows by doubling. */
-  size_t cap = (size_t)sb.st_size + 1, size = 0;
-  if (cap < (1 << 16))
-    cap = 1 << 16;
-  if (cap > max_bytes + 1)
-    cap = max_bytes + 1; /* one more than allowed, to see that it is more */
+  /* A plain file fits exactly (a text one once its first part is read and
+   * has no NUL); a compressed one grows by doubling. The capacity is one
+   * more than allowed, to see that a file is more. */
+  size_t full = (size_t)sb.st_size + 1, size = 0;
+  if (full < FIRST_TEXT_BYTES)
+    full = FIRST_TEXT_BYTES;
+  if (full > max_bytes + 1)
+    full = max_bytes + 1;
+  size_t cap = text && full > FIRST_TEXT_BYTES ? FIRST_TEXT_BYTES : full;
   char *data = malloc(cap + 1);
   for (;;) {
     if (!data) {
@@ -130,8 +133,6 @@ glint_status gli_file_read_all(const char *path, size_t max_bytes, int text,
       return gli_fail(e, GLINT_E_MEMORY, "%s: out of memory", path);
     }
     size_t want = cap - size;
-    if (text && size == 0 && want > FIRST_TEXT_BYTES)
-      want = FIRST_TEXT_BYTES;
     int n =
         gzread(f, data + size, (unsigned)(want < (1u << 30) ? want : 1u << 30));
     if (n < 0) {
@@ -174,7 +175,8 @@ glint_status gli_file_read_all(const char *path, size_t max_bytes, int text,
     if (n == 0)
       break;
     if (size == cap) {
-      cap = cap * 2 < max_bytes + 1 ? cap * 2 : max_bytes + 1;
+      cap = cap * 2 > full ? cap * 2 : full;
+      cap = cap < max_bytes + 1 ? cap : max_bytes + 1;
       char *bigger = realloc(data, cap + 1);
       if (!bigger)
         free(data);
