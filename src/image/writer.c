@@ -113,6 +113,8 @@ static int take_bands(glint_image_writer *w, int from, int to) {
       w->signalled = w->ready;
       pthread_cond_wait(&w->room, &w->lock);
     }
+    if (w->bands[b]) /* another put took it while this one waited */
+      continue;
     w->bands[b] =
         w->spare_count ? w->spare[--w->spare_count] : malloc(band_bytes(w));
     if (!w->bands[b])

@@ -242,6 +242,20 @@ void gli_file_skip_bom(const char **data, size_t *size) {
   }
 }
 
+void gli_text_line_column(const char *data, const char *at, size_t first_line,
+                          size_t *line, size_t *column) {
+  *line = first_line;
+  *column = 1;
+  for (const char *p = data; p < at; p++) {
+    if (*p == '\n' || (*p == '\r' && p[1] != '\n')) {
+      (*line)++;
+      *column = 1;
+    } else if (((unsigned char)*p & 0xC0) != 0x80) {
+      (*column)++;
+    }
+  }
+}
+
 glint_status gli_file_check_text(const char *path, const char *data,
                                  size_t size, size_t first_line,
                                  glint_error *e) {
@@ -253,14 +267,9 @@ glint_status gli_file_check_text(const char *path, const char *data,
   const char *nul = memchr(data, '\0', size);
   if (!nul)
     return GLINT_OK;
-  size_t line = first_line;
-  const char *line_start = data;
-  for (const char *p = data; p < nul; p++)
-    if (*p == '\n') {
-      line++;
-      line_start = p + 1;
-    }
+  size_t line, column;
+  gli_text_line_column(data, nul, first_line, &line, &column);
   return gli_fail(e, GLINT_E_PARSE,
                   "%s:%zu:%zu: a NUL byte: binary data where text was expected",
-                  path, line, (size_t)(nul - line_start) + 1);
+                  path, line, column);
 }

@@ -42,11 +42,17 @@ glint_status gli_file_source_read(const gli_file_source *source,
 /* Steps over a UTF-8 byte-order mark at the start of a text file, if any. */
 void gli_file_skip_bom(const char **data, size_t *size);
 
+/* Line (from first_line) and column (UTF-8 characters, from 1) of `at` in
+ * text starting at `data`. A line ends in LF, CR LF or a lone CR (old Mac
+ * files). */
+void gli_text_line_column(const char *data, const char *at, size_t first_line,
+                          size_t *line, size_t *column);
+
 /* GLINT_E_PARSE "PATH:LINE:COLUMN: a NUL byte: binary data where text was
  * expected" if data holds a NUL byte (it would end a number early and hide
- * the rest of the line), LINE counting from first_line and COLUMN in bytes
- * from 1; "PATH: UTF-16 text" if data from a file's first line
- * (first_line 1) starts with a UTF-16 byte-order mark. */
+ * the rest of the line), as gli_text_line_column counts them; "PATH: UTF-16
+ * text" if data from a file's first line (first_line 1) starts with a
+ * UTF-16 byte-order mark. */
 glint_status gli_file_check_text(const char *path, const char *data,
                                  size_t size, size_t first_line,
                                  glint_error *error);

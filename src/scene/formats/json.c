@@ -985,20 +985,10 @@ static glint_status read_scene(json_reader *r, const cJSON *root) {
   return GLINT_OK;
 }
 
-/* Line and column (UTF-8 characters, both from 1) of `at`. A line ends in
- * LF, CR LF or a lone CR (old Mac files). */
+/* Line and column of `at` in the whole text. */
 static void line_column(const char *data, const char *at, size_t *line,
                         size_t *column) {
-  *line = 1;
-  *column = 1;
-  for (const char *p = data; p < at; p++) {
-    if (*p == '\n' || (*p == '\r' && p[1] != '\n')) {
-      (*line)++;
-      *column = 1;
-    } else if (((unsigned char)*p & 0xC0) != 0x80) {
-      (*column)++;
-    }
-  }
+  gli_text_line_column(data, at, 1, line, column);
 }
 
 static int is_space(char c) {
