@@ -357,7 +357,10 @@ typedef enum glint_png_compression {
 
 /* Writes atomically, in the format of the extension: into a temporary file
  * beside `path`, then renamed over it. A failure leaves any existing file
- * untouched and no partial file. */
+ * untouched and no partial file. Where `path` is a symbolic link, the file
+ * it names is written (created, if the link dangles) and the link stays, as
+ * a shell's > does; only a regular file the caller may write is replaced.
+ * Every file glint writes (films, image writers) is written so. */
 glint_status glint_image_write_with(const glint_image *image, const char *path,
                                     glint_png_compression compression,
                                     glint_error *error);

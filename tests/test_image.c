@@ -274,6 +274,27 @@ static void writes_through_a_link(void **state) {
   assert_int_equal(lstat(link, &sb), 0);
   assert_true(S_ISLNK(sb.st_mode));
   unlink(link);
+  /* A dangling link (through a second one) gets its file, as a shell's >
+   * makes it, and stays a link (it was replaced by the file). */
+  char middle[128];
+  snprintf(middle, sizeof middle, "%s", path("middle.ppm"));
+  assert_int_equal(symlink("middle.ppm", link), 0);
+  assert_int_equal(symlink("made.ppm", middle), 0);
+  ASSERT_OK(glint_image_write(small, link, &e_));
+  assert_int_equal(lstat(link, &sb), 0);
+  assert_true(S_ISLNK(sb.st_mode));
+  ASSERT_OK(glint_image_read(path("made.ppm"), &back, &e_));
+  glint_image_destroy(back);
+  unlink(path("made.ppm"));
+  /* A loop of links is refused, and stays. */
+  unlink(middle);
+  assert_int_equal(symlink("link.ppm", middle), 0);
+  assert_int_equal(glint_image_write(small, link, &e), GLINT_E_IO);
+  assert_non_null(strstr(e.message, "Too many levels of symbolic links"));
+  assert_int_equal(lstat(link, &sb), 0);
+  assert_true(S_ISLNK(sb.st_mode));
+  unlink(middle);
+  unlink(link);
   glint_image_destroy(small);
 }
 

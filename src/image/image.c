@@ -182,6 +182,11 @@ static int open_temp(const char *path, char **temp, int *unnamed,
    * place of a device or a pipe (of /dev/null through a link to it) or of
    * a file the user may not write. */
   struct stat sb;
+  /* A loop of links: the rename would replace one of them. */
+  if (stat(path, &sb) != 0 && errno == ELOOP) {
+    gli_fail(error, GLINT_E_IO, "%s: cannot write: %s", path, strerror(errno));
+    return -1;
+  }
   if (stat(path, &sb) == 0) {
     if (S_ISDIR(sb.st_mode)) {
       gli_fail(error, GLINT_E_IO, "%s: is a directory", path);
@@ -230,14 +235,43 @@ glint_status glint_image_check_writable(const char *path, glint_error *error) {
   return gli_check_folder_writable(path, error);
 }
 
-/* Where `path` is a symbolic link to a file, that file (written through
- * the link, as a shell's > writes, so the link stays a link); else NULL, for
- * path itself (a dangling link is replaced). */
+/* The name that a dangling link at `path` leads to, followed link by link
+ * to the first that does not exist; NULL for a loop of links. */
+static char *dangling_target(const char *path) {
+  char *at = strdup(path);
+  for (int hops = 0; at && hops < 40; hops++) { /* Linux's own limit */
+    struct stat sb;
+    if (lstat(at, &sb) != 0 || !S_ISLNK(sb.st_mode))
+      return at;
+    char to[PATH_MAX];
+    ssize_t n = readlink(at, to, sizeof to);
+    if (n < 0 || n == (ssize_t)sizeof to)
+      break;
+    /* A relative link is relative to its own folder. */
+    const char *slash = strrchr(at, '/');
+    size_t folder = to[0] == '/' || !slash ? 0 : (size_t)(slash - at) + 1;
+    char *next = malloc(folder + (size_t)n + 1);
+    if (next) {
+      memcpy(next, at, folder);
+      memcpy(next + folder, to, (size_t)n);
+      next[folder + (size_t)n] = '\0';
+    }
+    free(at);
+    at = next;
+  }
+  free(at);
+  return NULL;
+}
+
+/* Where `path` is a symbolic link, the file it names (written through the
+ * link, as a shell's > writes, so the link stays a link; a dangling link's
+ * file is created, where its folder exists); else NULL, for path itself. */
 static char *link_target(const char *path) {
   struct stat sb;
   if (lstat(path, &sb) != 0 || !S_ISLNK(sb.st_mode))
     return NULL;
-  return realpath(path, NULL);
+  char *real = realpath(path, NULL);
+  return real || errno != ENOENT ? real : dangling_target(path);
 }
 
 glint_status gli_check_folder_writable(const char *path, glint_error *error) {
