@@ -155,51 +155,37 @@ void gli_byte_encoding_init(gli_byte_encoding *enc, double gamma) {
   enc->one_step = one_step;
 }
 
-/* A value's byte where no bin holds two thresholds: v's lowest lane
- * clamped to [0, BELOW_ONE] (maxss takes its second operand for a NaN),
- * its bin's start, and one comparison. No branch: a branch on each value's
- * bin mispredicts along every gradient of an image. The comparison is of
- * the floats' bits (positive floats order as their bits): render workers
- * run with denormals as zero (render/renderer.c), under which a float
- * comparison takes a denormal threshold (gamma above about 14) for 0 and
- * encodes 0 as 1. */
-static inline uint8_t encode_one_step(const gli_byte_encoding *enc, __m128 v) {
-  float c = _mm_cvtss_f32(
-      _mm_min_ss(_mm_max_ss(v, _mm_setzero_ps()), _mm_set_ss(BELOW_ONE)));
-  unsigned b = enc->start[bits_of(c) >> BIN_SHIFT];
-  return (uint8_t)(b + (bits_of(c) >= bits_of(enc->threshold[b + 1])));
-}
-
-/* encode_one_step for 4 values at a time: the clamps, bins and comparisons
- * in SSE2, the two table reads a lane (SSE2 has no gather). Returns how
- * many values it encoded. */
-static size_t encode_one_step_sse2(const gli_byte_encoding *enc,
-                                   const float *src, uint8_t *dst, size_t n) {
+/* Four values' bytes where no bin holds two thresholds: each value
+ * clamped to [0, BELOW_ONE] (maxps takes its second operand for a NaN),
+ * its bin's start, and one comparison, 4 values at a time in SSE2 but the
+ * two table reads (SSE2 has no gather). No branch: a branch on each
+ * value's bin mispredicts along every gradient of an image. The comparison
+ * is of the floats' bits (positive floats order as their bits): render
+ * workers run with denormals as zero (render/renderer.c), under which a
+ * float comparison takes a denormal threshold (gamma above about 14) for 0
+ * and encodes 0 as 1. */
+static void encode_four(const gli_byte_encoding *enc, const float *src,
+                        uint8_t *dst) {
   const __m128 zero = _mm_setzero_ps(), below_one = _mm_set1_ps(BELOW_ONE);
-  size_t i = 0;
-  for (; i + 4 <= n; i += 4) {
-    __m128 c = _mm_min_ps(_mm_max_ps(_mm_loadu_ps(src + i), zero), below_one);
-    uint32_t bin[4];
-    _mm_storeu_si128((__m128i *)bin,
-                     _mm_srli_epi32(_mm_castps_si128(c), BIN_SHIFT));
-    int b[4];
-    uint32_t next[4];
-    for (int k = 0; k < 4; k++) {
-      b[k] = enc->start[bin[k]];
-      next[k] = bits_of(enc->threshold[b[k] + 1]);
-    }
-    /* b + 1 + (c < next), the comparison's mask being -1; of the bits, as
-     * in encode_one_step */
-    __m128i below = _mm_cmpgt_epi32(_mm_loadu_si128((const __m128i *)next),
-                                    _mm_castps_si128(c));
-    __m128i byte = _mm_add_epi32(
-        _mm_add_epi32(_mm_loadu_si128((const __m128i *)b), _mm_set1_epi32(1)),
-        below);
-    byte = _mm_packs_epi32(byte, byte);
-    uint32_t four = (uint32_t)_mm_cvtsi128_si32(_mm_packus_epi16(byte, byte));
-    memcpy(dst + i, &four, sizeof four);
+  __m128 c = _mm_min_ps(_mm_max_ps(_mm_loadu_ps(src), zero), below_one);
+  uint32_t bin[4];
+  _mm_storeu_si128((__m128i *)bin,
+                   _mm_srli_epi32(_mm_castps_si128(c), BIN_SHIFT));
+  int b[4];
+  uint32_t next[4];
+  for (int k = 0; k < 4; k++) {
+    b[k] = enc->start[bin[k]];
+    next[k] = bits_of(enc->threshold[b[k] + 1]);
   }
-  return i;
+  /* b + 1 + (c < next), the comparison's mask being -1 */
+  __m128i below = _mm_cmpgt_epi32(_mm_loadu_si128((const __m128i *)next),
+                                  _mm_castps_si128(c));
+  __m128i byte = _mm_add_epi32(
+      _mm_add_epi32(_mm_loadu_si128((const __m128i *)b), _mm_set1_epi32(1)),
+      below);
+  byte = _mm_packs_epi32(byte, byte);
+  uint32_t four = (uint32_t)_mm_cvtsi128_si32(_mm_packus_epi16(byte, byte));
+  memcpy(dst, &four, sizeof four);
 }
 
 void gli_byte_encode(const gli_byte_encoding *enc, const float *src,
@@ -210,8 +196,16 @@ void gli_byte_encode(const gli_byte_encoding *enc, const float *src,
     return;
   }
   if (enc->one_step) {
-    for (size_t i = encode_one_step_sse2(enc, src, dst, n); i < n; i++)
-      dst[i] = encode_one_step(enc, _mm_load_ss(src + i));
+    size_t i = 0;
+    for (; i + 4 <= n; i += 4)
+      encode_four(enc, src + i, dst + i);
+    if (i < n) { /* the last 1-3 values, in a padded four */
+      float last[4] = {0, 0, 0, 0};
+      uint8_t bytes[4];
+      memcpy(last, src + i, (n - i) * sizeof *src);
+      encode_four(enc, last, bytes);
+      memcpy(dst + i, bytes, n - i);
+    }
     return;
   }
   for (size_t i = 0; i < n; i++) {

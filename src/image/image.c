@@ -182,12 +182,13 @@ static int open_temp(const char *path, char **temp, int *unnamed,
    * place of a device or a pipe (of /dev/null through a link to it) or of
    * a file the user may not write. */
   struct stat sb;
+  int exists = stat(path, &sb) == 0;
   /* A loop of links: the rename would replace one of them. */
-  if (stat(path, &sb) != 0 && errno == ELOOP) {
+  if (!exists && errno == ELOOP) {
     gli_fail(error, GLINT_E_IO, "%s: cannot write: %s", path, strerror(errno));
     return -1;
   }
-  if (stat(path, &sb) == 0) {
+  if (exists) {
     if (S_ISDIR(sb.st_mode)) {
       gli_fail(error, GLINT_E_IO, "%s: is a directory", path);
       return -1;

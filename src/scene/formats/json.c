@@ -985,12 +985,6 @@ static glint_status read_scene(json_reader *r, const cJSON *root) {
   return GLINT_OK;
 }
 
-/* Line and column of `at` in the whole text. */
-static void line_column(const char *data, const char *at, size_t *line,
-                        size_t *column) {
-  gli_text_line_column(data, at, 1, line, column);
-}
-
 static int is_space(char c) {
   return c == ' ' || c == '\t' || c == '\n' || c == '\r';
 }
@@ -1275,7 +1269,7 @@ static glint_status parse_text(const char *path, const char *data, size_t size,
   size_t line, column;
   const char *what, *bad = grammar_problem(data, size, &what);
   if (bad) {
-    line_column(data, bad, &line, &column);
+    gli_text_line_column(data, bad, 1, &line, &column);
     return gli_fail(e, GLINT_E_PARSE, "%s:%zu:%zu: JSON syntax error: %s", path,
                     line, column, what);
   }
@@ -1291,7 +1285,7 @@ static glint_status parse_text(const char *path, const char *data, size_t size,
     end = data + size;
   char hint[160];
   syntax_hint(data, &end, hint, sizeof hint);
-  line_column(data, end, &line, &column);
+  gli_text_line_column(data, end, 1, &line, &column);
   return gli_fail(e, GLINT_E_PARSE, "%s:%zu:%zu: JSON syntax error: %s", path,
                   line, column, hint);
 }
