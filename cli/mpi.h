@@ -12,6 +12,7 @@
 #include <glint.h>
 #include <mpi.h>
 
+#include <stdatomic.h>
 #include <stddef.h>
 
 enum { MPI_HOST_CHARS = 256, MPI_MESSAGE_CHARS = 1280 };
@@ -24,6 +25,13 @@ typedef struct mpi_world {
    * a failure or a stop signal. */
   void (*abandon)(void *context);
   void *abandon_context;
+  /* Rank 0 renders its own units on a thread of their own
+   * (cli/mpi_schedule.c): when the job ends on a failure, `ending` cancels
+   * the unit that thread renders, and settle() waits until it has stopped,
+   * before abandon() takes the output away from under it. */
+  atomic_int ending;
+  void (*settle)(void *context);
+  void *settle_context;
   double started; /* cli_now() when the job began, for the summary */
 } mpi_world;
 
@@ -35,7 +43,8 @@ typedef struct mpi_unit_buffer {
 } mpi_unit_buffer;
 int mpi_copy_tile(void *user, const glint_tile *tile);
 
-/* A glint_progress_fn: rank 0 cancels its unit on a stop signal. */
+/* A glint_progress_fn, `user` the mpi_world: rank 0 cancels its unit on a
+ * stop signal, or when the job ends on a failure. */
 int mpi_on_progress(void *user, double fraction);
 
 /* Checks an MPI call's result: on failure prints "glint-mpi: rank R (HOST):
@@ -105,7 +114,8 @@ void mpi_end_if_silent(const mpi_job *job, const char *written);
 typedef struct mpi_options {
   render_options render;
   int dynamic;
-  int tile_size;
+  int tile_size;    /* 0: chosen from the image, the ranks and their threads */
+  int most_threads; /* the largest number of threads of any rank */
   int in_flight;
   double timeout;
 } mpi_options;

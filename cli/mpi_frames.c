@@ -93,6 +93,7 @@ static int render_frame(void *context, int unit, void *result, size_t *size,
   glint_frame_settings_default(&settings);
   settings.camera = &camera;
   settings.progress = mpi_on_progress;
+  settings.progress_user = (void *)j->world;
   settings.tile = cli_tile_to_writer;
   settings.tile_user = &sink;
   glint_status st =

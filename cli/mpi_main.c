@@ -35,7 +35,8 @@ static void usage(FILE *f) {
       "                       handed out as ranks finish; static: unit i to\n"
       "                       rank i mod N, the baseline\n"
       "      --tile N         tile side in pixels, a multiple of 16 up to\n"
-      "                       4096 (default: 64)\n"
+      "                       4096 (default: 64 for ranks of one thread,\n"
+      "                       larger for more, smaller for small images)\n"
       "      --timeout S      a rank that owes work and sends nothing for S\n"
       "                       seconds is taken for hung (default: 120); more\n"
       "                       than one tile or frame takes\n"
@@ -49,6 +50,10 @@ static void usage(FILE *f) {
 }
 
 void mpi_fail(const mpi_world *w, int status, const char *format, ...) {
+  if (w->rank == 0 && w->settle) {
+    atomic_store((atomic_int *)&w->ending, 1);
+    w->settle(w->settle_context);
+  }
   if (w->rank == 0 && w->abandon)
     w->abandon(w->abandon_context);
   char message[1024];
@@ -119,9 +124,9 @@ int mpi_copy_tile(void *user, const glint_tile *tile) {
 }
 
 int mpi_on_progress(void *user, double fraction) {
-  (void)user;
+  const mpi_world *w = user;
   (void)fraction;
-  return cli_stopped();
+  return cli_stopped() || (w && atomic_load((atomic_int *)&w->ending));
 }
 
 double mpi_test_slowdown(int rank) {
@@ -147,7 +152,6 @@ static int parse(int argc, char **argv, mpi_options *o) {
     return EXIT_USAGE;
   }
   o->dynamic = 1;
-  o->tile_size = 64;
   o->timeout = 120;
   char **rest = malloc((size_t)(argc + 1) * sizeof *rest);
   if (!rest) {
@@ -356,6 +360,11 @@ static int run(mpi_world *w, int argc, char **argv) {
   glint_render_settings *rs = &o.render.settings;
   if (rs->threads == 0)
     rs->threads = threads_per_rank(w);
+  o.most_threads = rs->threads;
+  mpi_check(w,
+            MPI_Allreduce(MPI_IN_PLACE, &o.most_threads, 1, MPI_INT, MPI_MAX,
+                          w->comm),
+            "counting the threads");
   if (!same_renderers(w, rs))
     return EXIT_USAGE;
   char stem[256];
@@ -408,7 +417,7 @@ int main(int argc, char **argv) {
     fprintf(stderr, "glint-mpi: MPI_Init failed\n");
     return EXIT_USAGE;
   }
-  mpi_world w = {MPI_COMM_WORLD, 0, 1, NULL, NULL, NULL, start};
+  mpi_world w = {.comm = MPI_COMM_WORLD, .size = 1, .started = start};
   /* Errors come back as values, checked by mpi_check, instead of MPI's
    * default of ending the job without a word from glint. */
   MPI_Comm_set_errhandler(w.comm, MPI_ERRORS_RETURN);

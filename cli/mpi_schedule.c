@@ -17,6 +17,7 @@
  * rank 0, stopped by its SIGTERM, leaves no partial file). */
 #include "mpi.h"
 
+#include <pthread.h>
 #include <stdarg.h>
 #include <stdint.h>
 #include <stdio.h>
@@ -45,17 +46,24 @@ static void *result_of(unsigned char *buffer) {
   return buffer + sizeof(result_header);
 }
 
-static void pause_briefly(void) {
-  struct timespec ts = {0, 100 * 1000}; /* 0.1 ms */
-  nanosleep(&ts, NULL);
-}
-
 static void sleep_seconds(double s) {
   if (s <= 0)
     return;
   struct timespec ts = {(time_t)s, (long)((s - (double)(time_t)s) * 1e9)};
   nanosleep(&ts, NULL);
 }
+
+/* How long a rank waiting for MPI sleeps between looks: rank 0, with
+ * nothing come in, from the shortest to the longest (a worker's queue
+ * holds several units, each longer than that); a worker, always the
+ * shortest. */
+#define PAUSE_SHORTEST 100e-6
+#define PAUSE_LONGEST 1e-3
+/* Rank 0 with no workers looks only for a stop signal, which also cancels
+ * the unit it renders. */
+#define PAUSE_ALONE 0.05
+
+static void pause_briefly(void) { sleep_seconds(PAUSE_SHORTEST); }
 
 /* A unit, timed, and slowed when a test asks for it. */
 static int render_unit(mpi_job *job, int unit, void *result, size_t *size,
@@ -67,6 +75,128 @@ static int render_unit(mpi_job *job, int unit, void *result, size_t *size,
     sleep_seconds((job->slow - 1) * t);
   *seconds = cli_now() - t0;
   return r;
+}
+
+/* ---- rank 0's own units -------------------------------------------------- */
+
+/* Rank 0 renders its units on a thread of their own while its main thread,
+ * the only one that calls MPI (MPI_THREAD_FUNNELED), goes on serving the
+ * workers. When rank 0 rendered between its turns as the master, a worker
+ * whose queue ran dry waited for rank 0's unit to end (a 1280x720 frame at
+ * one thread takes 0.2 s): on 16 cores, one thread a rank, the workers
+ * rendered 55-70% of the time (docs/mpi.md, "Scaling"). */
+enum { OWN_IDLE, OWN_RENDERING, OWN_FINISHED };
+
+typedef struct own_units {
+  mpi_job *job;
+  pthread_t thread;
+  pthread_mutex_t lock;
+  pthread_cond_t changed; /* state or quit */
+  int state, quit;
+  /* the unit, and once it is finished its outcome */
+  int unit, status;
+  double seconds;
+  glint_error error;
+} own_units;
+
+static void *own_thread(void *arg) {
+  own_units *o = arg;
+  pthread_mutex_lock(&o->lock);
+  for (;;) {
+    while (!o->quit && o->state != OWN_RENDERING)
+      pthread_cond_wait(&o->changed, &o->lock);
+    if (o->quit)
+      break;
+    int unit = o->unit;
+    pthread_mutex_unlock(&o->lock);
+    glint_error error = {0};
+    double seconds = 0;
+    size_t size;
+    int status = render_unit(o->job, unit, NULL, &size, &seconds, &error);
+    pthread_mutex_lock(&o->lock);
+    o->status = status;
+    o->seconds = seconds;
+    o->error = error;
+    o->state = OWN_FINISHED;
+    pthread_cond_broadcast(&o->changed);
+  }
+  pthread_mutex_unlock(&o->lock);
+  return NULL;
+}
+
+/* mpi_world's settle: waits until the unit being rendered, cancelled by
+ * the world's `ending`, has stopped. */
+static void own_settle(void *context) {
+  own_units *o = context;
+  pthread_mutex_lock(&o->lock);
+  while (o->state == OWN_RENDERING)
+    pthread_cond_wait(&o->changed, &o->lock);
+  pthread_mutex_unlock(&o->lock);
+}
+
+static void own_start(own_units *o, mpi_job *job) {
+  memset(o, 0, sizeof *o);
+  o->job = job;
+  pthread_condattr_t attr;
+  pthread_condattr_init(&attr);
+  pthread_condattr_setclock(&attr, CLOCK_MONOTONIC);
+  pthread_mutex_init(&o->lock, NULL);
+  pthread_cond_init(&o->changed, &attr);
+  pthread_condattr_destroy(&attr);
+  if (pthread_create(&o->thread, NULL, own_thread, o))
+    mpi_fail(job->world, 1, "cannot start a thread to render on");
+  mpi_world *world = (mpi_world *)job->world;
+  world->settle_context = o;
+  world->settle = own_settle;
+}
+
+static void own_render(own_units *o, int unit) {
+  pthread_mutex_lock(&o->lock);
+  o->unit = unit;
+  o->state = OWN_RENDERING;
+  pthread_cond_broadcast(&o->changed);
+  pthread_mutex_unlock(&o->lock);
+}
+
+/* OWN_IDLE, OWN_RENDERING, or OWN_FINISHED once when a unit is done (its
+ * outcome then in o->status, o->seconds, o->error), after which it is
+ * idle. */
+static int own_state(own_units *o) {
+  pthread_mutex_lock(&o->lock);
+  int state = o->state;
+  if (state == OWN_FINISHED)
+    o->state = OWN_IDLE;
+  pthread_mutex_unlock(&o->lock);
+  return state;
+}
+
+/* Waits `seconds`, or less when the unit being rendered finishes first. */
+static void own_wait(own_units *o, double seconds) {
+  pthread_mutex_lock(&o->lock);
+  if (o->state != OWN_RENDERING) {
+    pthread_mutex_unlock(&o->lock);
+    sleep_seconds(seconds);
+    return;
+  }
+  struct timespec until;
+  clock_gettime(CLOCK_MONOTONIC, &until);
+  long ns = until.tv_nsec + (long)(seconds * 1e9);
+  until.tv_sec += ns / 1000000000L;
+  until.tv_nsec = ns % 1000000000L;
+  pthread_cond_timedwait(&o->changed, &o->lock, &until);
+  pthread_mutex_unlock(&o->lock);
+}
+
+static void own_stop(own_units *o) {
+  mpi_world *world = (mpi_world *)o->job->world;
+  world->settle = NULL;
+  pthread_mutex_lock(&o->lock);
+  o->quit = 1;
+  pthread_cond_broadcast(&o->changed);
+  pthread_mutex_unlock(&o->lock);
+  pthread_join(o->thread, NULL);
+  pthread_cond_destroy(&o->changed);
+  pthread_mutex_destroy(&o->lock);
 }
 
 /* ---- rank 0 ------------------------------------------------------------- */
@@ -112,13 +242,14 @@ static int is_mine(const mpi_job *job, int unit) {
   return unit % job->world->size == 0;
 }
 
-/* Takes what has arrived, hands out more, and checks on the workers. */
-static void serve(master *m) {
+/* Takes what has arrived, hands out more, and checks on the workers;
+ * returns how many results came in. */
+static int serve(master *m) {
   mpi_job *job = m->job;
   const mpi_world *world = job->world;
   if (cli_stopped())
     mpi_fail(world, EXIT_INTERRUPTED, "%s", job->stopped_message);
-  int flag = 0;
+  int flag = 0, arrived = 0;
   MPI_Status status;
   if (m->workers) { /* a worker's unit failed: its message */
     mpi_check(world, MPI_Test(&m->error_request, &flag, &status),
@@ -137,6 +268,7 @@ static void serve(master *m) {
               "collecting results");
     if (count == MPI_UNDEFINED)
       break;
+    arrived += count;
     for (int i = 0; i < count; i++) {
       int w = m->indices[i];
       const result_header *h = (const result_header *)(void *)m->buffers[w];
@@ -149,7 +281,7 @@ static void serve(master *m) {
         mpi_fail(world, EXIT_USAGE, "rank %d (%s) sent %s %d, which is none",
                  w + 1, world->hosts[w + 1], job->noun, (int)h->unit);
       job->seconds_by_rank[w + 1] += h->seconds;
-      if (m->taken[h->unit]) { /* rank 0 rendered it meanwhile (the tail) */
+      if (m->taken[h->unit]) { /* rank 0 took it meanwhile (the tail) */
         post_receive(m, w);
         continue;
       }
@@ -216,6 +348,7 @@ static void serve(master *m) {
              w + 1, world->hosts[w + 1], job->timeout, m->owed[w], job->noun,
              m->owed[w] == 1 ? "" : "s");
   }
+  return arrived;
 }
 
 /* Dynamic, once every unit is handed out: rank 0, idle, renders a unit a
@@ -272,39 +405,56 @@ static void run_master(mpi_job *job) {
       if (!is_mine(job, u))
         m.owed[u % world->size - 1]++;
   }
+  own_units own;
+  own_start(&own, job);
+  double pause = PAUSE_SHORTEST;
   int mine = 0; /* static: rank 0's next unit */
   while (m.done < job->units) {
-    int unit = -1;
-    if (job->dynamic && m.next < job->units)
-      unit = m.next++;
-    else if (job->dynamic)
-      unit = tail_unit(&m);
-    if (!job->dynamic) {
-      while (mine < job->units && !is_mine(job, mine))
-        mine++;
-      if (mine < job->units)
-        unit = mine++;
-    }
-    if (unit >= 0) {
-      glint_error error;
-      double seconds;
-      size_t size;
-      if (render_unit(job, unit, NULL, &size, &seconds, &error)) {
+    int busy = 0, state = own_state(&own);
+    if (state == OWN_FINISHED) {
+      if (own.status) {
         if (cli_stopped())
           mpi_fail(world, EXIT_INTERRUPTED, "%s", job->stopped_message);
         char name[64];
-        job->name_of(job->context, unit, name, sizeof name);
-        mpi_fail(world, EXIT_USAGE, "%s: %s", name, error.message);
+        job->name_of(job->context, own.unit, name, sizeof name);
+        mpi_fail(world, EXIT_USAGE, "%s: %s", name, own.error.message);
       }
       job->units_by_rank[0]++;
-      job->seconds_by_rank[0] += seconds;
-      m.taken[unit] = 1;
+      job->seconds_by_rank[0] += own.seconds;
       m.done++;
-    } else {
-      pause_briefly();
+      state = OWN_IDLE;
+      busy = 1;
     }
-    serve(&m);
+    if (state == OWN_IDLE) {
+      int unit = -1;
+      if (job->dynamic && m.next < job->units)
+        unit = m.next++;
+      else if (job->dynamic)
+        unit = tail_unit(&m);
+      if (!job->dynamic) {
+        while (mine < job->units && !is_mine(job, mine))
+          mine++;
+        if (mine < job->units)
+          unit = mine++;
+      }
+      if (unit >= 0) { /* taken now: a worker's result for it is dropped */
+        m.taken[unit] = 1;
+        own_render(&own, unit);
+        busy = 1;
+      }
+    }
+    if (serve(&m))
+      busy = 1;
+    if (busy) {
+      pause = PAUSE_SHORTEST;
+    } else if (!m.workers) { /* nothing to serve: until the unit is done */
+      own_wait(&own, PAUSE_ALONE);
+    } else { /* back soon: at once when rank 0's own unit is done */
+      own_wait(&own, pause);
+      pause = pause * 2 < PAUSE_LONGEST ? pause * 2 : PAUSE_LONGEST;
+    }
   }
+  own_stop(&own);
   if (job->dynamic && m.workers) {
     /* Every unit is in: the workers skip what they still hold, say how
      * many results they sent, and those still on their way are

@@ -6,8 +6,11 @@
 #    scene with a mesh (which rank 0 alone reads, and broadcasts);
 #  - --frames writes the frames glint render --frames writes, on both
 #    schedules;
+#  - the default tile side follows the ranks' threads and the image size;
 #  - a rank slowed 4x (GLINT_MPI_TEST_SLOW) changes nothing in the image
 #    and, scheduled dynamically, renders fewer tiles than rank 0;
+#  - rank 0 slowed 80x keeps its worker fed (it renders on a thread of its
+#    own while its main thread serves);
 #  - ranks that would render differently refuse to start, naming them;
 #  - a bad argument or a missing scene is one message and exit status 2;
 #  - a worker killed mid-animation ends the job within 30 s, naming rank 1
@@ -109,6 +112,20 @@ done
 grep -q "^7 frames written by 3 ranks, static schedule" run.out ||
   fail "the frames' summary: $(grep written run.out)"
 
+# The tile side chosen from the ranks' threads: 64 pixels for one thread,
+# more for more, so that each rank's threads have 16 of glint's own tiles
+# each in a tile, and smaller again while the image has fewer than 8 tiles
+# a rank. The image is glint render's whatever the side.
+"$glint" render whitted -W 640 -H 480 -s 1 -o side-ref.png -q || fail "glint render"
+for case in "1 16 9 224" "2 4 20 128" "2 1 80 64"; do
+  read -r n threads tiles side <<<"$case"
+  run "$n" whitted -W 640 -H 480 -s 1 -t "$threads" -o side.png >run.out 2>run.err ||
+    fail "$n ranks of $threads threads: exit status $?"
+  cmp -s side-ref.png side.png || fail "$n ranks of $threads threads: not glint render's image"
+  grep -q "^side.png: 640x480, .*, $tiles tiles of $side pixels" run.out ||
+    fail "$n ranks of $threads threads: not $tiles tiles of $side pixels: $(head -1 run.out)"
+done
+
 # A slowed rank: the same image, and fewer tiles for it when dynamic.
 "$glint" render billiard -W 320 -H 240 -d 15 -o slow-ref.png -q
 GLINT_MPI_TEST_SLOW=1:4 run 2 billiard -W 320 -H 240 -d 15 --tile 32 \
@@ -117,6 +134,17 @@ cmp -s slow-ref.png slow.png || fail "slowed: not glint render's image"
 tiles() { sed -n "s/^  rank $1 .*: \([0-9]*\) tiles, .*/\1/p" slow.out; }
 [ "$(tiles 1)" -lt "$(tiles 0)" ] ||
   fail "the slowed rank 1 rendered $(tiles 1) tiles, rank 0 $(tiles 0)"
+
+# Rank 0 slowed 80x: its main thread serves the workers while its own unit
+# renders on another thread, so the worker renders 11 of the 12 frames
+# while rank 0 renders one. When rank 0 rendered between its turns as the
+# master, the worker's two queued frames ran out while rank 0's one took
+# the time of 80, and rank 0 rendered 4.
+GLINT_MPI_TEST_SLOW=0:80 run 2 "$anim" --frames 1-12 -W 320 -H 240 -s 1 \
+  -o busy/f%02d.png >busy.out 2>run.err || fail "rank 0 slowed: exit status $?"
+frames0=$(sed -n 's/^  rank 0 .*: \([0-9]*\) frames\{0,1\}, .*/\1/p' busy.out)
+[ -n "$frames0" ] && [ "$frames0" -le 2 ] ||
+  fail "rank 0, slowed 80x, rendered ${frames0:-?} of 12 frames: the worker waited for it"
 
 # Ranks that would render differently: none starts.
 "${mpi[@]}" -np 1 "$glint_mpi" whitted -o x.png : -np 1 "$glint_mpi" whitted \
