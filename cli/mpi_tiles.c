@@ -27,8 +27,8 @@ typedef struct tile_job {
  * glint's own tiles of GLINT_TILE_SIZE pixels, taken by its threads as they
  * finish: with at least 16 of those a thread, a tile's last ones keep few
  * threads waiting (at 16 threads, 64-pixel tiles gave each thread one, and
- * one rank rendered 4K Billiard 2.2x slower than glint render; 256 pixels
- * gave 1.06x). Smaller again, down to 64, while the image has fewer than 8
+ * one rank rendered 4K Billiard 2.4x slower than glint render; 256 pixels
+ * gave 1.05x). Smaller again, down to 64, while the image has fewer than 8
  * tiles a rank, so that the dynamic schedule can still even out the ranks. */
 static int default_side(int most_threads, int width, int height, int ranks) {
   int side = 64;
@@ -100,8 +100,10 @@ static int render_tile(void *context, int unit, void *result, size_t *size,
   frame.tile_user = pixels ? (void *)&buffer : (void *)t;
   glint_status st =
       glint_renderer_render(t->renderer, &frame, NULL, NULL, error);
+  pthread_mutex_lock(&t->output_lock);
   if (st == GLINT_E_CANCELLED && t->sink.failed)
     *error = t->sink.error;
+  pthread_mutex_unlock(&t->output_lock);
   return st ? -1 : 0;
 }
 
@@ -119,11 +121,12 @@ static int take_tile(void *context, int unit, int rank, const void *result,
   }
   glint_tile tile = {t->origin_x + x, t->origin_y + y, w, h,
                      pixels,          3 * (size_t)w};
-  if (put_tile(t, &tile)) {
+  pthread_mutex_lock(&t->output_lock);
+  int r = put_tile_locked(t, &tile);
+  if (r)
     *error = t->sink.error;
-    return -1;
-  }
-  return 0;
+  pthread_mutex_unlock(&t->output_lock);
+  return r ? -1 : 0;
 }
 
 static void abandon(void *context) {
