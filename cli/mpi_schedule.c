@@ -53,17 +53,15 @@ static void sleep_seconds(double s) {
   nanosleep(&ts, NULL);
 }
 
-/* How long a rank waiting for MPI sleeps between looks. A worker: always
- * the shortest. Rank 0, with nothing come in: from the shortest, doubling,
- * to half a unit's time (the mean of the last ones'), within the bounds
- * below; a worker holds two units or more until the last are handed out,
- * so a look every half unit keeps its queue from running dry, and rank 0's
- * main thread, which shares a core with its rendering where mpirun binds
- * rank 0 to one, wakes as seldom as that allows (on a 2-core virtual
- * machine each wake cost the rendering about 50 us). */
+/* How long a rank waiting for MPI sleeps between looks: rank 0, with
+ * nothing come in, from the shortest, doubling, to the longest (a worker
+ * holds two units or more, each longer than that, until the last are
+ * handed out); a worker, always the shortest. Looking only every half
+ * unit (up to 20 ms for frames) was tried: 48 frames on 16 ranks took
+ * 0.69-0.72 s where 1 ms had given 0.57-0.58 s (on two machines of the
+ * same kind), a large result reaching rank 0 only as it looks. */
 #define PAUSE_SHORTEST 100e-6
-#define PAUSE_LONGEST 20e-3
-#define PAUSE_UNTIL_TIMED 1e-3 /* before any unit's time is known */
+#define PAUSE_LONGEST 1e-3
 /* Rank 0 with no workers looks only for a stop signal, which also cancels
  * the unit it renders. */
 #define PAUSE_ALONE 0.05
@@ -223,24 +221,7 @@ typedef struct master {
   MPI_Request error_request;
   int next; /* dynamic: the next unit to hand out */
   int done;
-  double unit_seconds; /* a unit's time, the mean of the last ones' */
 } master;
-
-/* Keeps a running mean of the units' times, for how long rank 0 sleeps. */
-static void note_unit_time(master *m, double seconds) {
-  m->unit_seconds =
-      m->unit_seconds > 0 ? 0.875 * m->unit_seconds + 0.125 * seconds : seconds;
-}
-
-/* The longest rank 0 sleeps between looks for now. */
-static double longest_pause(const master *m) {
-  if (m->unit_seconds <= 0)
-    return PAUSE_UNTIL_TIMED;
-  double p = 0.5 * m->unit_seconds;
-  return p < PAUSE_SHORTEST  ? PAUSE_SHORTEST
-         : p > PAUSE_LONGEST ? PAUSE_LONGEST
-                             : p;
-}
 
 static void post_receive(master *m, int w) {
   const mpi_world *world = m->job->world;
@@ -303,7 +284,6 @@ static int serve(master *m) {
         mpi_fail(world, EXIT_USAGE, "rank %d (%s) sent %s %d, which is none",
                  w + 1, world->hosts[w + 1], job->noun, (int)h->unit);
       job->seconds_by_rank[w + 1] += h->seconds;
-      note_unit_time(m, h->seconds);
       if (m->taken[h->unit]) { /* rank 0 took it meanwhile (the tail) */
         post_receive(m, w);
         continue;
@@ -444,7 +424,6 @@ static void run_master(mpi_job *job) {
       }
       job->units_by_rank[0]++;
       job->seconds_by_rank[0] += own.seconds;
-      note_unit_time(&m, own.seconds);
       m.done++;
       state = OWN_IDLE;
       busy = 1;
@@ -475,8 +454,7 @@ static void run_master(mpi_job *job) {
       own_wait(&own, PAUSE_ALONE);
     } else { /* back soon: at once when rank 0's own unit is done */
       own_wait(&own, pause);
-      double longest = longest_pause(&m);
-      pause = pause * 2 < longest ? pause * 2 : longest;
+      pause = pause * 2 < PAUSE_LONGEST ? pause * 2 : PAUSE_LONGEST;
     }
   }
   own_stop(&own);
