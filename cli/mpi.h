@@ -2,7 +2,7 @@
  *
  * The work is cut into units, the tiles of one image or the frames of an
  * animation, and cli/mpi_schedule.c hands them to the ranks; rank 0 renders
- * units too, between its turns as the master, and writes every file. */
+ * units too, on a thread beside its master's, and writes every file. */
 #ifndef GLINT_CLI_MPI_H
 #define GLINT_CLI_MPI_H
 

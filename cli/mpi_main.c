@@ -36,7 +36,7 @@ static void usage(FILE *f) {
       "                       rank i mod N, the baseline\n"
       "      --tile N         tile side in pixels, a multiple of 16 up to\n"
       "                       4096 (default: 64 for ranks of one thread,\n"
-      "                       larger for more, smaller for small images)\n"
+      "                       larger for more, down to 64 for small images)\n"
       "      --timeout S      a rank that owes work and sends nothing for S\n"
       "                       seconds is taken for hung (default: 120); more\n"
       "                       than one tile or frame takes\n"

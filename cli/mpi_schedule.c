@@ -3,8 +3,9 @@
  * Dynamic (the default): rank 0 hands each worker `in_flight` units at the
  * start and one more for each result it gets back, so a worker always has
  * its next unit queued while it renders and sends the last; rank 0 renders
- * units itself in between, and looks at its mail after each. Static (the
- * baseline): unit u belongs to rank u % size from the start.
+ * units itself, on a thread of their own, while its main thread looks at
+ * its mail. Static (the baseline): unit u belongs to rank u % size from the
+ * start.
  *
  * Results travel as one message each, sent by the worker (MPI_Isend, from
  * one of `in_flight` buffers, so it renders the next unit while rank 0
@@ -176,9 +177,11 @@ static int own_state(own_units *o) {
 /* Waits `seconds`, or less when the unit being rendered finishes first. */
 static void own_wait(own_units *o, double seconds) {
   pthread_mutex_lock(&o->lock);
-  if (o->state != OWN_RENDERING) {
+  if (o->state != OWN_RENDERING) { /* finished meanwhile: no wait */
+    int idle = o->state == OWN_IDLE;
     pthread_mutex_unlock(&o->lock);
-    sleep_seconds(seconds);
+    if (idle)
+      sleep_seconds(seconds);
     return;
   }
   struct timespec until;

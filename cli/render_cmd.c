@@ -6,6 +6,7 @@
 #include <glint.h>
 
 #include <signal.h>
+#include <stdatomic.h>
 #include <stdio.h>
 #include <time.h>
 #include <stdlib.h>
@@ -84,8 +85,12 @@ static void render_usage(FILE *f) {
 
 /* The signal that asked glint to stop (SIGINT, SIGTERM, SIGHUP), or 0. A
  * handler can only reach variables of static storage; the render sees it
- * through the progress callback and cancels at the next tile. */
-static volatile sig_atomic_t stop_signal;
+ * through the progress callback and cancels at the next tile. Render
+ * threads read it while the handler writes it: a lock-free atomic, which a
+ * handler may use (C11 7.14.1.1), where volatile sig_atomic_t is safe only
+ * within one thread. */
+_Static_assert(ATOMIC_INT_LOCK_FREE == 2, "a lock-free int for the handler");
+static atomic_int stop_signal;
 
 /* A tile can take far longer than anyone waits (a deep recursion through
  * glass doubles its rays at every level): STOP_GRACE seconds after the
