@@ -305,10 +305,8 @@ static glint_scene *share_scene(const mpi_world *w, const mpi_options *o,
   return scene;
 }
 
-/* -t 0: the CPUs this rank may use, shared among the ranks on its host
- * (mpirun binds each rank to a core when there are cores enough, and then
- * a rank sees one). */
-static int threads_per_rank(const mpi_world *w) {
+/* The number of ranks on this rank's host. */
+static int ranks_on_host(const mpi_world *w) {
   MPI_Comm host;
   mpi_check(w,
             MPI_Comm_split_type(w->comm, MPI_COMM_TYPE_SHARED, w->rank,
@@ -317,9 +315,51 @@ static int threads_per_rank(const mpi_world *w) {
   int local = 1;
   mpi_check(w, MPI_Comm_size(host, &local), "counting the ranks on this host");
   MPI_Comm_free(&host);
-  int cpus = glint_cpu_count();
-  int threads = cpus / local;
+  return local;
+}
+
+/* -t 0: the CPUs this rank may use, shared among the ranks on its host
+ * (mpirun binds each rank to a core when there are cores enough, and then
+ * a rank sees one). */
+static int threads_per_rank(int local) {
+  int threads = glint_cpu_count() / local;
   return threads < 1 ? 1 : threads;
+}
+
+/* A note from rank 0 when a rank runs more threads than the CPUs it may
+ * use, or when the ranks on a host may use fewer of its CPUs than it has:
+ * mpirun binds each rank to one core when it starts 2 or fewer, so that
+ * one rank a node renders on one core of each, and says nothing. The first
+ * such rank is named. */
+static void note_cpus(const mpi_world *w, int threads, int local) {
+  int mine[4] = {glint_cpu_count(), (int)sysconf(_SC_NPROCESSORS_ONLN), local,
+                 threads};
+  int *all = NULL;
+  if (w->rank == 0 && !(all = malloc(sizeof mine * (size_t)w->size)))
+    mpi_fail(w, 1, "out of memory");
+  mpi_check(w, MPI_Gather(mine, 4, MPI_INT, all, 4, MPI_INT, 0, w->comm),
+            "counting the CPUs");
+  for (int r = 0; w->rank == 0 && r < w->size; r++) {
+    int usable = all[4 * r], online = all[4 * r + 1];
+    int ranks = all[4 * r + 2], t = all[4 * r + 3];
+    if (t > usable) {
+      fprintf(stderr,
+              "glint-mpi: note: rank %d (%s) runs %d threads on the %d "
+              "CPU%s it may use; they will take turns\n",
+              r, w->hosts[r], t, usable, usable == 1 ? "" : "s");
+      break;
+    }
+    if (ranks * usable < online) {
+      fprintf(stderr,
+              "glint-mpi: note: the %d rank%s on %s may use %d of its %d "
+              "CPUs (mpirun binds each rank to a core when it starts 2 or "
+              "fewer; mpirun --bind-to none lets them use all)\n",
+              ranks, ranks == 1 ? "" : "s", w->hosts[r], ranks * usable,
+              online);
+      break;
+    }
+  }
+  free(all);
 }
 
 /* Parses with rank 0's voice only: every rank parses the same arguments,
@@ -358,8 +398,11 @@ static int run(mpi_world *w, int argc, char **argv) {
   if (status >= 0)
     return status;
   glint_render_settings *rs = &o.render.settings;
+  int local = ranks_on_host(w);
   if (rs->threads == 0)
-    rs->threads = threads_per_rank(w);
+    rs->threads = threads_per_rank(local);
+  if (!o.render.quiet)
+    note_cpus(w, rs->threads, local);
   o.most_threads = rs->threads;
   mpi_check(w,
             MPI_Allreduce(MPI_IN_PLACE, &o.most_threads, 1, MPI_INT, MPI_MAX,

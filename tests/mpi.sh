@@ -7,6 +7,8 @@
 #  - --frames writes the frames glint render --frames writes, on both
 #    schedules;
 #  - the default tile side follows the ranks' threads and the image size;
+#  - ranks that may use fewer of their host's CPUs than it has, or run more
+#    threads than they may use, get a note (none with -q);
 #  - a rank slowed 4x (GLINT_MPI_TEST_SLOW) changes nothing in the image
 #    and, scheduled dynamically, renders fewer tiles than rank 0;
 #  - rank 0 slowed 40x keeps its worker fed (it renders on a thread of its
@@ -125,6 +127,24 @@ for case in "1 16 9 224" "2 4 20 128" "2 1 80 64"; do
   grep -q "^side.png: 640x480, .*, $tiles tiles of $side pixels" run.out ||
     fail "$n ranks of $threads threads: not $tiles tiles of $side pixels: $(head -1 run.out)"
 done
+
+# A note when ranks may use fewer of their host's CPUs than it has (mpirun
+# binds 2 ranks or fewer to a core each), or run more threads than they
+# may use; none with --bind-to none, and none with -q.
+bound=$("${mpi[@]}" -np 1 nproc) all=$(nproc)
+run 1 whitted -W 64 -H 48 -o note.png >run.out 2>run.err || fail "note: exit status $?"
+if [ "$bound" -lt "$all" ]; then
+  grep -q "^glint-mpi: note: the 1 rank on .* may use $bound of its $all CPUs (mpirun binds" run.err ||
+    fail "no note of the $bound CPUs of $all the rank may use: $(cat run.err)"
+fi
+timeout 120 "${mpi[@]}" -np 1 --bind-to none "$glint_mpi" whitted -W 64 -H 48 -o note.png \
+  >run.out 2>run.err || fail "note, --bind-to none: exit status $?"
+! grep -q "note:" run.err || fail "a note with --bind-to none: $(cat run.err)"
+run 1 whitted -W 64 -H 48 -t $((bound + 1)) -o note.png >run.out 2>run.err || fail "note: exit status $?"
+grep -q "^glint-mpi: note: rank 0 (.*) runs $((bound + 1)) threads on the $bound CPUs\{0,1\} it may use; they will take turns" run.err ||
+  fail "no note of $((bound + 1)) threads on $bound CPUs: $(cat run.err)"
+run 1 whitted -W 64 -H 48 -t $((bound + 1)) -q -o note.png >run.out 2>run.err || fail "note, -q: exit status $?"
+! grep -q "note:" run.err || fail "a note with -q: $(cat run.err)"
 
 # A slowed rank: the same image, and fewer tiles for it when dynamic.
 "$glint" render billiard -W 320 -H 240 -d 15 -o slow-ref.png -q
