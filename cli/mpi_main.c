@@ -326,40 +326,45 @@ static int threads_per_rank(int local) {
   return threads < 1 ? 1 : threads;
 }
 
-/* A note from rank 0 when a rank runs more threads than the CPUs it may
- * use, or when the ranks on a host may use fewer of its CPUs than it has:
- * mpirun binds each rank to one core when it starts 2 or fewer, so that
- * one rank a node renders on one core of each, and says nothing. The first
- * such rank is named. */
-static void note_cpus(const mpi_world *w, int threads, int local) {
+/* What every rank may use and runs, gathered once: returns the most
+ * threads of any rank (every rank cuts the image into the same tiles, whose
+ * side follows it), and rank 0 prints a note, unless `quiet`, when a rank
+ * runs more threads than the CPUs it may use, or when the ranks on a host
+ * may use fewer of its CPUs than it has: mpirun binds each rank to one core
+ * when it starts 2 or fewer, so that one rank a node renders on one core of
+ * each, and says nothing. The first such rank is named. */
+static int share_threads(const mpi_world *w, int threads, int local,
+                         int quiet) {
   int mine[4] = {glint_cpu_count(), (int)sysconf(_SC_NPROCESSORS_ONLN), local,
                  threads};
-  int *all = NULL;
-  if (w->rank == 0 && !(all = malloc(sizeof mine * (size_t)w->size)))
+  int *all = malloc(sizeof mine * (size_t)w->size);
+  if (!all)
     mpi_fail(w, 1, "out of memory");
-  mpi_check(w, MPI_Gather(mine, 4, MPI_INT, all, 4, MPI_INT, 0, w->comm),
+  mpi_check(w, MPI_Allgather(mine, 4, MPI_INT, all, 4, MPI_INT, w->comm),
             "counting the CPUs");
-  for (int r = 0; w->rank == 0 && r < w->size; r++) {
+  int most = 0, noted = quiet || w->rank != 0;
+  for (int r = 0; r < w->size; r++) {
     int usable = all[4 * r], online = all[4 * r + 1];
     int ranks = all[4 * r + 2], t = all[4 * r + 3];
-    if (t > usable) {
+    most = t > most ? t : most;
+    if (!noted && t > usable) {
       fprintf(stderr,
               "glint-mpi: note: rank %d (%s) runs %d threads on the %d "
               "CPU%s it may use; they will take turns\n",
               r, w->hosts[r], t, usable, usable == 1 ? "" : "s");
-      break;
-    }
-    if (ranks * usable < online) {
+      noted = 1;
+    } else if (!noted && ranks * usable < online) {
       fprintf(stderr,
               "glint-mpi: note: the %d rank%s on %s may use %d of its %d "
               "CPUs (mpirun binds each rank to a core when it starts 2 or "
               "fewer; mpirun --bind-to none lets them use all)\n",
               ranks, ranks == 1 ? "" : "s", w->hosts[r], ranks * usable,
               online);
-      break;
+      noted = 1;
     }
   }
   free(all);
+  return most;
 }
 
 /* Parses with rank 0's voice only: every rank parses the same arguments,
@@ -401,13 +406,7 @@ static int run(mpi_world *w, int argc, char **argv) {
   int local = ranks_on_host(w);
   if (rs->threads == 0)
     rs->threads = threads_per_rank(local);
-  if (!o.render.quiet)
-    note_cpus(w, rs->threads, local);
-  o.most_threads = rs->threads;
-  mpi_check(w,
-            MPI_Allreduce(MPI_IN_PLACE, &o.most_threads, 1, MPI_INT, MPI_MAX,
-                          w->comm),
-            "counting the threads");
+  o.most_threads = share_threads(w, rs->threads, local, o.render.quiet);
   if (!same_renderers(w, rs))
     return EXIT_USAGE;
   char stem[256];
