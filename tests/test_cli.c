@@ -1321,6 +1321,21 @@ static void frames_with_moving_objects(void **state) {
       "overshoot.json: frame 1 (t = 0.333333 s): object 1's motion at "
       "0.333333 s has a scale of",
       "render", "overshoot.json", "--frames", "0-3", "-o", "o%d.png");
+  /* A translation overshooting past 1e15 is named as such (it was
+   * reported as "a scale of 1"). */
+  snprintf(text, sizeof text,
+           "%s {\"type\": \"sphere\", \"center\": [0, 1, 0], \"radius\": 1, "
+           "\"material\": \"m\", \"transform\": {\"interpolation\": "
+           "\"catmull-rom\", \"keys\": [{\"time\": 0, \"translate\": [0, 0, "
+           "0]}, {\"time\": 1, \"translate\": [1e15, 0, 0]}, {\"time\": 2, "
+           "\"translate\": [1e15, 0, 0]}]}}], \"animation\": {\"fps\": 4, "
+           "\"frames\": [0, 8]}}",
+           head);
+  put_text("overshoot.json", text);
+  EXPECT_USAGE_ERROR_KEEPING(
+      "overshoot.json: frame 5 (t = 1.25 s): object 1's motion at 1.25 s has "
+      "a translate beyond magnitude 1e15",
+      "render", "overshoot.json", "--frames", "0-8", "-o", "o%d.png");
   long n;
   char *kept = file_bytes("o0.png", &n);
   assert_true(n == 8 && memcmp(kept, "precious", 8) == 0);

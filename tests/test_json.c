@@ -534,7 +534,19 @@ static const bad_case syntax_cases[] = {
     {"{'a': \xc3\xa9}", ":1:7: JSON syntax error: found '\xc3\xa9' (U+00E9)"},
     /* characters that look like nothing say which they are */
     {"\xef\xbb\xbf\xef\xbb\xbf{}",
-     ":1:2: JSON syntax error: found '\xef\xbb\xbf' (U+FEFF)"},
+     ":1:1: JSON syntax error: found '\xef\xbb\xbf' (U+FEFF)"},
+    /* A byte order mark is not a column, and alone it is an empty file. */
+    {"\xef\xbb\xbf{ 'a': 1,}",
+     ":1:10: JSON syntax error: found '}' after a comma"},
+    {"\xef\xbb\xbf", ":1:1: JSON syntax error: the file is empty"},
+    /* The first problem is the one said, whichever check finds it (the
+     * strict number and escape checks said the later one). */
+    {"{'a': tru, 'b': 01}", ":1:7: JSON syntax error: found 'tru'"},
+    {"{'a': [1 2], 'b': '\\q'}", ":1:10: JSON syntax error: found '2'"},
+    {"// a comment\n{'a': 01}", ":1:1: JSON syntax error: found a comment"},
+    {"{'a': 1}} 'b': 01", ":1:9: JSON syntax error: found '}'"},
+    {"{'a': 01, 'b': tru}",
+     ":1:7: JSON syntax error: a number with a leading zero"},
     {"{'a':\xc2\xa0"
      "1}",
      ":1:6: JSON syntax error: found '\xc2\xa0' (U+00A0)"},

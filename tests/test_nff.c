@@ -163,6 +163,9 @@ static void malformed_files(void **state) {
               GLINT_E_PARSE,
               "res-eof.nff:7: the file ends where the vertical resolution was "
               "expected");
+  /* a view cut short after a whole line: at that line (it said the next) */
+  EXPECT_FAIL("view-eof.nff", "v\nfrom 0 0 1\n", GLINT_E_PARSE,
+              "view-eof.nff:2: the file ends where 'at' was expected");
   EXPECT_FAIL("count.nff", VIEW "f 1 1 1 1 0 1 0 1\np 2\n0 0 0\n1 0 0\n",
               GLINT_E_PARSE, "count.nff:9: the vertex count is 2, outside 3..");
   EXPECT_FAIL("nomat.nff", VIEW "s 0 0 0 1\n", GLINT_E_PARSE,

@@ -359,8 +359,19 @@ glint_status glint_scene_at_time(const glint_scene *s, double time,
     track_at(&s->animation.motions[i].track, time, v);
     glint_transform t = {
         {v[0], v[1], v[2]}, {v[3], v[4], v[5]}, {v[6], v[7], v[8]}, v[9]};
-    if (!transform_valid(&t)) { /* a spline overshooting scale past 0 */
+    if (!transform_valid(&t)) { /* a spline overshooting its keys */
       glint_scene_destroy(still);
+      const char *what = !gli_vec3_in_range(t.translate) ? "translate"
+                         : !gli_vec3_in_range(t.pivot)   ? "pivot"
+                         : !gli_vec3_finite(t.rotate)    ? "rotate"
+                                                         : NULL;
+      if (what)
+        return gli_fail(error, GLINT_E_ARGUMENT,
+                        "object %u's motion at %g s has a %s %s (the spline "
+                        "through its keys overshoots them)",
+                        s->animation.motions[i].object, time, what,
+                        what[0] == 'r' ? "that is not finite"
+                                       : "beyond magnitude 1e15");
       return gli_fail(error, GLINT_E_ARGUMENT,
                       "object %u's motion at %g s has a scale of %g",
                       s->animation.motions[i].object, time, t.scale);

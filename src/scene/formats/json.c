@@ -1266,25 +1266,34 @@ static glint_status parse_text(const char *path, const char *data, size_t size,
   glint_status st = gli_file_check_text(path, data, size, 1, e);
   if (st)
     return st;
+  /* cJSON skips one byte order mark; columns count from the character
+   * after it, and a file of a mark alone is empty. */
+  const char *text = data;
+  gli_file_skip_bom(&data, &size);
+  /* return_parse_end rather than cJSON_GetErrorPtr, which reads a global
+   * that another thread's parse may have changed. */
+  const char *end = NULL;
+  cJSON *root = cJSON_ParseWithOpts(text, &end, 1);
+  char hint[160];
+  if (!root) {
+    if (!end || end < data || end > data + size)
+      end = data + size;
+    syntax_hint(data, &end, hint, sizeof hint);
+  }
+  /* What JSON forbids and cJSON lets pass; the first problem of either
+   * kind is the one said. */
   size_t line, column;
   const char *what, *bad = grammar_problem(data, size, &what);
-  if (bad) {
+  if (bad && (root || bad <= end)) {
+    cJSON_Delete(root);
     gli_text_line_column(data, bad, 1, &line, &column);
     return gli_fail(e, GLINT_E_PARSE, "%s:%zu:%zu: JSON syntax error: %s", path,
                     line, column, what);
   }
-  /* return_parse_end rather than cJSON_GetErrorPtr, which reads a global
-   * that another thread's parse may have changed. */
-  const char *end = NULL;
-  cJSON *root = cJSON_ParseWithOpts(data, &end, 1);
   if (root) {
     *out = root;
     return GLINT_OK;
   }
-  if (!end || end < data || end > data + size)
-    end = data + size;
-  char hint[160];
-  syntax_hint(data, &end, hint, sizeof hint);
   gli_text_line_column(data, end, 1, &line, &column);
   return gli_fail(e, GLINT_E_PARSE, "%s:%zu:%zu: JSON syntax error: %s", path,
                   line, column, hint);

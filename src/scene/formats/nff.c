@@ -82,11 +82,12 @@ static int failed_at_word(const text_file *t) {
 static glint_status expect_word(nff_reader *r, const char *word,
                                 glint_error *e) {
   char buf[64];
+  int last = r->t.token_line; /* the statement the file's end cuts short */
   const char *tok = gli_text_token(&r->t, buf, sizeof buf);
   if (!tok)
     return gli_fail(e, GLINT_E_PARSE,
                     "%s:%d: the file ends where '%s' was expected", r->t.path,
-                    r->t.line, word);
+                    last > 0 ? last : r->t.line, word);
   char q[48];
   if (strcmp(tok, word) != 0)
     return gli_fail(e, GLINT_E_PARSE, "%s:%d: expected '%s', found '%s'",
