@@ -910,6 +910,25 @@ static void ply_absurd_list_counts(void **state) {
               "uint_ascii.ply:13: a face's vertex index is -2, outside the "
               "uint type",
               NULL);
+  /* ASCII: a coordinate the header calls an integer is one (300 and 0.5
+   * in a char were taken as they were written). */
+  expect_fail(f, "char_x.ply",
+              "ply\nformat ascii 1.0\nelement vertex 3\nproperty char x\n"
+              "property uchar y\nproperty uchar z\nelement face 1\n"
+              "property list uchar int vertex_indices\nend_header\n"
+              "300 0 0\n1 0 0\n0 1 0\n3 0 1 2\n",
+              GLINT_E_PARSE,
+              "char_x.ply:10: the vertex's x is 300, outside the char type",
+              NULL);
+  expect_fail(f, "half_x.ply",
+              "ply\nformat ascii 1.0\nelement vertex 3\nproperty short x\n"
+              "property float y\nproperty float z\nelement face 1\n"
+              "property list uchar int vertex_indices\nend_header\n"
+              "0 0 0\n0.5 0 0\n0 1 0\n3 0 1 2\n",
+              GLINT_E_PARSE,
+              "half_x.ply:11: expected a whole number for the vertex's x, "
+              "found '0.5'",
+              NULL);
 }
 
 /* An ASCII PLY with one thing wrong, built from the good header. */

@@ -206,6 +206,10 @@ static double ply_binary_value(ply_reader *r, ply_type type) {
   }
 }
 
+static glint_status ply_whole(ply_reader *r, const ply_property *p, int count,
+                              long long *out, glint_error *e);
+static int ply_integer_type(ply_type t);
+
 /* The next value as a number: a vertex coordinate. One that is not finite
  * reads as NaN, its message in *nonfinite unless that has one already (see
  * mesh_data.nonfinite_pos). */
@@ -227,6 +231,14 @@ static glint_status ply_number(ply_reader *r, const ply_property *p,
     }
     *out = v;
     return GLINT_OK;
+  }
+  /* A coordinate the header calls an integer is a whole number in the
+   * type's range, as a binary file's would be. */
+  if (ply_integer_type(type)) {
+    long long whole;
+    glint_status st = ply_whole(r, p, 0, &whole, e);
+    *out = (double)whole;
+    return st;
   }
   size_t len;
   const char *t = ply_token(r, &len);
