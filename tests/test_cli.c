@@ -678,6 +678,29 @@ static const char small_nff[] = "v\nfrom 0 0 -5\nat 0 0 0\nup 0 1 0\nangle 40\n"
                                 "hither 0.001\nresolution 8 8\n"
                                 "f 1 1 1 1 0 0 0 1\ns 0 0 0 1\n";
 
+/* One far object makes the hit tolerance larger than the scene's other
+ * objects, which then vanish from the image: glint renders it and says so
+ * (it said nothing). The same scene without it has no note. */
+static void a_far_object_is_noted(void **state) {
+  (void)state;
+  put_text("near.nff", small_nff);
+  char far[256];
+  snprintf(far, sizeof far, "%ss 0 0 1e6 1\n", small_nff);
+  put_text("far.nff", far);
+  assert_int_equal(run("render", "near.nff", "-o", "near.png", NULL), 0);
+  assert_null(strstr(err, "note"));
+  assert_int_equal(run("render", "far.nff", "-o", "far.png", "-q", NULL), 0);
+  if (!strstr(err, "glint: note: far.nff: hits nearer than 100 to a ray's "
+                   "start are not seen (1e-4 of the scene's largest "
+                   "coordinate, 1e+06), and its smallest object measures "
+                   "1: "))
+    fail_msg("no note of the far sphere: %s", err);
+  char cmd[512];
+  snprintf(cmd, sizeof cmd,
+           "cd '%s' && rm -f near.nff far.nff near.png far.png", dir);
+  assert_int_equal(system(cmd), 0);
+}
+
 /* bench --plot runs gnuplot without a shell and quotes names inside its
  * script: a scene or folder named with quotes and a command stays a name
  * (it ran the command through system() before). */
@@ -1601,6 +1624,7 @@ int main(void) {
       cmocka_unit_test(render_writes_the_film),
       cmocka_unit_test(png_compression_and_gamma),
       cmocka_unit_test(defaults_quiet_and_stats),
+      cmocka_unit_test(a_far_object_is_noted),
       cmocka_unit_test(bench_runs_and_writes_csv),
       cmocka_unit_test(bench_csv_keeps_files_on_error),
       cmocka_unit_test(output_linked_to_the_scene),

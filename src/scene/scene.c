@@ -556,6 +556,27 @@ static void grow_bounds(glint_vec3 *lo, glint_vec3 *hi, glint_vec3 p,
   lo->z = lower(p.z - r, lo->z), hi->z = higher(p.z + r, hi->z);
 }
 
+/* See glint_scene_info.smallest. */
+static double smallest_object(const glint_scene *s) {
+  double least = INFINITY;
+  for (size_t i = 0; i < s->sphere_count; i++)
+    least = fmin(least, s->spheres[i].radius);
+  for (size_t i = 0; i < s->cone_count; i++)
+    least = fmin(least, fmax(s->cones[i].base_radius, s->cones[i].apex_radius));
+  for (size_t o = 0; o < s->object_count; o++) {
+    const gli_object *obj = &s->objects[o];
+    if (obj->shape != GLI_SHAPE_TRIANGLE || obj->count == 0)
+      continue;
+    glint_vec3 lo = {INFINITY, INFINITY, INFINITY},
+               hi = {-INFINITY, -INFINITY, -INFINITY};
+    for (uint32_t i = obj->first; i < obj->first + obj->count; i++)
+      for (int k = 0; k < 3; k++)
+        grow_bounds(&lo, &hi, s->triangles[i].v[k], 0.0);
+    least = fmin(least, fmax(hi.x - lo.x, fmax(hi.y - lo.y, hi.z - lo.z)));
+  }
+  return least;
+}
+
 void glint_scene_get_info(const glint_scene *s, glint_scene_info *info) {
   if (!info)
     return;
@@ -589,6 +610,8 @@ void glint_scene_get_info(const glint_scene *s, glint_scene_info *info) {
   }
   info->bounds_min = lo;
   info->bounds_max = hi;
+  info->epsilon = gli_scene_epsilon(s);
+  info->smallest = smallest_object(s);
 }
 
 static double absmax3(glint_vec3 v, double m) {
