@@ -133,10 +133,10 @@ int gli_text_more_on_line(text_file *t) {
 /* The file ended where `what` was expected: said at the line of the last
  * token, `last` (the statement that ends too soon), not the line after the
  * file's last one. */
-static glint_status file_ends(const text_file *t, int last, const char *what,
+static glint_status file_ends(const text_file *t, long last, const char *what,
                               glint_error *error) {
   return gli_fail(error, GLINT_E_PARSE,
-                  "%s:%d: the file ends where %s was expected", t->path,
+                  "%s:%ld: the file ends where %s was expected", t->path,
                   last > 0 ? last : t->line, what);
 }
 
@@ -144,22 +144,23 @@ static glint_status file_ends(const text_file *t, int last, const char *what,
  * instead. A word on a later line than the token before (`last`): most
  * likely the line before ended a number short (the next entity's name),
  * said at that line, naming both. */
-static glint_status not_a_number(const text_file *t, int last, const char *kind,
-                                 const char *what, const char *shown,
-                                 glint_error *error) {
+static glint_status not_a_number(const text_file *t, long last,
+                                 const char *kind, const char *what,
+                                 const char *shown, glint_error *error) {
   if (last > 0 && t->token_line > last)
     return gli_fail(error, GLINT_E_PARSE,
-                    "%s:%d: expected %s for %s, found the end of the line "
-                    "(line %d begins '%s')",
+                    "%s:%ld: expected %s for %s, found the end of the line "
+                    "(line %ld begins '%s')",
                     t->path, last, kind, what, t->token_line, shown);
-  return gli_fail(error, GLINT_E_PARSE, "%s:%d: expected %s for %s, found '%s'",
-                  t->path, t->token_line, kind, what, shown);
+  return gli_fail(error, GLINT_E_PARSE,
+                  "%s:%ld: expected %s for %s, found '%s'", t->path,
+                  t->token_line, kind, what, shown);
 }
 
 glint_status gli_text_number(text_file *t, const char *what, double *out,
                              glint_error *error) {
   size_t len;
-  int last = t->token_line;
+  long last = t->token_line;
   const char *tok = gli_text_span(t, &len);
   if (!tok)
     return file_ends(t, last, what, error);
@@ -171,7 +172,7 @@ glint_status gli_text_number(text_file *t, const char *what, double *out,
   if (r == NUMBER_BAD)
     return not_a_number(t, last, "a number", what, shown, error);
   return gli_fail(error, GLINT_E_PARSE,
-                  "%s:%d: %s is '%s', not a finite number", t->path,
+                  "%s:%ld: %s is '%s', not a finite number", t->path,
                   t->token_line, what, shown);
 }
 
@@ -188,7 +189,7 @@ glint_status gli_text_vec3(text_file *t, const char *what, glint_vec3 *out,
 glint_status gli_text_int(text_file *t, const char *what, long min, long max,
                           long *out, glint_error *error) {
   size_t len;
-  int last = t->token_line;
+  long last = t->token_line;
   const char *span = gli_text_span(t, &len);
   if (!span)
     return file_ends(t, last, what, error);
@@ -197,7 +198,7 @@ glint_status gli_text_int(text_file *t, const char *what, long min, long max,
   if (len > 40) { /* no whole number a scene needs is this long */
     gli_text_quote(buf, sizeof buf, span, len);
     return gli_fail(error, GLINT_E_PARSE,
-                    "%s:%d: expected a whole number for %s, found '%s'",
+                    "%s:%ld: expected a whole number for %s, found '%s'",
                     t->path, t->token_line, what, tok);
   }
   memcpy(buf, span, len);
@@ -211,7 +212,7 @@ glint_status gli_text_int(text_file *t, const char *what, long min, long max,
     return not_a_number(t, word ? last : 0, "a whole number", what, tok, error);
   }
   if (v < min || v > max)
-    return gli_fail(error, GLINT_E_PARSE, "%s:%d: %s is %ld, outside %ld..%ld",
+    return gli_fail(error, GLINT_E_PARSE, "%s:%ld: %s is %ld, outside %ld..%ld",
                     t->path, t->token_line, what, v, min, max);
   *out = v;
   return GLINT_OK;

@@ -13,9 +13,9 @@ typedef struct text_file {
   const char *data; /* NUL-terminated; the caller's */
   size_t size;
   const char *pos;
-  int line;       /* of the next character */
-  int token_line; /* of the last token read */
-  char comment;   /* starts a comment to the end of the line; 0: none */
+  long line;       /* of the next character */
+  long token_line; /* of the last token read */
+  char comment;    /* starts a comment to the end of the line; 0: none */
 } text_file;
 
 /* Reads the file's bytes `data` (`size` of them and then a NUL, kept by

@@ -51,7 +51,7 @@ typedef struct nff_reader {
    * lines, but a file that fails after such a line most likely went wrong
    * there, and is told so. */
   struct {
-    int line, too_many, polygon_line, patch;
+    long line, too_many, polygon_line, patch;
     long vertex, count;
   } odd;
 } nff_reader;
@@ -59,8 +59,8 @@ typedef struct nff_reader {
 /* The error about the last polygon's odd line (see nff_reader.odd). */
 static glint_status odd_vertex_line(const nff_reader *r, glint_error *e) {
   return gli_fail(e, GLINT_E_PARSE,
-                  "%s:%d: %s numbers on the line than a %s vertex takes "
-                  "(vertex %ld of %ld of the %s on line %d)",
+                  "%s:%ld: %s numbers on the line than a %s vertex takes "
+                  "(vertex %ld of %ld of the %s on line %ld)",
                   r->t.path, r->odd.line, r->odd.too_many ? "more" : "fewer",
                   r->odd.patch ? "patch" : "polygon", r->odd.vertex,
                   r->odd.count, r->odd.patch ? "patch" : "polygon",
@@ -82,15 +82,15 @@ static int failed_at_word(const text_file *t) {
 static glint_status expect_word(nff_reader *r, const char *word,
                                 glint_error *e) {
   char buf[64];
-  int last = r->t.token_line; /* the statement the file's end cuts short */
+  long last = r->t.token_line; /* the statement the file's end cuts short */
   const char *tok = gli_text_token(&r->t, buf, sizeof buf);
   if (!tok)
     return gli_fail(e, GLINT_E_PARSE,
-                    "%s:%d: the file ends where '%s' was expected", r->t.path,
+                    "%s:%ld: the file ends where '%s' was expected", r->t.path,
                     last > 0 ? last : r->t.line, word);
   char q[48];
   if (strcmp(tok, word) != 0)
-    return gli_fail(e, GLINT_E_PARSE, "%s:%d: expected '%s', found '%s'",
+    return gli_fail(e, GLINT_E_PARSE, "%s:%ld: expected '%s', found '%s'",
                     r->t.path, r->t.token_line, word,
                     gli_text_quote(q, sizeof q, tok, strlen(tok)));
   return GLINT_OK;
@@ -98,14 +98,14 @@ static glint_status expect_word(nff_reader *r, const char *word,
 
 /* A library error about an entity, placed at the entity's line. A value
  * the library refuses is, coming from a file, malformed content. */
-static glint_status at_line(nff_reader *r, int line, glint_status st,
+static glint_status at_line(nff_reader *r, long line, glint_status st,
                             glint_error *e) {
   if (st == GLINT_E_ARGUMENT)
     st = GLINT_E_PARSE;
   if (st && e) {
     char msg[sizeof e->message];
     snprintf(msg, sizeof msg, "%.900s", e->message);
-    gli_fail(e, st, "%s:%d: %s", r->t.path, line, msg);
+    gli_fail(e, st, "%s:%ld: %s", r->t.path, line, msg);
   }
   return st;
 }
@@ -117,7 +117,7 @@ static glint_status read_view(nff_reader *r, glint_error *e) {
   glint_status st;
   /* Each value's line (gli_camera_field's order), where an error about it
    * is said. */
-  int lines[4];
+  long lines[4];
   if ((st = expect_word(r, "from", e)) ||
       (lines[GLI_CAMERA_FROM] = r->t.token_line,
        st = gli_text_vec3(&r->t, "'from'", &cam.from, e)) ||
@@ -130,7 +130,7 @@ static glint_status read_view(nff_reader *r, glint_error *e) {
       (st = expect_word(r, "angle", e)) ||
       (st = gli_text_number(&r->t, "the view angle", &angle, e)))
     return st;
-  int angle_line = lines[GLI_CAMERA_FOV] = r->t.token_line;
+  long angle_line = lines[GLI_CAMERA_FOV] = r->t.token_line;
   if ((st = expect_word(r, "hither", e)) ||
       (st = gli_text_number(&r->t, "hither", &hither, e)) ||
       (st = expect_word(r, "resolution", e)) ||
@@ -141,7 +141,7 @@ static glint_status read_view(nff_reader *r, glint_error *e) {
     return st;
   if (!(angle > 0 && angle < 180))
     return gli_fail(e, GLINT_E_PARSE,
-                    "%s:%d: view angle %g is not between 0 and 180", r->t.path,
+                    "%s:%ld: view angle %g is not between 0 and 180", r->t.path,
                     angle_line, angle);
   double half = tan(angle * 3.14159265358979323846 / 360.0);
   if (w > 1)
@@ -157,7 +157,7 @@ static glint_status read_view(nff_reader *r, glint_error *e) {
 }
 
 static glint_status read_light(nff_reader *r, glint_error *e) {
-  int line = r->t.token_line;
+  long line = r->t.token_line;
   glint_vec3 p, c = {1, 1, 1};
   glint_status st = gli_text_vec3(&r->t, "the light position", &p, e);
   if (st)
@@ -176,7 +176,7 @@ static glint_status read_light(nff_reader *r, glint_error *e) {
 }
 
 static glint_status read_material(nff_reader *r, glint_error *e) {
-  int line = r->t.token_line;
+  long line = r->t.token_line;
   static const char *names[8] = {"red", "green", "blue", "Kd",
                                  "Ks",  "Shine", "T",    "index of refraction"};
   double v[8];
@@ -209,12 +209,12 @@ static glint_status need_material(nff_reader *r, const char *entity,
                                   glint_error *e) {
   if (r->has_material)
     return GLINT_OK;
-  return gli_fail(e, GLINT_E_PARSE, "%s:%d: '%s' before any 'f' material line",
+  return gli_fail(e, GLINT_E_PARSE, "%s:%ld: '%s' before any 'f' material line",
                   r->t.path, r->t.token_line, entity);
 }
 
 static glint_status read_sphere(nff_reader *r, glint_error *e) {
-  int line = r->t.token_line;
+  long line = r->t.token_line;
   glint_vec3 c;
   double radius;
   glint_status st;
@@ -228,7 +228,7 @@ static glint_status read_sphere(nff_reader *r, glint_error *e) {
 }
 
 static glint_status read_cone(nff_reader *r, glint_error *e) {
-  int line = r->t.token_line;
+  long line = r->t.token_line;
   glint_vec3 base, apex;
   double rb, ra;
   glint_status st;
@@ -240,7 +240,7 @@ static glint_status read_cone(nff_reader *r, glint_error *e) {
     return st;
   if ((rb < 0) != (ra < 0) && rb != 0 && ra != 0)
     return gli_fail(e, GLINT_E_PARSE,
-                    "%s:%d: the cone's radii %g and %g have different "
+                    "%s:%ld: the cone's radii %g and %g have different "
                     "signs",
                     r->t.path, line, rb, ra);
   return at_line(r, line,
@@ -269,7 +269,7 @@ static int emit_triangle(void *user, size_t a, size_t b, size_t c) {
 
 /* p and pp: a polygon of n vertices (see polygon.c), as one object. */
 static glint_status read_polygon(nff_reader *r, int patch, glint_error *e) {
-  int line = r->t.token_line;
+  long line = r->t.token_line;
   const char *entity = patch ? "pp" : "p";
   long n;
   glint_status st;
@@ -285,15 +285,15 @@ static glint_status read_polygon(nff_reader *r, int patch, glint_error *e) {
     if (m)
       r->norms = m;
     if (!v || !m)
-      return gli_fail(e, GLINT_E_MEMORY, "%s:%d: out of memory", r->t.path,
+      return gli_fail(e, GLINT_E_MEMORY, "%s:%ld: out of memory", r->t.path,
                       line);
     r->vert_cap = (size_t)n;
   }
   r->odd.line = 0;
-  int prev_end = line; /* the line of the last number read */
+  long prev_end = line; /* the line of the last number read */
   for (long i = 0; i < n; i++) {
     glint_vec3 *v = &r->verts[i];
-    int start = 0;
+    long start = 0;
     if ((st = gli_text_number(&r->t, "a polygon vertex", &v->x, e)) ||
         (start = r->t.token_line,
          st = gli_text_number(&r->t, "a polygon vertex", &v->y, e)) ||
@@ -307,13 +307,13 @@ static glint_status read_polygon(nff_reader *r, int patch, glint_error *e) {
       if (e) {
         char msg[sizeof e->message];
         snprintf(msg, sizeof msg,
-                 "%.900s (vertex %ld of %ld of the %s on line %d)", e->message,
+                 "%.900s (vertex %ld of %ld of the %s on line %ld)", e->message,
                  i + 1, n, patch ? "patch" : "polygon", line);
         gli_fail(e, st, "%s", msg);
       }
       return st;
     }
-    int end = r->t.token_line;
+    long end = r->t.token_line;
     if (!r->odd.line && (start == prev_end || end != start)) {
       /* a line shared with the vertex before, or one it runs over */
       r->odd.line = start == prev_end ? prev_end : start;
@@ -326,7 +326,7 @@ static glint_status read_polygon(nff_reader *r, int patch, glint_error *e) {
     prev_end = end;
     if (!gli_vec3_in_range(*v))
       return gli_fail(e, GLINT_E_PARSE,
-                      "%s:%d: %s vertex %ld of %ld (of line %d): coordinates "
+                      "%s:%ld: %s vertex %ld of %ld (of line %ld): coordinates "
                       "must be " GLI_RANGE_TEXT,
                       r->t.path, end, entity, i + 1, n, line);
   }
@@ -337,10 +337,11 @@ static glint_status read_polygon(nff_reader *r, int patch, glint_error *e) {
   int res = gli_triangulate(r->verts, (size_t)n, emit_triangle, &pe,
                             &r->scene->ear_tests_left);
   if (res == GLI_TRIANGULATE_NO_MEMORY)
-    return gli_fail(e, GLINT_E_MEMORY, "%s:%d: out of memory", r->t.path, line);
+    return gli_fail(e, GLINT_E_MEMORY, "%s:%ld: out of memory", r->t.path,
+                    line);
   if (res == GLI_TRIANGULATE_TOO_COMPLEX)
     return gli_fail(e, GLINT_E_PARSE,
-                    "%s:%d: %s: the polygon of %ld vertices has too many "
+                    "%s:%ld: %s: the polygon of %ld vertices has too many "
                     "inward corners to triangulate (" GLI_EAR_LIMIT_TEXT ")",
                     r->t.path, line, entity, n);
   if (res)
@@ -353,17 +354,17 @@ static glint_status read_nff(nff_reader *r, glint_error *e) {
   const char *tok;
   glint_status st = GLINT_OK;
   size_t entities = 0;
-  int last = 0; /* the line of the token before */
+  long last = 0; /* the line of the token before */
   while (!st && (last = r->t.token_line,
                  tok = gli_text_token(&r->t, buf, sizeof buf))) {
     entities++;
-    int odd = r->odd.line; /* the polygon just read's, if any */
+    long odd = r->odd.line; /* the polygon just read's, if any */
     r->odd.line = 0;
     if (strcmp(tok, "v") == 0)
       st = read_view(r, e);
     else if (strcmp(tok, "b") == 0) {
       glint_vec3 c;
-      int line = r->t.token_line;
+      long line = r->t.token_line;
       if (!(st = gli_text_vec3(&r->t, "the background colour", &c, e)))
         st = at_line(r, line, glint_scene_set_background(r->scene, c, e), e);
     } else if (strcmp(tok, "l") == 0)
@@ -382,15 +383,15 @@ static glint_status read_nff(nff_reader *r, glint_error *e) {
       st = odd ? (r->odd.line = odd, odd_vertex_line(r, e)) /* went wrong */
            : r->t.token_line == last
                ? gli_fail(e, GLINT_E_PARSE,
-                          "%s:%d: unexpected '%s': more numbers on the line "
+                          "%s:%ld: unexpected '%s': more numbers on the line "
                           "than its entity takes",
                           r->t.path, r->t.token_line, tok)
                : gli_fail(e, GLINT_E_PARSE,
-                          "%s:%d: expected an entity (v, b, l, f, s, c, p or "
+                          "%s:%ld: expected an entity (v, b, l, f, s, c, p or "
                           "pp), found the number '%s'",
                           r->t.path, r->t.token_line, tok);
     else
-      st = gli_fail(e, GLINT_E_PARSE, "%s:%d: unknown entity '%s'", r->t.path,
+      st = gli_fail(e, GLINT_E_PARSE, "%s:%ld: unknown entity '%s'", r->t.path,
                     r->t.token_line,
                     gli_text_quote(q, sizeof q, tok, strlen(tok)));
   }
