@@ -58,6 +58,14 @@ static int png_start(gli_png_writer *w, FILE *f, int width, int height,
      * larger; level 1 is both slower and larger than it. */
     png_set_compression_strategy(png, Z_RLE);
     png_set_filter(png, 0, PNG_FILTER_SUB);
+    /* Runs are matched at distance 1 only, so a smaller window loses
+     * nothing, and blocks of 8192 symbols (memory level 7) came out
+     * 0.2-1.5% smaller than 16384. zlib's state is then 96 KiB instead of
+     * 256 KiB: on Whitted, one thread, the file was finished 0.58 ms after
+     * the last tile instead of 0.94 ms (medians of 61). Windows below 8 KiB
+     * slide too often: 512 bytes took 12.9 ms. */
+    png_set_compression_window_bits(png, 13);
+    png_set_compression_mem_level(png, 7);
   }
   png_set_IHDR(png, w->info, (png_uint_32)width, (png_uint_32)height, 8,
                PNG_COLOR_TYPE_RGB, PNG_INTERLACE_NONE,

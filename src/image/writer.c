@@ -415,9 +415,12 @@ glint_status glint_image_writer_put(glint_image_writer *w,
     ready++;
   /* Wake the encoder for a batch of rows, not for every band: each wake-up
    * of a sleeping thread costs the rendering thread a system call (and, in
-   * a virtual machine, an interrupt between CPUs). */
+   * a virtual machine, an interrupt between CPUs). In the last batch, wake
+   * it for every band: the rows still unencoded when the last tile comes
+   * are what the caller waits for. */
   if (ready > w->ready) {
-    if (ready == w->height || ready - w->signalled >= w->batch_rows) {
+    if (ready - w->signalled >= w->batch_rows ||
+        ready > w->height - w->batch_rows) {
       pthread_cond_signal(&w->wake);
       w->signalled = ready;
     }
