@@ -111,7 +111,10 @@ static void on_stop_signal(int sig) {
 }
 
 static void on_stop_overdue(int sig) {
-  (void)sig;
+  if (!stop_signal) { /* not glint's alarm: one sent from outside stops */
+    on_stop_signal(sig);
+    return;
+  }
   if (stop_finishing)
     return;
   if (stop_temp_set)

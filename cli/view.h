@@ -29,12 +29,13 @@ typedef struct viewer {
   SDL_Window *window;
   SDL_Renderer *sdl;
   SDL_Texture *texture;
-  int win_w, win_h;       /* the window's pixels: the frame size */
-  double user_scale;      /* [ and ] */
-  double auto_scale;      /* lowered while moving to keep the budget */
-  int rw, rh;             /* the size rendered at now */
-  glint_film *pass, *sum; /* this pass; the passes so far, summed */
-  glint_film *average;
+  int win_w, win_h;  /* the window's pixels: the frame size */
+  double user_scale; /* [ and ] */
+  double auto_scale; /* lowered while moving to keep the budget */
+  int rw, rh;        /* the size rendered at now */
+  /* This pass (then the average of all, once added to the sum); the
+   * passes so far, summed. */
+  glint_film *pass, *sum;
   glint_image *image; /* the average, 8-bit, at rw x rh */
   uint8_t *screen;    /* the window's pixels with the display on top */
   int samples;        /* passes summed into `sum` */

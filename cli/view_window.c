@@ -65,10 +65,9 @@ static int make_renderer(viewer *v, glint_error *err) {
 static void free_buffers(viewer *v) {
   glint_film_destroy(v->pass);
   glint_film_destroy(v->sum);
-  glint_film_destroy(v->average);
   glint_image_destroy(v->image);
   free(v->screen);
-  v->pass = v->sum = v->average = NULL;
+  v->pass = v->sum = NULL;
   v->image = NULL;
   v->screen = NULL;
   if (v->texture)
@@ -87,7 +86,6 @@ static int size_buffers(viewer *v, int rw, int rh) {
   v->samples = 0;
   if (glint_film_create(rw, rh, &v->pass, &err) ||
       glint_film_create(rw, rh, &v->sum, &err) ||
-      glint_film_create(rw, rh, &v->average, &err) ||
       glint_image_create(rw, rh, &v->image, &err) ||
       !(v->screen = malloc((size_t)v->win_w * v->win_h * 3))) {
     cli_error("view: out of memory for a %dx%d frame", rw, rh);
@@ -105,6 +103,13 @@ static int size_buffers(viewer *v, int rw, int rh) {
 
 static double scale_now(const viewer *v) {
   return v->moving ? fmin(v->auto_scale, v->user_scale) : v->user_scale;
+}
+
+/* Cancels the pass on Ctrl-C or SIGTERM (cli_catch_stop_signals). */
+static int cancel_on_stop(void *user, double fraction) {
+  (void)user;
+  (void)fraction;
+  return cli_stopped();
 }
 
 /* One pass: sample 0 while moving (starting over), else the next sample of
@@ -131,6 +136,7 @@ static int render_pass(viewer *v) {
   frame.max_depth = v->rs.max_depth;
   frame.sample_first = v->samples;
   frame.sample_count = 1;
+  frame.progress = cancel_on_stop;
   glint_stats st;
   glint_error err;
   double t0 = cli_now();
@@ -138,24 +144,24 @@ static int render_pass(viewer *v) {
    * ones are added to it. */
   if (glint_renderer_render(v->renderer, &frame,
                             v->samples == 0 ? v->sum : v->pass, &st, &err)) {
+    if (err.status == GLINT_E_CANCELLED && cli_stopped())
+      return EXIT_INTERRUPTED;
     cli_error("view: %s", err.message);
     return cli_exit_code(err.status);
   }
   size_t n = (size_t)rw * rh * 3;
-  const float *p = glint_film_pixels(v->pass);
-  float *sum = glint_film_pixels(v->sum), *avg = glint_film_pixels(v->average);
-  if (v->samples > 0)
-    for (size_t i = 0; i < n; i++)
-      sum[i] += p[i];
+  float *p = glint_film_pixels(v->pass), *sum = glint_film_pixels(v->sum);
   v->samples++;
   v->frames++;
-  if (v->samples > 1) {
+  if (v->samples > 1) { /* the average goes where the pass was */
     float inv = 1.0f / (float)v->samples;
-    for (size_t i = 0; i < n; i++)
-      avg[i] = sum[i] * inv;
+    for (size_t i = 0; i < n; i++) {
+      sum[i] += p[i];
+      p[i] = sum[i] * inv;
+    }
   }
-  glint_film_to_image(v->samples > 1 ? v->average : v->sum, v->rs.gamma,
-                      v->image, &err);
+  glint_film_to_image(v->samples > 1 ? v->pass : v->sum, v->rs.gamma, v->image,
+                      &err);
   double ms = (cli_now() - t0) * 1e3;
   v->frame_ms = ms;
   v->rays = st.primary_rays + st.secondary_rays + st.shadow_rays;
@@ -402,11 +408,13 @@ static int run_benchmark(viewer *v) {
   double t_start = cli_now();
   for (int i = 0; i < n; i++) {
     SDL_Event ev;
-    while (SDL_PollEvent(&ev))
-      if (ev.type == SDL_QUIT) {
-        free(frames);
-        return 130;
-      }
+    int quit = cli_stopped();
+    while (!quit && SDL_PollEvent(&ev))
+      quit = ev.type == SDL_QUIT;
+    if (quit) {
+      free(frames);
+      return EXIT_INTERRUPTED;
+    }
     v->camera = start;
     view_orbit(&v->camera, 360.0 * i / n, 0);
     v->moving = 1;
@@ -546,6 +554,8 @@ void view_resize(viewer *v, int w, int h) {
 static int run_interactive(viewer *v) {
   double last = cli_now(), last_poll = 0;
   for (;;) {
+    if (cli_stopped())
+      return EXIT_INTERRUPTED;
     if (v->script) {
       int more = view_script_step(v->script, v);
       if (more < 0)
@@ -656,6 +666,11 @@ int view_run(const view_options *o) {
     return EXIT_USAGE;
   }
   choose_video_driver(o->benchmark_frames > 0);
+  /* Ctrl-C and SIGTERM cancel the pass being rendered (a pass of a large
+   * window takes seconds, and SDL's own handler is looked at between
+   * passes only): glint's handlers, installed first, keep SDL's out. */
+  cli_catch_stop_signals();
+  cli_remove_on_stop(NULL); /* and a pass that will not stop, 2 s later */
   int status = 0;
   if (SDL_Init(SDL_INIT_VIDEO) != 0 || open_window(&v, w, h) != 0) {
     const char *display = getenv("DISPLAY");

@@ -1427,6 +1427,12 @@ static void interrupt_keeps_the_old_file(void **state) {
   int tenths;
   assert_int_equal(interrupt_render(args, SIGINT, &tenths), 130);
   assert_non_null(strstr(err, "glint: interrupted;"));
+  /* An alarm from outside stops it as SIGTERM would (it was taken for the
+   * grace's own alarm: "did not stop within 2 s", at once). */
+  assert_int_equal(interrupt_render(args, SIGALRM, &tenths), 130);
+  assert_non_null(strstr(err, "glint: interrupted; "));
+  assert_non_null(strstr(err, "keep.png was not written"));
+  assert_null(strstr(err, "within"));
 }
 
 /* A stop signal during a render whose tiles take far longer than anyone
