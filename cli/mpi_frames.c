@@ -231,9 +231,10 @@ int mpi_render_frames(const mpi_world *w, const mpi_options *o,
                  .timeout = o->timeout,
                  .noun = "frame",
                  .stopped_message =
-                     "stopped by a signal (mpirun sends one when a rank "
-                     "dies); the frame being written was not, frames written "
-                     "stay, and --resume renders the rest",
+                     "stopped by a signal (Ctrl-C, or mpirun ending the job, "
+                     "as it does when a rank dies); the frame being written "
+                     "was not, frames written stay, and --resume renders the "
+                     "rest",
                  .slow = mpi_test_slowdown(w->rank),
                  .context = &j,
                  .name_of = frame_name,

@@ -294,10 +294,15 @@ static int serve(master *m) {
       if (h->size > job->unit_bytes ||
           job->take(job->context, h->unit, w + 1, result_of(m->buffers[w]),
                     (size_t)h->size, &error)) {
-        if (h->size > job->unit_bytes)
+        if (h->size > job->unit_bytes) {
+          error.status = GLINT_E_PARSE;
           snprintf(error.message, sizeof error.message, "too large");
+        }
         char name[64];
         job->name_of(job->context, h->unit, name, sizeof name);
+        if (error.status == GLINT_E_IO) /* rank 0's own writing failed */
+          mpi_fail(world, EXIT_USAGE, "%s (rank 0 writing %s, from rank %d)",
+                   error.message, name, w + 1);
         mpi_fail(world, EXIT_USAGE, "%s, from rank %d (%s): %s", name, w + 1,
                  world->hosts[w + 1], error.message);
       }

@@ -201,10 +201,10 @@ int mpi_render_tiles(const mpi_world *w, const mpi_options *o,
   world->abandon = abandon;
   world->abandon_context = &t;
 
-  char stopped[400];
+  char stopped[480];
   snprintf(stopped, sizeof stopped,
-           "stopped by a signal (mpirun sends one when a rank dies); %s was "
-           "not written",
+           "stopped by a signal (Ctrl-C, or mpirun ending the job, as it does "
+           "when a rank dies); %s was not written",
            output);
   int by_rank[w->size > 0 ? w->size : 1];
   double seconds_by_rank[w->size > 0 ? w->size : 1];
