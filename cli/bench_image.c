@@ -29,7 +29,8 @@ static double time_child(char **argv, double *render) {
   double seconds = cli_now() - t0;
   const char *line = strstr(output, "\n  render ");
   if (rc != 0 || !line || sscanf(line, " render %lf", render) != 1) {
-    cli_error("'%s render %s' failed:\n%s", argv[0], argv[2], output);
+    if (!cli_stopped()) /* a Ctrl-C stopped it too: the caller says so */
+      cli_error("'glint render %s' failed:\n%s", argv[2], output);
     return -1;
   }
   return seconds;

@@ -390,7 +390,18 @@ static void damaged_files_are_refused(void **state) {
   static const char junk[] = "P6\n2x1y255z\x01\x02\x03\x04\x05\x06";
   write_bytes(path, junk, sizeof junk - 1);
   assert_int_equal(glint_image_read(path, &got, &e), GLINT_E_PARSE);
-  assert_non_null(strstr(e.message, "c.ppm: bad PPM header"));
+  assert_non_null(strstr(e.message, "c.ppm: bad PPM header: the width is not "
+                                    "a number"));
+  /* The field at fault is named (each said only "bad PPM header"). */
+  static const char zero[] = "P6\n2 1\n0\n\x01\x02\x03\x04\x05\x06";
+  write_bytes(path, zero, sizeof zero - 1);
+  assert_int_equal(glint_image_read(path, &got, &e), GLINT_E_PARSE);
+  assert_non_null(strstr(e.message, "c.ppm: bad PPM header: the maxval is 0"));
+  static const char wide[] = "P6\n2 4294967297\n255\n";
+  write_bytes(path, wide, sizeof wide - 1);
+  assert_int_equal(glint_image_read(path, &got, &e), GLINT_E_PARSE);
+  assert_non_null(
+      strstr(e.message, "c.ppm: bad PPM header: the height is too large"));
   static const char deep[] = "P6\n2 1\n65535\n\x01\x02\x03\x04\x05\x06";
   write_bytes(path, deep, sizeof deep - 1);
   assert_int_equal(glint_image_read(path, &got, &e), GLINT_E_PARSE);

@@ -26,9 +26,10 @@ static void skip_comment(FILE *f) {
 
 /* The next header number, skipping white space and # comments; -1 if none,
  * or if it does not end in white space or a comment (netpbm's grammar:
- * "2x1" is no width and height). The white-space character after it, or
- * the comment with its line's end, is consumed: after the maxval, the
- * pixels begin there. */
+ * "2x1" is no width and height), -2 past PPM_LARGEST. The white-space
+ * character after it, or the comment with its line's end, is consumed:
+ * after the maxval, the pixels begin there. */
+#define PPM_LARGEST 1000000
 static long ppm_number(FILE *f) {
   int c;
   for (;;) {
@@ -43,8 +44,8 @@ static long ppm_number(FILE *f) {
   long v = 0;
   while (isdigit(c)) {
     v = v * 10 + (c - '0');
-    if (v > 1000000)
-      return -1;
+    if (v > PPM_LARGEST)
+      return -2;
     c = fgetc(f);
   }
   if (c == '#')
@@ -59,12 +60,20 @@ glint_status gli_ppm_decode(FILE *f, const char *path, glint_image **out,
   if (fgetc(f) != 'P' || fgetc(f) != '6')
     return gli_fail(error, GLINT_E_PARSE, "%s: not a binary PPM (P6) file",
                     path);
-  long w = ppm_number(f), h = ppm_number(f), maxval = ppm_number(f);
-  if (w < 1 || h < 1 || maxval < 1)
-    return gli_fail(error, GLINT_E_PARSE,
-                    "%s: bad PPM header (P6, then width, height and maxval, "
-                    "each a number followed by white space)",
-                    path);
+  static const char *const field[3] = {"width", "height", "maxval"};
+  long v[3];
+  for (int i = 0; i < 3; i++)
+    if ((v[i] = ppm_number(f)) < 1)
+      return gli_fail(error, GLINT_E_PARSE,
+                      "%s: bad PPM header: the %s is %s (P6, then width, "
+                      "height and maxval, each a whole number from 1 to "
+                      "%d followed by white space)",
+                      path, field[i],
+                      v[i] == 0    ? "0"
+                      : v[i] == -2 ? "too large"
+                                   : "not a number",
+                      PPM_LARGEST);
+  long w = v[0], h = v[1], maxval = v[2];
   if (maxval != 255)
     return gli_fail(error, GLINT_E_PARSE,
                     "%s: a PPM of maxval %ld (glint reads maxval 255: 8 bits "
