@@ -416,6 +416,11 @@ static int named_as_input(const char *path) {
  * goes by (an existing scene or mesh file is never replaced by a CSV). */
 static int check_csv_path(const char *path, char **scenes, int nscenes,
                           const char *spd_dir) {
+  if (strcmp(path, "-") == 0) { /* -o - is standard output; this is not */
+    cli_error("--csv: '-' would be a file of that name; the table is on "
+              "standard output already (name a file, or ./- for that one)");
+    return -1;
+  }
   struct stat csv_sb;
   if (stat(path, &csv_sb) == 0) {
     if (S_ISDIR(csv_sb.st_mode)) {

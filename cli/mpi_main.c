@@ -215,6 +215,10 @@ static int parse(int argc, char **argv, mpi_options *o) {
     cli_error("--stats: glint-mpi prints what each rank rendered instead");
     return EXIT_USAGE;
   }
+  if (o->tile_size && o->render.frames) {
+    cli_error("--tile: with --frames each rank renders whole frames");
+    return EXIT_USAGE;
+  }
   o->in_flight = o->render.frames ? 2 : 4;
   return -1;
 }

@@ -190,6 +190,11 @@ run 2 whitted --tile 24 >run.out 2>run.err
 [ $? -ne 0 ] || fail "a --tile off the renderer's grid: exit status 0"
 [ "$(grep -c "tile: 24 is not a multiple of 16" run.err)" -eq 1 ] ||
   fail "a --tile off the renderer's grid: not one message"
+# (--tile with --frames was taken and ignored)
+run 2 whitted --frames 0-1 --tile 64 >run.out 2>run.err
+[ $? -ne 0 ] || fail "--tile with --frames: exit status 0"
+[ "$(grep -c "tile: with --frames each rank renders whole frames" run.err)" -eq 1 ] ||
+  fail "--tile with --frames: not one message"
 GLINT_ISA=bogus run 2 whitted -W 8 -H 8 -o isa.png >run.out 2>run.err
 [ $? -ne 0 ] || fail "GLINT_ISA=bogus: exit status 0"
 [ "$(grep -c "GLINT_ISA='bogus' is not none, sse, avx2 or avx512" run.err)" -eq 1 ] ||

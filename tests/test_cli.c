@@ -536,6 +536,9 @@ static void bench_errors(void **state) {
   EXPECT_USAGE_ERROR("--depths: '' is not a whole number", "bench", "--depths",
                      "1,,2");
   EXPECT_USAGE_ERROR("unknown scene ''", "bench", "--scenes", "whitted,");
+  /* (it wrote a file named '-') */
+  EXPECT_USAGE_ERROR("--csv: '-' would be a file of that name", "bench",
+                     "--csv", "-");
   EXPECT_USAGE_ERROR("benchmarks of their own: choose one", "bench",
                      "--time-to-image", "--frames", "2");
   EXPECT_USAGE_ERROR("--csv: /nonexistent/b.csv: cannot write here", "bench",
