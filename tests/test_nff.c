@@ -152,6 +152,13 @@ static void malformed_files(void **state) {
               "resolution 64 48\n",
               GLINT_E_PARSE,
               "angle.nff:5: view angle 180 is not between 0 and 180");
+  /* (it said "field of view 0", a value not in the file) */
+  EXPECT_FAIL("tiny.nff",
+              "v\nfrom 0 0 10\nat 0 0 0\nup 0 1 0\nangle 4.9e-324\n"
+              "hither 0.01\nresolution 64 48\n",
+              GLINT_E_PARSE,
+              "tiny.nff:5: view angle 4.94066e-324 is too small to make a "
+              "view of");
   /* at the last line (it said the line after it, which is not there) */
   EXPECT_FAIL("trunc.nff", VIEW "f 1 1 1 1 0 1 0 1\np 4\n0 0 0\n1 0 0\n1 1 0\n",
               GLINT_E_PARSE,

@@ -147,6 +147,10 @@ static glint_status read_view(nff_reader *r, glint_error *e) {
   if (w > 1)
     half *= (double)w / (double)(w - 1);
   cam.fov_x_degrees = 2 * atan(half) * 180.0 / 3.14159265358979323846;
+  if (!(cam.fov_x_degrees > 0)) /* an angle of 5e-324: the file's value */
+    return gli_fail(e, GLINT_E_PARSE,
+                    "%s:%ld: view angle %g is too small to make a view of",
+                    r->t.path, angle_line, angle);
   (void)hither;
   gli_camera_field fault;
   if ((st = gli_camera_check_field(&cam, &fault, e)) ||
