@@ -300,6 +300,8 @@ static glint_scene *share_scene(const mpi_world *w, const mpi_options *o,
     glint_scene_destroy(scene);
     return NULL;
   }
+  if (w->rank == 0)
+    cli_note_scale(arg, scene);
   /* The stem: the file's base name without its extension. */
   const char *base = strrchr(arg, '/');
   snprintf(stem, stem_size, "%s", base ? base + 1 : arg);

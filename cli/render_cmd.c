@@ -212,11 +212,8 @@ glint_scene *cli_load_scene(const char *arg, char *stem,
   return still;
 }
 
-/* A note when the hit tolerance (glint_scene_info.epsilon) reaches half the
- * smallest object's size: one far or huge object (a sky sphere, a ground
- * sphere of radius 1e5, a distant sun) then hides or spoils the rest, and
- * the image shows it without a word. The SPD scenes reach a quarter. */
-static void note_scale(const char *arg, const glint_scene *scene) {
+/* The SPD scenes reach a quarter. */
+void cli_note_scale(const char *arg, const glint_scene *scene) {
   glint_scene_info info;
   glint_scene_get_info(scene, &info);
   if (info.epsilon >= 0.5 * info.smallest)
@@ -241,7 +238,7 @@ glint_scene *cli_load_animation(const char *arg, char *stem,
     *exit_code = cli_exit_code(st);
     return NULL;
   }
-  note_scale(arg, scene);
+  cli_note_scale(arg, scene);
   /* The stem: the file's base name without its extension, and without
    * .gz before it (scene.json.gz: scene, as for scene.json). */
   const char *base = strrchr(arg, '/');
