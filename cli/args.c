@@ -131,10 +131,9 @@ int parse_double(const char *option, const char *text, double min,
   char *end;
   errno = 0;
   double v = strtod(text, &end);
-  /* strtod skips leading blanks and reads C's hexadecimal floats (0x1p1);
-   * refused as parse_int and the scene files refuse them */
+  /* strtod skips leading blanks; refused as parse_int refuses them */
   if (end == text || *end != '\0' || !isfinite(v) ||
-      isspace((unsigned char)*text) || strpbrk(text, "xX")) {
+      isspace((unsigned char)*text)) {
     cli_error("%s: '%s' is not a number", option, text);
     return -1;
   }

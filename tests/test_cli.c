@@ -194,9 +194,6 @@ static void usage_errors(void **state) {
   /* what was typed, not what it reads as (0) */
   EXPECT_USAGE_ERROR("--gamma: 1e-400 is outside 0.01..100", "render",
                      "--gamma", "1e-400");
-  /* C's hexadecimal floats, as whole numbers' 0x10 are (it read 2) */
-  EXPECT_USAGE_ERROR("--gamma: '0x1p1' is not a number", "render", "--gamma",
-                     "0x1p1");
   EXPECT_USAGE_ERROR("--png-compression applies to PNG images, and x.ppm is "
                      "not one",
                      "render", "--png-compression", "smallest", "-o", "x.ppm");
