@@ -131,6 +131,7 @@ static int take_frame(void *context, int unit, int rank, const void *result,
   int frame = j->frames[unit];
   char path[4096];
   if (frame_files_path(&j->files, frame, path, sizeof path)) {
+    error->status = GLINT_E_IO; /* rank 0's own */
     snprintf(error->message, sizeof error->message,
              "cannot make the file name or folder of frame %d", frame);
     return -1;

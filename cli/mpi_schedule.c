@@ -278,7 +278,7 @@ static int serve(master *m) {
     for (int i = 0; i < count; i++) {
       int w = m->indices[i];
       const result_header *h = (const result_header *)(void *)m->buffers[w];
-      glint_error error;
+      glint_error error = {0};
       m->received[w]++;
       m->last_heard[w] = cli_now();
       if (m->owed[w] > 0)

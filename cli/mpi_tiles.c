@@ -115,6 +115,7 @@ static int take_tile(void *context, int unit, int rank, const void *result,
   tile_rect(t, unit, &x, &y, &w, &h);
   const float *pixels = result;
   if (size != 3 * sizeof(float) * (size_t)w * (size_t)h) {
+    error->status = GLINT_E_PARSE; /* the worker's */
     snprintf(error->message, sizeof error->message,
              "%zu bytes, not the tile's %dx%d pixels", size, w, h);
     return -1;

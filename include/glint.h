@@ -228,7 +228,7 @@ typedef struct glint_scene_info {
    * (docs/specification.md, section 3). `smallest` is the size of the
    * smallest bounded object: a sphere's radius, a cone's larger radius, a
    * triangle object's longest bounding-box side (infinity when there is
-   * none). One far or huge object makes epsilon large for all the others:
+   * none; objects of no extent are left out). One far or huge object makes epsilon large for all the others:
    * those not many times larger than it may be missing or wrong. */
   double epsilon, smallest;
 } glint_scene_info;

@@ -26,7 +26,8 @@ static void skip_comment(FILE *f) {
 
 /* The next header number, skipping white space and # comments; -1 if none,
  * or if it does not end in white space or a comment (netpbm's grammar:
- * "2x1" is no width and height), -2 past PPM_LARGEST. The white-space
+ * "2x1" is no width and height), -2 past PPM_LARGEST, -3 where the file
+ * ends before it. The white-space
  * character after it, or the comment with its line's end, is consumed:
  * after the maxval, the pixels begin there. */
 #define PPM_LARGEST 1000000
@@ -39,6 +40,8 @@ static long ppm_number(FILE *f) {
     else if (!isspace(c))
       break;
   }
+  if (c == EOF)
+    return -3;
   if (!isdigit(c))
     return -1;
   long v = 0;
@@ -66,13 +69,13 @@ glint_status gli_ppm_decode(FILE *f, const char *path, glint_image **out,
     if ((v[i] = ppm_number(f)) < 1)
       return gli_fail(error, GLINT_E_PARSE,
                       "%s: bad PPM header: the %s is %s (P6, then width, "
-                      "height and maxval, each a whole number from 1 to "
-                      "%d followed by white space)",
+                      "height and maxval, each a whole number followed by "
+                      "white space)",
                       path, field[i],
                       v[i] == 0    ? "0"
                       : v[i] == -2 ? "too large"
-                                   : "not a number",
-                      PPM_LARGEST);
+                      : v[i] == -3 ? "missing (the file ends)"
+                                   : "not a number followed by white space");
   long w = v[0], h = v[1], maxval = v[2];
   if (maxval != 255)
     return gli_fail(error, GLINT_E_PARSE,

@@ -365,13 +365,15 @@ glint_status glint_scene_at_time(const glint_scene *s, double time,
                          : !gli_vec3_in_range(t.pivot)   ? "pivot"
                          : !gli_vec3_finite(t.rotate)    ? "rotate"
                                                          : NULL;
+      glint_vec3 bad = what && what[0] == 't' ? t.translate : t.pivot;
       if (what)
         return gli_fail(error, GLINT_E_ARGUMENT,
                         "object %u's motion at %g s has a %s %s (the spline "
                         "through its keys overshoots them)",
                         s->animation.motions[i].object, time, what,
-                        what[0] == 'r' ? "that is not finite"
-                                       : "beyond magnitude 1e15");
+                        what[0] == 'r' || !gli_vec3_finite(bad)
+                            ? "that is not finite"
+                            : "beyond magnitude 1e15");
       return gli_fail(error, GLINT_E_ARGUMENT,
                       "object %u's motion at %g s has a scale of %g",
                       s->animation.motions[i].object, time, t.scale);

@@ -557,12 +557,17 @@ static void grow_bounds(glint_vec3 *lo, glint_vec3 *hi, glint_vec3 p,
 }
 
 /* See glint_scene_info.smallest. */
+/* An object with no extent (a triangle object whose corners are one
+ * point) renders as nothing either way: it has no size to compare. */
+static double size_or_none(double size) { return size > 0 ? size : INFINITY; }
+
 static double smallest_object(const glint_scene *s) {
   double least = INFINITY;
   for (size_t i = 0; i < s->sphere_count; i++)
-    least = fmin(least, s->spheres[i].radius);
+    least = fmin(least, size_or_none(s->spheres[i].radius));
   for (size_t i = 0; i < s->cone_count; i++)
-    least = fmin(least, fmax(s->cones[i].base_radius, s->cones[i].apex_radius));
+    least = fmin(least, size_or_none(fmax(s->cones[i].base_radius,
+                                          s->cones[i].apex_radius)));
   for (size_t o = 0; o < s->object_count; o++) {
     const gli_object *obj = &s->objects[o];
     if (obj->shape != GLI_SHAPE_TRIANGLE || obj->count == 0)
@@ -572,7 +577,8 @@ static double smallest_object(const glint_scene *s) {
     for (uint32_t i = obj->first; i < obj->first + obj->count; i++)
       for (int k = 0; k < 3; k++)
         grow_bounds(&lo, &hi, s->triangles[i].v[k], 0.0);
-    least = fmin(least, fmax(hi.x - lo.x, fmax(hi.y - lo.y, hi.z - lo.z)));
+    least = fmin(
+        least, size_or_none(fmax(hi.x - lo.x, fmax(hi.y - lo.y, hi.z - lo.z))));
   }
   return least;
 }

@@ -235,7 +235,7 @@ static glint_status ply_number(ply_reader *r, const ply_property *p,
   /* A coordinate the header calls an integer is a whole number in the
    * type's range, as a binary file's would be. */
   if (ply_integer_type(type)) {
-    long long whole;
+    long long whole = 0;
     glint_status st = ply_whole(r, p, 0, &whole, e);
     *out = (double)whole;
     return st;
