@@ -228,8 +228,9 @@ typedef struct glint_scene_info {
    * (docs/specification.md, section 3). `smallest` is the size of the
    * smallest bounded object: a sphere's radius, a cone's larger radius, a
    * triangle object's longest bounding-box side (infinity when there is
-   * none; objects of no extent are left out). One far or huge object makes epsilon large for all the others:
-   * those not many times larger than it may be missing or wrong. */
+   * none; objects of no extent are left out). One far or huge object makes
+   * epsilon large for all the others: those not many times larger than it may
+   * be missing or wrong. */
   double epsilon, smallest;
 } glint_scene_info;
 void glint_scene_get_info(const glint_scene *scene, glint_scene_info *info);
@@ -725,7 +726,9 @@ void glint_frame_settings_default(glint_frame_settings *frame);
 
 /* Renders one frame into `film`, which must have the frame's (or the
  * region's) size. Nothing is converted, built, allocated or started: the
- * frame costs its rendering. A cancelled frame (GLINT_E_CANCELLED) leaves
+ * frame costs its rendering. (One exception: a frame deeper than any the
+ * renderer has rendered grows each thread's stream buffers once, and may
+ * then fail with GLINT_E_MEMORY.) A cancelled frame (GLINT_E_CANCELLED) leaves
  * the film partly written. `frame` may be NULL; `stats` may be NULL.
  * `film` may be NULL when the frame has a tile callback: the tiles then go
  * to the callback only (a glint_image_writer, another process), and no
@@ -763,16 +766,18 @@ glint_status glint_image_writer_open(const char *path, int width, int height,
                                      glint_error *error);
 /* Converts and takes the tile's pixels. tile->x and tile->y are pixels of
  * the image: for a frame's region, subtract the region's origin. Each pixel
- * is put once. Returns an error at once when the tile lies outside the image
- * or writing has failed (a full disk): a tile callback then cancels the
- * frame. A PNG or PPM writer holds only the rows not yet encoded (a BMP, the
- * whole image): a put that finds 8 MiB of them held while the encoder has
- * complete rows to encode waits for it; tiles out of order never wait. */
+ * is put once. Returns an error at once when the tile lies outside the image,
+ * repeats a pixel, or writing has failed (a full disk): a tile callback then
+ * cancels the frame. After a refused tile the image cannot be finished:
+ * later puts fail, and so does glint_image_writer_finish. A PNG or PPM writer
+ * holds only the rows not yet encoded (a BMP, the whole image): a put that
+ * finds 8 MiB of them held while the encoder has complete rows to encode waits
+ * for it; tiles out of order never wait. */
 glint_status glint_image_writer_put(glint_image_writer *writer,
                                     const glint_tile *tile, glint_error *error);
 /* Waits for the encoder, then flushes, syncs and renames the file into
- * place. Fails, writing nothing, when a pixel was never put or writing
- * failed. Frees the writer either way. */
+ * place. Fails, writing nothing, when a pixel was never put, a put was
+ * refused, or writing failed. Frees the writer either way. */
 glint_status glint_image_writer_finish(glint_image_writer *writer,
                                        glint_error *error);
 /* Abandons the file (an existing one stays untouched) and frees the writer. */

@@ -456,11 +456,15 @@ static glint_status incomplete(const glint_image_writer *w,
   if (w->bad_put)
     return gli_fail(error, GLINT_E_ARGUMENT,
                     "%s: tiles outside the image or repeated", path);
-  if (w->encoded < w->height)
+  if (w->encoded < w->height) {
+    int complete = 0; /* anywhere, not only from the top (w->ready) */
+    for (int y = 0; y < w->height; y++)
+      complete += w->row_pixels[y] == w->width;
     return gli_fail(error, GLINT_E_ARGUMENT,
                     "%s: only %d of the image's %d rows were complete; "
                     "nothing was written",
-                    path, w->ready, w->height);
+                    path, complete, w->height);
+  }
   return GLINT_OK;
 }
 

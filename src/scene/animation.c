@@ -288,7 +288,8 @@ glint_status glint_scene_set_object_motion(glint_scene *s, uint32_t object,
                                            glint_interpolation interpolation,
                                            glint_error *error) {
   GLI_NOT_NULL(s, "scene", error);
-  if (!keys || count == 0)
+  GLI_NOT_NULL(keys, "keys", error);
+  if (count == 0)
     return gli_fail(error, GLINT_E_ARGUMENT, "object motion: no keys given");
   if (object >= s->object_count)
     return gli_fail(error, GLINT_E_ARGUMENT,
