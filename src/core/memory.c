@@ -3,33 +3,23 @@
 #include <stdlib.h>
 #include <string.h>
 
-/* calloc, not aligned_alloc and memset: a large block comes from the
- * kernel already zero, a page at a time as it is first touched, so a
- * 16384 x 16384 film costs nothing until it is rendered into (the memset
- * wrote its 3 GiB first, for seconds in which nothing could stop it). The
- * block's own address is kept just before the aligned one, which has a
- * whole number of alignments after it. */
 void *gli_aligned_calloc(size_t count, size_t size) {
   if (size != 0 && count > SIZE_MAX / size)
     return NULL;
   size_t bytes = count * size;
+  /* aligned_alloc wants a multiple of the alignment. */
   size_t rounded = (bytes + GLI_ALIGN - 1) & ~(size_t)(GLI_ALIGN - 1);
-  size_t extra = GLI_ALIGN + sizeof(void *);
-  if (rounded < bytes || rounded > SIZE_MAX - extra)
+  if (rounded < bytes)
     return NULL;
-  char *block = calloc(1, (rounded ? rounded : GLI_ALIGN) + extra);
-  if (!block)
-    return NULL;
-  uintptr_t at = ((uintptr_t)(block + sizeof(void *)) + GLI_ALIGN - 1) &
-                 ~(uintptr_t)(GLI_ALIGN - 1);
-  ((void **)at)[-1] = block;
-  return (void *)at;
+  if (rounded == 0)
+    rounded = GLI_ALIGN;
+  void *p = aligned_alloc(GLI_ALIGN, rounded);
+  if (p)
+    memset(p, 0, rounded);
+  return p;
 }
 
-void gli_aligned_free(void *p) {
-  if (p)
-    free(((void **)p)[-1]);
-}
+void gli_aligned_free(void *p) { free(p); }
 
 int gli_grow(void **items, size_t *capacity, size_t needed, size_t size) {
   if (needed <= *capacity)
