@@ -214,16 +214,16 @@ glint_scene *cli_load_scene(const char *arg, char *stem,
 
 /* The SPD scenes reach a quarter. */
 void cli_note_scale(const char *arg, const glint_scene *scene) {
-  glint_scene_info info;
-  glint_scene_get_info(scene, &info);
-  if (info.epsilon >= 0.5 * info.smallest)
+  double epsilon, smallest;
+  glint_scene_get_scale(scene, &epsilon, &smallest);
+  if (epsilon >= 0.5 * smallest)
     fprintf(stderr,
             "glint: note: %s: hits nearer than %g to a ray's start are not "
             "seen (1e-4 of the scene's largest coordinate, %g), and its "
             "smallest object measures %g: it and others near that size may "
             "be missing or wrong (keep a scene's extent within about 1e4 "
             "times its smallest object)\n",
-            arg, info.epsilon, info.epsilon * 1e4, info.smallest);
+            arg, epsilon, epsilon * 1e4, smallest);
 }
 
 glint_scene *cli_load_animation(const char *arg, char *stem,

@@ -222,18 +222,19 @@ typedef struct glint_scene_info {
   /* Bounds of the spheres, triangles and cones (not planes); min > max when
    * there are none. */
   glint_vec3 bounds_min, bounds_max;
-  /* Hits nearer than `epsilon` to where a ray starts are not seen, so that
-   * secondary rays leave their own surface: 1e-4 times the largest
-   * coordinate magnitude of the camera and the bounded primitives
-   * (docs/specification.md, section 3). `smallest` is the size of the
-   * smallest bounded object: a sphere's radius, a cone's larger radius, a
-   * triangle object's longest bounding-box side (infinity when there is
-   * none; objects of no extent are left out). One far or huge object makes
-   * epsilon large for all the others: those not many times larger than it may
-   * be missing or wrong. */
-  double epsilon, smallest;
 } glint_scene_info;
 void glint_scene_get_info(const glint_scene *scene, glint_scene_info *info);
+/* Hits nearer than *epsilon to where a ray starts are not seen, so that
+ * secondary rays leave their own surface: 1e-4 times the largest
+ * coordinate magnitude of the camera and the bounded primitives
+ * (docs/specification.md, section 3). *smallest is the size of the
+ * smallest bounded object: a sphere's radius, a cone's larger radius, a
+ * triangle object's longest bounding-box side (infinity when there is none;
+ * objects of no extent are left out). One far or huge object makes epsilon
+ * large for all the others: those not many times larger than it may be
+ * missing or wrong. Either pointer may be NULL; a NULL scene gives 0. */
+void glint_scene_get_scale(const glint_scene *scene, double *epsilon,
+                           double *smallest);
 
 /* ---- Animation (docs/scene-format.md, "animation") ---------------------- */
 

@@ -89,16 +89,20 @@ static void info_bounds_every_shape(void **state) {
   /* The smallest object: the sphere's radius 0.5 (the cone's larger
    * radius is 1, the triangle's longest side of its box 7); epsilon is
    * 1e-4 of the largest coordinate, the triangle's 7 or the camera's. */
-  assert_true(info.smallest == 0.5);
+  double epsilon, smallest;
+  glint_scene_get_scale(s, &epsilon, &smallest);
+  assert_true(smallest == 0.5);
   V from = info.camera.from;
   double largest =
       fmax(7, fmax(fabs(from.x), fmax(fabs(from.y), fabs(from.z))));
-  assert_true(fabs(info.epsilon - 1e-4 * largest) <= 1e-12 * largest);
+  assert_true(fabs(epsilon - 1e-4 * largest) <= 1e-12 * largest);
   /* One far sphere makes it large for everything. */
   ASSERT_OK(glint_scene_add_sphere(s, (V){0, 0, -1e6}, 1, m, NULL));
-  glint_scene_get_info(s, &info);
-  assert_true(fabs(info.epsilon - 100.0001) <= 1e-9);
-  assert_true(info.smallest == 0.5);
+  glint_scene_get_scale(s, &epsilon, &smallest);
+  assert_true(fabs(epsilon - 100.0001) <= 1e-9);
+  assert_true(smallest == 0.5);
+  glint_scene_get_scale(NULL, &epsilon, NULL);
+  assert_true(epsilon == 0);
   glint_scene_destroy(s);
 }
 

@@ -556,7 +556,7 @@ static void grow_bounds(glint_vec3 *lo, glint_vec3 *hi, glint_vec3 p,
   lo->z = lower(p.z - r, lo->z), hi->z = higher(p.z + r, hi->z);
 }
 
-/* See glint_scene_info.smallest. */
+/* See glint_scene_get_scale. */
 /* An object with no extent (a triangle object whose corners are one
  * point) renders as nothing either way: it has no size to compare. */
 static double size_or_none(double size) { return size > 0 ? size : INFINITY; }
@@ -616,8 +616,14 @@ void glint_scene_get_info(const glint_scene *s, glint_scene_info *info) {
   }
   info->bounds_min = lo;
   info->bounds_max = hi;
-  info->epsilon = gli_scene_epsilon(s);
-  info->smallest = smallest_object(s);
+}
+
+void glint_scene_get_scale(const glint_scene *s, double *epsilon,
+                           double *smallest) {
+  if (epsilon)
+    *epsilon = s ? gli_scene_epsilon(s) : 0;
+  if (smallest)
+    *smallest = s ? smallest_object(s) : 0;
 }
 
 static double absmax3(glint_vec3 v, double m) {
