@@ -119,10 +119,11 @@ int cli_is_film_path(const char *path);
 glint_status cli_check_output_format(const char *path, const char *scene,
                                      glint_error *err);
 
-/* A note on stderr when the hit tolerance (glint_scene_info.epsilon)
- * reaches half the smallest object's size: one far or huge object (a sky
- * sphere, a ground sphere of radius 1e5, a distant sun) then hides or
- * spoils the rest, and the image shows it without a word. */
+/* A note on stderr when the hit tolerance (glint_scene_get_scale) reaches
+ * half the smallest object's size: one far or huge object (a sky sphere, a
+ * ground sphere of radius 1e5, a distant sun) then hides or spoils the
+ * rest, and the image shows it without a word. The SPD scenes reach a
+ * quarter (tree-s4), and get none. */
 void cli_note_scale(const char *arg, const glint_scene *scene);
 
 /* SIGINT, SIGTERM and SIGHUP only take note from then on; cli_stopped says

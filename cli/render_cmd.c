@@ -212,7 +212,6 @@ glint_scene *cli_load_scene(const char *arg, char *stem,
   return still;
 }
 
-/* The SPD scenes reach a quarter. */
 void cli_note_scale(const char *arg, const glint_scene *scene) {
   double epsilon, smallest;
   glint_scene_get_scale(scene, &epsilon, &smallest);

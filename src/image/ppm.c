@@ -27,9 +27,8 @@ static void skip_comment(FILE *f) {
 /* The next header number, skipping white space and # comments; -1 if none,
  * or if it does not end in white space or a comment (netpbm's grammar:
  * "2x1" is no width and height), -2 past PPM_LARGEST, -3 where the file
- * ends before it. The white-space
- * character after it, or the comment with its line's end, is consumed:
- * after the maxval, the pixels begin there. */
+ * ends before it. The white-space character after it, or the comment with
+ * its line's end, is consumed: after the maxval, the pixels begin there. */
 #define PPM_LARGEST 1000000
 static long ppm_number(FILE *f) {
   int c;

@@ -362,19 +362,21 @@ glint_status glint_scene_at_time(const glint_scene *s, double time,
         {v[0], v[1], v[2]}, {v[3], v[4], v[5]}, {v[6], v[7], v[8]}, v[9]};
     if (!transform_valid(&t)) { /* a spline overshooting its keys */
       glint_scene_destroy(still);
-      const char *what = !gli_vec3_in_range(t.translate) ? "translate"
-                         : !gli_vec3_in_range(t.pivot)   ? "pivot"
-                         : !gli_vec3_finite(t.rotate)    ? "rotate"
-                                                         : NULL;
-      glint_vec3 bad = what && what[0] == 't' ? t.translate : t.pivot;
+      const char *what = NULL;
+      glint_vec3 value = t.rotate;
+      if (!gli_vec3_in_range(t.translate))
+        what = "translate", value = t.translate;
+      else if (!gli_vec3_in_range(t.pivot))
+        what = "pivot", value = t.pivot;
+      else if (!gli_vec3_finite(t.rotate))
+        what = "rotate";
       if (what)
         return gli_fail(error, GLINT_E_ARGUMENT,
                         "object %u's motion at %g s has a %s %s (the spline "
                         "through its keys overshoots them)",
                         s->animation.motions[i].object, time, what,
-                        what[0] == 'r' || !gli_vec3_finite(bad)
-                            ? "that is not finite"
-                            : "beyond magnitude 1e15");
+                        gli_vec3_finite(value) ? "beyond magnitude 1e15"
+                                               : "that is not finite");
       return gli_fail(error, GLINT_E_ARGUMENT,
                       "object %u's motion at %g s has a scale of %g",
                       s->animation.motions[i].object, time, t.scale);

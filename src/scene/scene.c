@@ -556,9 +556,9 @@ static void grow_bounds(glint_vec3 *lo, glint_vec3 *hi, glint_vec3 p,
   lo->z = lower(p.z - r, lo->z), hi->z = higher(p.z + r, hi->z);
 }
 
-/* See glint_scene_get_scale. */
-/* An object with no extent (a triangle object whose corners are one
- * point) renders as nothing either way: it has no size to compare. */
+/* For glint_scene_get_scale. An object with no extent (a triangle object
+ * whose corners are one point) renders as nothing either way: it has no
+ * size to compare. */
 static double size_or_none(double size) { return size > 0 ? size : INFINITY; }
 
 static double smallest_object(const glint_scene *s) {

@@ -51,7 +51,8 @@ typedef struct nff_reader {
    * lines, but a file that fails after such a line most likely went wrong
    * there, and is told so. */
   struct {
-    long line, too_many, polygon_line, patch;
+    long line, polygon_line;
+    int too_many, patch;
     long vertex, count;
   } odd;
 } nff_reader;
