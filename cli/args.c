@@ -211,6 +211,14 @@ int arg_flag(arg_cursor *c, const char *short_name, const char *long_name,
   return ARG_TAKEN;
 }
 
+void arg_unknown(const char *option, const char *command) {
+  /* --help=yes, -h=1: the right option with a value it does not take */
+  if (strncmp(option, "--help=", 7) == 0 || strncmp(option, "-h=", 3) == 0)
+    cli_error("--help takes no value: '%s'", option);
+  else
+    cli_error("unknown option '%s' (see glint %s --help)", option, command);
+}
+
 int arg_is_help(arg_cursor *c) {
   if (!arg_is(c, "-h", "--help"))
     return 0;
@@ -280,7 +288,7 @@ int arg_scene_operand(arg_cursor *c, const char *command, const char **scene) {
     return ARG_TAKEN;
   }
   if (a[0] == '-' && a[1] != '\0') {
-    cli_error("unknown option '%s' (see glint %s --help)", a, command);
+    arg_unknown(a, command);
     return ARG_BAD;
   }
   if (*scene) {

@@ -72,6 +72,9 @@ int arg_scene_operand(arg_cursor *c, const char *command, const char **scene);
 
 /* -h or --help. */
 int arg_is_help(arg_cursor *c);
+/* The error for an option no parser took: "unknown option", or, for
+ * --help=VALUE, that --help takes none. */
+void arg_unknown(const char *option, const char *command);
 
 /* "backend NAME is not supported on this CPU", or, when GLINT_ISA is set,
  * that it hides it. */

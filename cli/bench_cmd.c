@@ -310,7 +310,7 @@ int bench_parse(int argc, char **argv, bench_options *o) {
                 "(see glint bench --help)",
                 a);
     else
-      cli_error("unknown option '%s' (see glint bench --help)", a);
+      arg_unknown(a, "bench");
     return EXIT_USAGE;
   }
 

@@ -81,7 +81,7 @@ int compare_parse(int argc, char **argv, compare_options *o) {
         continue;
       }
       if (a[0] == '-' && a[1] != '\0') {
-        cli_error("unknown option '%s' (see glint compare --help)", a);
+        arg_unknown(a, "compare");
         return EXIT_USAGE;
       }
     }

@@ -477,7 +477,13 @@ int render_parse(int argc, char **argv, render_options *o) {
         if (*end)
           first = -1;
       }
-      if (first < 0 || last < first || last > GLINT_MAX_FRAME) {
+      if (first >= 0 && last < first) {
+        cli_error("--frames: '%s' runs backwards (FIRST-LAST with LAST at "
+                  "least FIRST)",
+                  v);
+        return EXIT_USAGE;
+      }
+      if (first < 0 || last > GLINT_MAX_FRAME) {
         cli_error("--frames: '%s' is not a frame or a range FIRST-LAST of "
                   "frames 0..%d",
                   v, GLINT_MAX_FRAME);

@@ -175,7 +175,11 @@ static void usage_errors(void **state) {
   EXPECT_USAGE_ERROR("--time-to-image takes no value", "bench",
                      "--time-to-image=1");
   EXPECT_USAGE_ERROR("unknown option '-hello'", "render", "-hello");
-  EXPECT_USAGE_ERROR("unknown option '--help=1'", "compare", "--help=1");
+  /* --help with a value is named as such (it was "unknown option") */
+  EXPECT_USAGE_ERROR("--help takes no value: '--help=1'", "compare",
+                     "--help=1");
+  EXPECT_USAGE_ERROR("--help takes no value: '-h=1'", "render", "-h=1");
+  EXPECT_USAGE_ERROR("--help takes no value", "bench", "--help=yes");
   /* compare takes "--" as render does: images after it (it said "unknown
    * option '--'") */
   EXPECT_USAGE_ERROR("-x.png", "compare", "--", "-x.png", "-y.png");
@@ -1229,8 +1233,10 @@ static void frames_of_an_animation(void **state) {
                      "--frames", "1", "-o", "x%s.png");
   EXPECT_USAGE_ERROR("--frames writes .png, .bmp or .ppm", "render", scene_path,
                      "--frames", "1", "-o", "x.exr");
-  EXPECT_USAGE_ERROR("--frames: '3-1' is not a frame", "render", scene_path,
+  EXPECT_USAGE_ERROR("--frames: '3-1' runs backwards", "render", scene_path,
                      "--frames", "3-1");
+  EXPECT_USAGE_ERROR("--frames: '3-x' is not a frame", "render", scene_path,
+                     "--frames", "3-x");
   EXPECT_USAGE_ERROR("--resume applies to --frames", "render", scene_path,
                      "--resume");
   EXPECT_USAGE_ERROR("--stats applies to one image", "render", scene_path,

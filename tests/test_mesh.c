@@ -1134,6 +1134,9 @@ static void obj_errors(void **state) {
               "short.obj:1: expected a number for the vertex's z, found the "
               "end of the line",
               NULL);
+  /* a continuation on the last line: the face is line 4's */
+  expect_fail(f, "cont.obj", "v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 \\\n",
+              GLINT_E_PARSE, "cont.obj:4: ", NULL);
   expect_fail(f, "long.obj", "v 0 0 0 1 1 1 1 1\n", GLINT_E_PARSE,
               "long.obj:1: unexpected '1' after the vertex's coordinates",
               NULL);

@@ -223,6 +223,12 @@ glint_status glint_scene_set_camera_orbit(glint_scene *s, glint_vec3 center,
         error, GLINT_E_ARGUMENT,
         "camera orbit: center, radius and height must be " GLI_RANGE_TEXT
         ", the radius positive, and degrees finite");
+  /* the orbit's angle is spread over the frames: none, no orbit (it was
+   * taken, and every frame's camera failed later) */
+  if (!s->animation.present)
+    return gli_fail(error, GLINT_E_ARGUMENT,
+                    "camera orbit: the scene has no animation frames "
+                    "(glint_scene_set_animation first)");
   s->animation.orbit_center = center;
   s->animation.orbit_radius = radius;
   s->animation.orbit_height = height;

@@ -37,7 +37,9 @@ static void obj_skip_blanks(obj_reader *r) {
       r->p++;
     } else if (obj_continuation(r->p)) {
       r->p += r->p[1] == '\n' ? 2 : 3;
-      r->line++;
+      /* a continuation at the file's end joins no next line */
+      if (*r->p)
+        r->line++;
     } else if (*r->p == '#') {
       while (*r->p && *r->p != '\n')
         r->p++;
