@@ -6,7 +6,8 @@
  * One image is cut into tiles, an animation (--frames) into frames; rank 0
  * reads the scene and every file it refers to, once, and broadcasts the
  * bytes (glint_scene_pack), and every rank checks that it renders as the
- * others do (version, backend, maths) before any work starts. The image is
+ * others do (version, backend, maths, and the options that share the work
+ * out: fingerprint) before any work starts. The image is
  * bit-identical to glint render's, whatever the ranks, tiles or schedule. */
 #include "args.h"
 #include "mpi.h"
@@ -223,21 +224,45 @@ static int parse(int argc, char **argv, mpi_options *o) {
   return -1;
 }
 
-/* Each rank's name for what it renders; ranks that differ would render
- * different images. */
-static void fingerprint(const glint_render_settings *rs, char *out,
-                        size_t size) {
-  snprintf(out, size, "glint %s, backend %s, %s maths%s, accel %s",
-           glint_version(),
-           glint_backend_name(glint_backend_resolve(rs->backend)),
-           glint_math_name(rs->math), rs->rcp_newton ? "" : ", no Newton step",
-           glint_accel_name(rs->accel));
+/* Each rank's name for what it renders and how the work is shared; ranks
+ * that differ would render different images, or wait for work that never
+ * comes (an MPMD launch, `mpirun A : B`, gives each rank its own
+ * arguments). What a rank may choose for itself is left out: its threads,
+ * and rank 0's output, --timeout and -q. A scene file is rank 0's, sent to
+ * all, so only whether the scene is a file counts. */
+static void fingerprint(const mpi_options *o, char *out, size_t size) {
+  const render_options *ro = &o->render;
+  const glint_render_settings *rs = &ro->settings;
+  const char *scene = ro->scene;
+  int is_file = strchr(scene, '.') != NULL || strchr(scene, '/') != NULL;
+  char size_text[64] = "the scene's size", region[96] = "whole";
+  if (rs->width || rs->height)
+    snprintf(size_text, sizeof size_text, "%dx%d", rs->width, rs->height);
+  if (rs->region_width)
+    snprintf(region, sizeof region, "%d,%d,%d,%d", rs->region_x, rs->region_y,
+             rs->region_width, rs->region_height);
+  char tile[32] = "tiles chosen";
+  if (o->tile_size)
+    snprintf(tile, sizeof tile, "tile %d", o->tile_size);
+  char frames[64] = "a still";
+  if (ro->frames)
+    snprintf(frames, sizeof frames, "frames %d-%d%s", ro->first_frame,
+             ro->last_frame, ro->resume ? " resumed" : "");
+  snprintf(
+      out, size,
+      "glint %s, backend %s, %s maths%s, accel %s; %.200s%s, %s, "
+      "region %s, %d spp, depth %d, gamma %.17g; %s, %s schedule, %s",
+      glint_version(), glint_backend_name(glint_backend_resolve(rs->backend)),
+      glint_math_name(rs->math), rs->rcp_newton ? "" : ", no Newton step",
+      glint_accel_name(rs->accel), is_file ? "a scene file" : scene,
+      is_file ? "" : " (built in)", size_text, region, rs->spp, rs->max_depth,
+      rs->gamma, frames, o->dynamic ? "dynamic" : "static", tile);
 }
 
 /* Refuses to start when a rank renders differently from rank 0. */
-static int same_renderers(const mpi_world *w, const glint_render_settings *rs) {
+static int same_renderers(const mpi_world *w, const mpi_options *o) {
   char mine[MPI_MESSAGE_CHARS] = {0};
-  fingerprint(rs, mine, sizeof mine);
+  fingerprint(o, mine, sizeof mine);
   char *all = gather_texts(w, mine, "gathering the ranks' renderers");
   int same = 1;
   if (w->rank == 0) {
@@ -246,8 +271,7 @@ static int same_renderers(const mpi_world *w, const glint_render_settings *rs) {
     if (!same) {
       fprintf(stderr,
               "glint-mpi: the ranks would render different images, so none "
-              "starts (give every rank the same glint and --backend, "
-              "--math):\n");
+              "starts (give every rank the same glint and arguments):\n");
       for (int r = 0; r < w->size; r++)
         fprintf(stderr, "  rank %d (%s): %s\n", r, w->hosts[r],
                 all + (size_t)r * sizeof mine);
@@ -373,20 +397,24 @@ static int share_threads(const mpi_world *w, int threads, int local,
   return most;
 }
 
-/* Parses with rank 0's voice only: every rank parses the same arguments,
- * and one message is enough. */
+/* Parses with rank 0's voice only: the ranks usually parse the same
+ * arguments, and one message is enough. Another rank's message, should its
+ * own arguments be refused (an MPMD launch), is kept in `message` (its
+ * first line, without the "glint: ") for rank 0 to print. */
 static int parse_quietly(const mpi_world *w, int argc, char **argv,
-                         mpi_options *o) {
+                         mpi_options *o, char *message, size_t size) {
+  message[0] = '\0';
   if (w->rank == 0)
     return parse(argc, argv, o);
   fflush(stdout);
   fflush(stderr);
   int saved_out = dup(STDOUT_FILENO), saved_err = dup(STDERR_FILENO);
-  int null = open("/dev/null", O_WRONLY);
-  if (null >= 0) {
-    dup2(null, STDOUT_FILENO);
-    dup2(null, STDERR_FILENO);
-    close(null);
+  FILE *said = tmpfile();
+  int quiet = said ? dup(fileno(said)) : open("/dev/null", O_WRONLY);
+  if (quiet >= 0) {
+    dup2(quiet, STDOUT_FILENO);
+    dup2(quiet, STDERR_FILENO);
+    close(quiet);
   }
   int status = parse(argc, argv, o);
   fflush(stdout);
@@ -399,21 +427,48 @@ static int parse_quietly(const mpi_world *w, int argc, char **argv,
     dup2(saved_err, STDERR_FILENO);
     close(saved_err);
   }
+  if (said) {
+    rewind(said);
+    char line[MPI_MESSAGE_CHARS];
+    if (status >= 0 && fgets(line, sizeof line, said)) {
+      line[strcspn(line, "\n")] = '\0';
+      const char *text = strncmp(line, "glint: ", 7) ? line : line + 7;
+      snprintf(message, size, "%s", text);
+    }
+    fclose(said);
+  }
+  if (status >= 0 && !message[0])
+    snprintf(message, size, "its arguments are refused");
   return status;
+}
+
+/* Every rank's verdict on its arguments, so that none waits in a
+ * collective call for a rank that stopped at them: rank 0's own refusal it
+ * has printed; another rank's is printed by rank 0, naming the rank. The
+ * exit status for all, or -1 to go on. */
+static int agree_on_arguments(const mpi_world *w, int status,
+                              const char *message) {
+  int first = status;
+  mpi_check(w, MPI_Bcast(&first, 1, MPI_INT, 0, w->comm),
+            "sharing rank 0's arguments");
+  if (first >= 0) /* every rank stops, as rank 0 said */
+    return first;
+  return mpi_all_ok(w, status < 0, message) ? -1 : EXIT_USAGE;
 }
 
 static int run(mpi_world *w, int argc, char **argv) {
   mpi_options o;
   memset(&o, 0, sizeof o);
-  int status = parse_quietly(w, argc, argv, &o);
-  if (status >= 0)
+  char refused[MPI_MESSAGE_CHARS];
+  int status = parse_quietly(w, argc, argv, &o, refused, sizeof refused);
+  if ((status = agree_on_arguments(w, status, refused)) >= 0)
     return status;
   glint_render_settings *rs = &o.render.settings;
   int local = ranks_on_host(w);
   if (rs->threads == 0)
     rs->threads = threads_per_rank(local);
   o.most_threads = share_threads(w, rs->threads, local, o.render.quiet);
-  if (!same_renderers(w, rs))
+  if (!same_renderers(w, &o))
     return EXIT_USAGE;
   char stem[256];
   glint_scene *scene = share_scene(w, &o, stem, sizeof stem);

@@ -515,7 +515,8 @@ void glint_render_settings_default(glint_render_settings *settings);
 /* The concrete backend that renders `scene` with `settings` (a renderer, or
  * glint_render) when asked for `backend`: AUTO picks the widest beams or the
  * widest streams from the scene's specular surfaces and the depth
- * (src/render/backend_choice.c); any other as glint_backend_resolve. */
+ * (src/render/backend_choice.c); any other, or AUTO without a scene or
+ * settings (NULL: nothing to choose by), as glint_backend_resolve. */
 glint_backend glint_backend_choose(glint_backend backend,
                                    const glint_scene *scene,
                                    const glint_render_settings *settings);

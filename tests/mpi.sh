@@ -176,6 +176,27 @@ grep -q "the ranks would render different images" run.err ||
 grep -q "rank 1 (.*): glint .*, backend scalar-double" run.err ||
   fail "mismatched ranks: rank 1 not named"
 [ ! -e x.png ] || fail "mismatched ranks: an image was written"
+# Each rank its own arguments (MPMD): a different depth (a mixed image was
+# written), a different --tile (the worker wrote past its tile: heap
+# corruption), a worker refusing its own option (the job hung).
+for extra in "-d 1" "--tile 32"; do
+  # shellcheck disable=SC2086
+  "${mpi[@]}" -np 1 "$glint_mpi" whitted -W 64 -H 48 -s 1 --tile 16 -o x.png : \
+    -np 1 "$glint_mpi" whitted -W 64 -H 48 -s 1 --tile 16 $extra -o x.png \
+    >run.out 2>run.err
+  status=$?
+  [ "$status" -eq 2 ] || fail "ranks given $extra apart: exit status $status"
+  grep -q "the ranks would render different images" run.err ||
+    fail "ranks given $extra apart: no message"
+  [ ! -e x.png ] || fail "ranks given $extra apart: an image was written"
+done
+timeout 60 "${mpi[@]}" -np 1 "$glint_mpi" whitted -W 64 -H 48 -o x.png : \
+  -np 1 "$glint_mpi" whitted --bogus >run.out 2>run.err
+status=$?
+[ "$status" -eq 2 ] || fail "a worker refusing its option: exit status $status"
+grep -q "rank 1 (.*): unknown option '--bogus'" run.err ||
+  fail "a worker refusing its option: not named"
+[ ! -e x.png ] || fail "a worker refusing its option: an image was written"
 
 # Bad input: one message, status 2.
 run 3 nowhere.json -q >run.out 2>run.err
