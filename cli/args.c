@@ -132,9 +132,12 @@ int parse_double(const char *option, const char *text, double min,
   errno = 0;
   double v = strtod(text, &end);
   /* strtod skips leading blanks; refused as parse_int refuses them */
-  if (end == text || *end != '\0' || !isfinite(v) ||
-      isspace((unsigned char)*text)) {
+  if (end == text || *end != '\0' || isspace((unsigned char)*text)) {
     cli_error("%s: '%s' is not a number", option, text);
+    return -1;
+  }
+  if (!isfinite(v)) { /* inf, nan, 1e999 */
+    cli_error("%s: '%s' is not a finite number", option, text);
     return -1;
   }
   /* The user's own words: 1e-400 reads as 0 */

@@ -87,8 +87,12 @@ typedef struct compare_options {
 } compare_options;
 int compare_parse(int argc, char **argv, compare_options *options);
 
+/* Whether a scene operand names a file: it has a '.' or a '/', or it is no
+ * built-in scene's name and a file of that name exists (read as a file, it
+ * is refused as one; it was called an unknown built-in scene). */
+int cli_scene_is_file(const char *arg);
 /* Loads a built-in scene by name, or a scene file when the argument names
- * one (it has a '.' or a '/'); prints one message and returns NULL on
+ * one (cli_scene_is_file); prints one message and returns NULL on
  * error, with the exit status in *exit_code (EXIT_MEMORY or EXIT_USAGE).
  * `stem` receives the name to derive an output file from. An animated scene
  * comes still, as its first frame (glint_scene_at_time at 0) ... */

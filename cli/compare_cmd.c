@@ -10,6 +10,7 @@
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
+#include <strings.h>
 
 /* Differences are scaled up so that an error of a few levels shows. */
 enum { DIFF_GAIN = 16 };
@@ -19,11 +20,14 @@ static void compare_usage(FILE *f) {
       "Usage: glint compare A B [options]\n"
       "\n"
       "Prints the peak signal-to-noise ratio between two images (.png, .bmp\n"
-      "or .ppm) of the same size, in dB over all channels ('inf' when they\n"
-      "are identical).\n"
+      "or .ppm) of the same size, in dB over the red, green and blue\n"
+      "channels ('inf' when they are identical). Images are read at 8 bits\n"
+      "a sample, as glint writes them: grey and palette PNGs as RGB, alpha\n"
+      "not compared, 16-bit PNGs refused.\n"
       "\n"
       "Options:\n"
       "      --min-psnr DB  exit with status 1 when the PSNR is below DB\n"
+      "                     (inf: unless the images are identical)\n"
       "      --diff FILE    write an image of the differences: each\n"
       "                     channel's |A - B| times 16, clamped to 255\n"
       "  -h, --help         this help\n"
@@ -96,7 +100,11 @@ int compare_parse(int argc, char **argv, compare_options *o) {
     cli_error("compare needs two images (see glint compare --help)");
     return EXIT_USAGE;
   }
-  if (min_text && parse_double("--min-psnr", min_text, -INFINITY, &o->min_psnr))
+  /* inf, as compare prints it: only identical images pass */
+  if (min_text && strcasecmp(min_text, "inf") == 0)
+    o->min_psnr = INFINITY;
+  else if (min_text &&
+           parse_double("--min-psnr", min_text, -INFINITY, &o->min_psnr))
     return EXIT_USAGE;
   if (o->diff_path &&
       (glint_image_format_from_path(o->diff_path) == GLINT_FORMAT_UNKNOWN)) {

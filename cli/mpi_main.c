@@ -234,7 +234,9 @@ static void fingerprint(const mpi_options *o, char *out, size_t size) {
   const render_options *ro = &o->render;
   const glint_render_settings *rs = &ro->settings;
   const char *scene = ro->scene;
-  int is_file = strchr(scene, '.') != NULL || strchr(scene, '/') != NULL;
+  /* a path is rank 0's file, sent to all; a bare name a built-in scene or,
+   * where rank 0 finds no such scene, rank 0's file of that name */
+  int is_path = strchr(scene, '.') != NULL || strchr(scene, '/') != NULL;
   char size_text[64] = "the scene's size", region[96] = "whole";
   if (rs->width || rs->height)
     snprintf(size_text, sizeof size_text, "%dx%d", rs->width, rs->height);
@@ -248,15 +250,15 @@ static void fingerprint(const mpi_options *o, char *out, size_t size) {
   if (ro->frames)
     snprintf(frames, sizeof frames, "frames %d-%d%s", ro->first_frame,
              ro->last_frame, ro->resume ? " resumed" : "");
-  snprintf(
-      out, size,
-      "glint %s, backend %s, %s maths%s, accel %s; %.200s%s, %s, "
-      "region %s, %d spp, depth %d, gamma %.17g; %s, %s schedule, %s",
-      glint_version(), glint_backend_name(glint_backend_resolve(rs->backend)),
-      glint_math_name(rs->math), rs->rcp_newton ? "" : ", no Newton step",
-      glint_accel_name(rs->accel), is_file ? "a scene file" : scene,
-      is_file ? "" : " (built in)", size_text, region, rs->spp, rs->max_depth,
-      rs->gamma, frames, o->dynamic ? "dynamic" : "static", tile);
+  snprintf(out, size,
+           "glint %s, backend %s, %s maths%s, accel %s; %s%.200s, %s, "
+           "region %s, %d spp, depth %d, gamma %.17g; %s, %s schedule, %s",
+           glint_version(),
+           glint_backend_name(glint_backend_resolve(rs->backend)),
+           glint_math_name(rs->math), rs->rcp_newton ? "" : ", no Newton step",
+           glint_accel_name(rs->accel), is_path ? "a scene file" : "scene ",
+           is_path ? "" : scene, size_text, region, rs->spp, rs->max_depth,
+           rs->gamma, frames, o->dynamic ? "dynamic" : "static", tile);
 }
 
 /* Refuses to start when a rank renders differently from rank 0. */
@@ -288,7 +290,9 @@ static int same_renderers(const mpi_world *w, const mpi_options *o) {
 static glint_scene *share_scene(const mpi_world *w, const mpi_options *o,
                                 char *stem, size_t stem_size) {
   const char *arg = o->render.scene;
-  int is_file = strchr(arg, '.') != NULL || strchr(arg, '/') != NULL;
+  int is_file = w->rank == 0 && cli_scene_is_file(arg); /* rank 0's word */
+  mpi_check(w, MPI_Bcast(&is_file, 1, MPI_INT, 0, w->comm),
+            "sharing the scene's kind");
   glint_error err = {0};
   glint_scene *scene = NULL;
   glint_status st = GLINT_OK;

@@ -225,11 +225,20 @@ void cli_note_scale(const char *arg, const glint_scene *scene) {
             arg, epsilon, epsilon * 1e4, smallest);
 }
 
+int cli_scene_is_file(const char *arg) {
+  if (strchr(arg, '.') || strchr(arg, '/'))
+    return 1;
+  for (size_t i = 0; i < glint_builtin_scene_count(); i++)
+    if (strcmp(arg, glint_builtin_scene_name(i)) == 0)
+      return 0;
+  return access(arg, F_OK) == 0;
+}
+
 glint_scene *cli_load_animation(const char *arg, char *stem,
                                 unsigned long stem_size, int *exit_code) {
   glint_error err;
   glint_scene *scene = NULL;
-  int is_file = strchr(arg, '.') != NULL || strchr(arg, '/') != NULL;
+  int is_file = cli_scene_is_file(arg);
   glint_status st = is_file ? glint_scene_load(arg, &scene, &err)
                             : glint_scene_builtin(arg, &scene, &err);
   if (st) {

@@ -651,7 +651,7 @@ int view_run(const view_options *o) {
     view_script_free(v.script);
     return code;
   }
-  v.is_file = strchr(o->scene, '.') || strchr(o->scene, '/');
+  v.is_file = cli_scene_is_file(o->scene);
   if (v.is_file)
     file_mtime(o->scene, &v.mtime);
   glint_scene_info info;

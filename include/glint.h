@@ -384,6 +384,10 @@ glint_status glint_image_write_stream(const glint_image *image, FILE *stream,
                                       glint_image_format format,
                                       glint_png_compression compression,
                                       glint_error *error);
+/* Reads a PNG, BMP or PPM (by the extension) as 8-bit RGB: a grey or palette
+ * PNG expanded, alpha dropped; 16-bit PNG samples and PPM maxvals other
+ * than 255 are refused (GLINT_E_PARSE), as are palette indices past the
+ * palette. */
 glint_status glint_image_read(const char *path, glint_image **image,
                               glint_error *error);
 /* An image file's width and height from its header alone, checked as
@@ -392,7 +396,8 @@ glint_status glint_image_read(const char *path, glint_image **image,
 glint_status glint_image_read_size(const char *path, int *width, int *height,
                                    glint_error *error);
 
-/* Peak signal-to-noise ratio in dB over all channels; INFINITY when equal,
+/* Peak signal-to-noise ratio in dB over the R, G and B channels (a read
+ * image holds no other: glint_image_read drops alpha); INFINITY when equal,
  * a negative value when the sizes differ. */
 double glint_image_psnr(const glint_image *a, const glint_image *b);
 

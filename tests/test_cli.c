@@ -184,6 +184,18 @@ static void usage_errors(void **state) {
    * option '--'") */
   EXPECT_USAGE_ERROR("-x.png", "compare", "--", "-x.png", "-y.png");
   EXPECT_USAGE_ERROR("more than one scene", "render", "whitted", "giza");
+  /* A file with no extension is read as the file it is, and refused as no
+   * scene file (it was "unknown scene 'bare'", as if it were not there) */
+  char bare[600];
+  snprintf(bare, sizeof bare, "%s/bare", dir);
+  FILE *bare_file = fopen(bare, "w");
+  assert_non_null(bare_file);
+  fputs("s 0 0 0 1\n", bare_file);
+  assert_int_equal(fclose(bare_file), 0);
+  EXPECT_USAGE_ERROR_KEEPING("glint: bare: not a scene file (.nff or .json",
+                             "render", "bare");
+  EXPECT_USAGE_ERROR_KEEPING("glint: bare: not a scene file", "view", "bare");
+  assert_int_equal(unlink(bare), 0);
   EXPECT_USAGE_ERROR("--output needs a value", "render", "-o");
   EXPECT_USAGE_ERROR("--math", "render", "--math", "sloppy");
   EXPECT_USAGE_ERROR("--accel", "render", "--accel", "kdtree");
@@ -1195,7 +1207,7 @@ static void frames_of_an_animation(void **state) {
                        "f%02d.png", "--resume", NULL),
                    0);
   assert_non_null(strstr(out, "frame 2: f02.png is there, kept (--resume)"));
-  assert_non_null(strstr(err, "frame 3: f03.png: not a valid PNG file"));
+  assert_non_null(strstr(err, "frame 3: f03.png: not a PNG file"));
   assert_non_null(strstr(err, "not a finished 32x24 frame: rendered again"));
   assert_non_null(strstr(out, "2 frames written, 2 kept (--resume)"));
   long n02;
@@ -1585,6 +1597,16 @@ static void compare_threshold_and_difference(void **state) {
   assert_int_equal(run("compare", "a.png", "b.png", "--min-psnr", "x", NULL),
                    2);
   assert_non_null(strstr(err, "--min-psnr: 'x' is not a number"));
+  /* inf, as compare prints it: identical images only (it was "not a
+   * number"); a number past double's range is named as such */
+  assert_int_equal(run("compare", "a.png", "a.png", "--min-psnr", "inf", NULL),
+                   0);
+  assert_int_equal(run("compare", "a.png", "b.png", "--min-psnr", "inf", NULL),
+                   1);
+  assert_non_null(strstr(err, "is below --min-psnr inf"));
+  assert_int_equal(
+      run("compare", "a.png", "b.png", "--min-psnr", "1e999", NULL), 2);
+  assert_non_null(strstr(err, "--min-psnr: '1e999' is not a finite number"));
   assert_int_equal(run("compare", "a.png", "b.png", "a.png", NULL), 2);
   assert_non_null(strstr(err, "compare takes two images"));
   /* Sizes are compared from the headers, before either image is decoded:

@@ -60,9 +60,13 @@ int gli_bmp_encode(const glint_image *im, FILE *f) {
 glint_status gli_bmp_decode(FILE *f, const char *path, glint_image **out,
                             int size[2], glint_error *error) {
   uint8_t hdr[54];
-  if (fread(hdr, 1, sizeof hdr, f) != sizeof hdr || hdr[0] != 'B' ||
-      hdr[1] != 'M')
+  size_t got = fread(hdr, 1, sizeof hdr, f);
+  if (got < 2 || hdr[0] != 'B' || hdr[1] != 'M')
     return gli_fail(error, GLINT_E_PARSE, "%s: not a BMP file", path);
+  if (got != sizeof hdr) /* "BM" and less than its headers */
+    return gli_fail(error, GLINT_E_PARSE,
+                    "%s: truncated BMP file (%zu bytes of its 54-byte header)",
+                    path, got);
   uint32_t offset = get32(hdr + 10), hsize = get32(hdr + 14);
   int32_t w = (int32_t)get32(hdr + 18), h = (int32_t)get32(hdr + 22);
   if (hsize < 40)

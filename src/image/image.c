@@ -477,6 +477,8 @@ static glint_status read_image(const char *path, glint_image **out, int size[2],
     return gli_fail(error, GLINT_E_IO, "%s: %s", path,
                     S_ISDIR(sb.st_mode) ? "a folder, not an image"
                                         : "not a regular file");
+  if (sb.st_size == 0) /* said so, not that it is no PNG, BMP or PPM */
+    return gli_fail(error, GLINT_E_PARSE, "%s: the file is empty", path);
   FILE *f = fopen(path, "rb");
   if (!f)
     return gli_fail(error, GLINT_E_IO, "%s: %s", path, strerror(errno));

@@ -8,6 +8,7 @@
 #include <stdio.h>
 #include <zlib.h>
 #include <stdlib.h>
+#include <string.h>
 
 /* libpng's complaints become part of glint's one message instead of lines
  * of their own on stderr: errors are kept for it, warnings dropped. */
@@ -124,8 +125,37 @@ int gli_png_encode(const glint_image *im, glint_png_compression compression,
   return gli_png_end(w) || ferror(f) ? -1 : 0;
 }
 
+/* Each row's first `width` bytes, palette indices, looked up into the row's
+ * RGB in place (from the right: a pixel's three bytes lie at or after its
+ * index). Returns the first index past the palette, else -1. */
+static int palette_to_rgb(glint_image *im, const png_color *palette,
+                          int colours) {
+  for (int y = 0; y < im->height; y++) {
+    uint8_t *row = im->rgb + (size_t)y * (size_t)im->width * 3;
+    for (int x = im->width - 1; x >= 0; x--) {
+      int index = row[x];
+      if (index >= colours)
+        return index;
+      row[3 * x] = palette[index].red;
+      row[3 * x + 1] = palette[index].green;
+      row[3 * x + 2] = palette[index].blue;
+    }
+  }
+  return -1;
+}
+
 glint_status gli_png_decode(FILE *f, const char *path, glint_image **out,
                             int size[2], glint_error *error) {
+  /* The signature read here: a short file that is no PNG at all is not
+   * called a cut-short one below */
+  png_byte signature[8];
+  size_t got = fread(signature, 1, sizeof signature, f);
+  if (got == 0 || png_sig_cmp(signature, 0, got) != 0)
+    return gli_fail(error, GLINT_E_PARSE, "%s: not a PNG file", path);
+  if (got < sizeof signature)
+    return gli_fail(error, GLINT_E_PARSE,
+                    "%s: truncated PNG file (%zu bytes of its signature)", path,
+                    got);
   png_complaint complaint = {"not a PNG file"};
   png_structp png = png_create_read_struct(PNG_LIBPNG_VER_STRING, &complaint,
                                            png_keep_error, png_drop_warning);
@@ -138,18 +168,43 @@ glint_status gli_png_decode(FILE *f, const char *path, glint_image **out,
     png_destroy_read_struct(&png, &info, NULL);
     glint_image_destroy(im);
     free(rows);
+    /* libpng's "Read Error" is the file ending early */
+    if (strcmp(complaint.message, "Read Error") == 0)
+      return gli_fail(error, GLINT_E_PARSE,
+                      "%s: truncated PNG file (it ends before its IEND)", path);
     return gli_fail(error, GLINT_E_PARSE, "%s: not a valid PNG file (%s)", path,
                     complaint.message);
   }
   png_init_io(png, f);
+  png_set_sig_bytes(png, (int)sizeof signature);
   png_read_info(png, info);
   png_uint_32 w = png_get_image_width(png, info);
   png_uint_32 h = png_get_image_height(png, info);
-  /* Normalise every PNG flavour to 8-bit RGB. */
-  png_set_expand(png);
-  png_set_strip_16(png);
+  /* 16-bit samples cut to 8 would hide differences glint compare is asked
+   * to find (two images apart in the low bytes came out identical); glint
+   * writes 8 bits a sample, and reads PPM's maxval 255 only, so here too. */
+  if (png_get_bit_depth(png, info) > 8) {
+    png_destroy_read_struct(&png, &info, NULL);
+    return gli_fail(error, GLINT_E_PARSE,
+                    "%s: a PNG of 16-bit samples (glint reads 8 bits a "
+                    "sample, as it writes)",
+                    path);
+  }
+  /* Normalise every other PNG flavour to 8-bit RGB: greys expanded, alpha
+   * dropped (glint's images are RGB). A palette's indices are read a byte
+   * each and looked up here (palette_to_rgb): libpng makes an index past
+   * the palette's end a black pixel with no more than a warning. */
+  png_colorp palette = NULL;
+  int colours = 0;
+  int indexed = png_get_color_type(png, info) == PNG_COLOR_TYPE_PALETTE &&
+                png_get_PLTE(png, info, &palette, &colours);
+  if (indexed) {
+    png_set_packing(png);
+  } else { /* (gray_to_rgb expands palettes too) */
+    png_set_expand(png);
+    png_set_gray_to_rgb(png);
+  }
   png_set_strip_alpha(png);
-  png_set_gray_to_rgb(png);
   png_set_interlace_handling(png);
   png_read_update_info(png, info);
   if (w < 1 || h < 1 || w > GLINT_MAX_DIMENSION || h > GLINT_MAX_DIMENSION) {
@@ -160,7 +215,7 @@ glint_status gli_png_decode(FILE *f, const char *path, glint_image **out,
                     path, (unsigned long)w, (unsigned long)h,
                     GLINT_MAX_DIMENSION);
   }
-  if (png_get_rowbytes(png, info) != (size_t)w * 3) {
+  if (png_get_rowbytes(png, info) != (size_t)w * (indexed ? 1 : 3)) {
     png_destroy_read_struct(&png, &info, NULL);
     return gli_fail(error, GLINT_E_PARSE, "%s: unsupported PNG layout", path);
   }
@@ -188,7 +243,15 @@ glint_status gli_png_decode(FILE *f, const char *path, glint_image **out,
   png_read_end(png, NULL);
   free(rows);
   rows = NULL;
+  int bad_index = indexed ? palette_to_rgb(tmp, palette, colours) : -1;
   png_destroy_read_struct(&png, &info, NULL);
+  if (bad_index >= 0) {
+    glint_image_destroy(tmp);
+    return gli_fail(error, GLINT_E_PARSE,
+                    "%s: a pixel's palette index %d is past the palette's %d "
+                    "colour%s",
+                    path, bad_index, colours, colours == 1 ? "" : "s");
+  }
   *out = tmp;
   return GLINT_OK;
 }
