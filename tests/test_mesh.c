@@ -1538,6 +1538,12 @@ static void bad_arguments(void **state) {
   assert_non_null(strstr(e.message, "magnitude at most 1e15"));
   assert_int_equal(s->object_count, 0);
   assert_int_equal(s->triangle_count, 0);
+  /* Moved past it: the move is named (it said only "scaled by 1") */
+  assert_int_equal(glint_scene_add_mesh_file(s, p, 1, (V){1e15, 0, 0}, m, &e),
+                   GLINT_E_ARGUMENT);
+  assert_non_null(
+      strstr(e.message, "scaled by 1 and moved by (1e+15, 0, 0): "));
+  assert_int_equal(s->triangle_count, 0);
   /* The error record is optional. */
   assert_int_equal(glint_scene_add_mesh_file(s, p, 1e10, (V){0, 0, 0}, m, NULL),
                    GLINT_E_ARGUMENT);

@@ -382,6 +382,19 @@ static void large_polygons(void **state) {
   size_t n = comb(pt, 2000);
   expect_cover(polygon_file("comb.nff", (const double(*)[2])pt, n),
                (const double(*)[2])pt, n);
+  /* A square of 4 x 10 000 vertices along its edges: convex, though every
+   * vertex but the corners turns not at all (it was refused as having too
+   * many inward corners). */
+  n = 0;
+  for (int side = 0; side < 4; side++)
+    for (int i = 0; i < 10000; i++) {
+      const double corner[4][2] = {{0, 0}, {1e4, 0}, {1e4, 1e4}, {0, 1e4}};
+      const double step[4][2] = {{1, 0}, {0, 1}, {-1, 0}, {0, -1}};
+      pt[n][0] = corner[side][0] + i * step[side][0];
+      pt[n++][1] = corner[side][1] + i * step[side][1];
+    }
+  expect_cover(polygon_file("square.nff", (const double(*)[2])pt, n),
+               (const double(*)[2])pt, n);
   n = comb(pt, TEETH);
   polygon_file("bigcomb.nff", (const double(*)[2])pt, n);
   EXPECT_FAIL_FILE("bigcomb.nff", GLINT_E_PARSE,

@@ -194,16 +194,24 @@ static glint_status add_to_scene(glint_scene *s, const char *path, mesh_data *m,
        * named by the vertex's number, as the file's faces name it. */
       char msg[sizeof e->message];
       snprintf(msg, sizeof msg, "%s", e ? e->message : "");
+      /* how the file's coordinates were placed: the scale, and the move
+       * where there is one (a far translate was blamed on a scale of 1) */
+      char placed[160];
+      int moved = tr.x != 0 || tr.y != 0 || tr.z != 0;
+      snprintf(placed, sizeof placed, "scaled by %g%s", scale,
+               moved ? " and moved by " : "");
+      if (moved)
+        snprintf(placed + strlen(placed), sizeof placed - strlen(placed),
+                 "(%g, %g, %g)", tr.x, tr.y, tr.z);
       int k = 0;
       while (k < 2 && gli_vec3_in_range(m->pos[v[k]]))
         k++;
       if (!gli_vec3_in_range(m->pos[v[k]]))
-        st =
-            gli_fail(e, st, "%s: vertex %u (of triangle %zu), scaled by %g: %s",
-                     path, v[k] + 1, i + 1, scale, msg);
+        st = gli_fail(e, st, "%s: vertex %u (of triangle %zu), %s: %s", path,
+                      v[k] + 1, i + 1, placed, msg);
       else
-        st = gli_fail(e, st, "%s: triangle %zu, scaled by %g: %s", path, i + 1,
-                      scale, msg);
+        st = gli_fail(e, st, "%s: triangle %zu, %s: %s", path, i + 1, placed,
+                      msg);
       goto fail;
     }
   }

@@ -155,8 +155,13 @@ int gli_triangulate(const glint_vec3 *v, size_t n, gli_polygon_emit emit,
     g.next[i] = i + 1 < n ? i + 1 : 0;
   }
   g.nrm = newell(v, idx, n);
+  /* Convex but for corners that do not turn at all (vertices along an
+   * edge, each an inward corner to corner_reflex): bisected at once. Ear
+   * clipping, as for a polygon with teeth, ran out of tests on a square of
+   * 40 000 such vertices. */
+  int convex = gli_polygon_is_convex(v, n);
   for (size_t i = 0; i < n; i++) {
-    reflex[i] = (unsigned char)corner_reflex(&g, i);
+    reflex[i] = (unsigned char)(!convex && corner_reflex(&g, i));
     if (reflex[i])
       g.rlist[g.rlen++] = i, g.rcount++;
   }
