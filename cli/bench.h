@@ -30,6 +30,7 @@ typedef struct bench_options {
   int ncols;
   char *csv_path, *plot_dir, *spd_dir, *mesh_dir;
   int runs, frames, time_to_image, view_frames;
+  int runs_given, scenes_given, threads_given;
   glint_render_settings settings;
 } bench_options;
 int bench_parse(int argc, char **argv, bench_options *options);
@@ -40,11 +41,15 @@ uint64_t bench_rays(const glint_stats *stats);
  * scalar backends). */
 double bench_lane_use(const glint_stats *stats, glint_backend backend);
 int bench_have_program(const char *name);
-/* The -W and -H of a child glint's command line, each only where `rs` sets
- * it (one alone was passed as 0, or dropped): out[0..3], NULL-padded; the
- * numbers are written into width and height. */
-void bench_size_args(const glint_render_settings *rs, char width[16],
-                     char height[16], char *out[4]);
+/* The settings of a child glint's command line that `rs` holds besides
+ * its backend, depth, spp and threads: -W and -H, each only where `rs` sets
+ * it (one alone was passed as 0, or dropped), --math, --accel and
+ * --no-newton (they were dropped, and --time-to-image compared a render
+ * with --accel none against a child's with the BVH): out[0..8],
+ * NULL-padded; the numbers are written into width and height. */
+enum { BENCH_CHILD_ARGS = 9 };
+void bench_child_args(const glint_render_settings *rs, char width[16],
+                      char height[16], char *out[BENCH_CHILD_ARGS]);
 /* Whether `path` is one of the SPD scenes that --spd DIR reads. */
 int bench_spd_scene_at(const char *dir, const char *path);
 int bench_run_capture(char *const argv[], char *buf, size_t size);

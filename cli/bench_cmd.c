@@ -99,16 +99,21 @@ double bench_median(const double *v, int n) {
   return median;
 }
 
-void bench_size_args(const glint_render_settings *rs, char width[16],
-                     char height[16], char *out[4]) {
+void bench_child_args(const glint_render_settings *rs, char width[16],
+                      char height[16], char *out[BENCH_CHILD_ARGS]) {
   int k = 0;
-  out[0] = out[1] = out[2] = out[3] = NULL;
+  for (int i = 0; i < BENCH_CHILD_ARGS; i++)
+    out[i] = NULL;
   snprintf(width, 16, "%d", rs->width);
   snprintf(height, 16, "%d", rs->height);
   if (rs->width)
     out[k++] = "-W", out[k++] = width;
   if (rs->height)
     out[k++] = "-H", out[k++] = height;
+  out[k++] = "--math", out[k++] = (char *)glint_math_name(rs->math);
+  out[k++] = "--accel", out[k++] = (char *)glint_accel_name(rs->accel);
+  if (!rs->rcp_newton)
+    out[k++] = "--no-newton";
 }
 
 uint64_t bench_rays(const glint_stats *s) {
@@ -275,7 +280,7 @@ int bench_parse(int argc, char **argv, bench_options *o) {
   snprintf(o->default_scenes, sizeof o->default_scenes, "%s",
            "whitted,giza,billiard");
   char *scene_list = o->default_scenes;
-  o->runs = 3;
+  o->runs = 0; /* 3 unless given */
   glint_render_settings *rs = &o->settings;
   glint_render_settings_default(rs);
   rs->width = rs->height = 0; /* 0: not given */
@@ -314,6 +319,10 @@ int bench_parse(int argc, char **argv, bench_options *o) {
     return EXIT_USAGE;
   }
 
+  o->runs_given = o->runs != 0;
+  o->runs = o->runs ? o->runs : 3;
+  o->scenes_given = scene_list != o->default_scenes;
+  o->threads_given = thread_list != NULL;
   /* An empty name would read as the root folder ("/balls-s4.nff") or the
    * current one. */
   const char *named[] = {"--spd", o->spd_dir,  "--meshes", o->mesh_dir,
@@ -339,6 +348,20 @@ int bench_parse(int argc, char **argv, bench_options *o) {
     cli_error("--scenes: give at least one scene");
     return EXIT_USAGE;
   }
+  /* A scene's name labels its rows, lines and plot files: two of one name
+   * could not be told apart (the second's plot replaced the first's). */
+  for (int i = 1; i < o->nscenes; i++)
+    for (int j = 0; j < i; j++) {
+      char a[256], b[256];
+      cli_scene_stem(o->scenes[i], a, sizeof a);
+      cli_scene_stem(o->scenes[j], b, sizeof b);
+      if (strcmp(a, b) == 0) {
+        cli_error("--scenes: two scenes named '%s' (%s and %s): their results "
+                  "could not be told apart",
+                  a, o->scenes[j], o->scenes[i]);
+        return EXIT_USAGE;
+      }
+    }
 
   o->backends_given = backend_list != NULL;
   if (backend_list) {
@@ -477,6 +500,39 @@ static int write_csv(const char *path, const char *text, size_t size) {
   return 0;
 }
 
+/* A benchmark that fixes what it renders refuses the options it would not
+ * use, rather than ignore them (--spd rendered its 512x512 at depth 5
+ * whatever -W or --depths said). */
+static int unused_options(const bench_options *o) {
+  glint_render_settings defaults;
+  glint_render_settings_default(&defaults);
+  const glint_render_settings *rs = &o->settings;
+  const char *option = NULL, *mode = NULL, *why = NULL;
+  if (o->spd_dir || o->mesh_dir) {
+    option = rs->width                         ? "-W"
+             : rs->height                      ? "-H"
+             : rs->spp != defaults.spp         ? "-s"
+             : o->depths_given                 ? "--depths"
+             : o->scenes_given                 ? "--scenes"
+             : o->mesh_dir && o->threads_given ? "-t"
+                                               : NULL;
+    mode = o->spd_dir ? "--spd" : "--meshes";
+    why = o->spd_dir ? "renders the SPD files' own size, 1 spp, depth 5"
+                     : "traces 1024x1024 primary rays on one thread";
+  } else if (o->view_frames || o->frames) {
+    option = o->runs_given                 ? "--runs"
+             : o->frames && o->nscenes > 1 ? "a second scene"
+                                           : NULL;
+    mode = o->view_frames ? "--view" : "--frames";
+    why = o->view_frames ? "renders its frames once a scene"
+                         : "renders its frames once, of one scene";
+  }
+  if (!option)
+    return 0;
+  cli_error("%s %s: %s is not used", mode, why, option);
+  return 1;
+}
+
 int cmd_bench(int argc, char **argv) {
   bench_options o;
   int status = bench_parse(argc, argv, &o);
@@ -500,6 +556,8 @@ int cmd_bench(int argc, char **argv) {
     return EXIT_USAGE;
   }
   if (o.plot_dir && check_plot_dir(o.plot_dir))
+    return EXIT_USAGE;
+  if (unused_options(&o))
     return EXIT_USAGE;
   if (o.mesh_dir)
     return bench_meshes(o.mesh_dir, &rs, o.backends, o.nbackends, o.runs);

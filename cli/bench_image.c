@@ -53,17 +53,19 @@ int bench_time_to_image(char **scenes, int nscenes,
   snprintf(depth, sizeof depth, "%d", base->max_depth);
   snprintf(spp, sizeof spp, "%d", base->spp);
   snprintf(threads, sizeof threads, "%d", base->threads);
-  char *size[4];
-  bench_size_args(base, width, height, size);
+  char *more[BENCH_CHILD_ARGS];
+  bench_child_args(base, width, height, more);
   /* (auto stays auto: each scene's process chooses as glint_render does) */
   glint_backend backend = base->backend;
 
   printf("Time to image: `glint render SCENE -o FILE` as a whole process "
-         "against its render\n(%s, %d thread%s, depth %d, %d spp; medians of "
-         "%d interleaved runs; render: warm, in this process; own: what the "
-         "PNG process reported)\n",
+         "against its render\n(%s, %d thread%s, depth %d, %d spp, %s maths%s, "
+         "accel %s; medians of %d interleaved runs; render: warm, in this "
+         "process; own: what the PNG process reported)\n",
          glint_backend_name(backend), base->threads,
-         base->threads == 1 ? "" : "s", base->max_depth, base->spp, runs);
+         base->threads == 1 ? "" : "s", base->max_depth, base->spp,
+         glint_math_name(base->math), base->rcp_newton ? "" : " (no Newton)",
+         glint_accel_name(base->accel), runs);
   printf("%-16s %9s %9s %9s %9s %10s %10s %8s\n", "scene", "render ms",
          "own ms", "PNG ms", "PPM ms", "PNG/render", "PPM/render", "PNG/own");
   enum { RENDER, OWN, PNG, PPM, SERIES };
@@ -91,10 +93,15 @@ int bench_time_to_image(char **scenes, int nscenes,
                     "--stats",
                     "-o",
                     png,
-                    size[0],
-                    size[1],
-                    size[2],
-                    size[3],
+                    more[0],
+                    more[1],
+                    more[2],
+                    more[3],
+                    more[4],
+                    more[5],
+                    more[6],
+                    more[7],
+                    more[8],
                     NULL};
     /* One untimed round first: page cache, the dynamic loader's. */
     for (int r = -1; r < runs && status == 0 && !cli_stopped(); r++) {

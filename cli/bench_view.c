@@ -16,26 +16,27 @@ int bench_view(char **scenes, int nscenes, const glint_render_settings *base,
   snprintf(nframes, sizeof nframes, "%d", frames);
   snprintf(depth, sizeof depth, "%d", base->max_depth);
   snprintf(threads, sizeof threads, "%d", base->threads);
-  char *size[4];
-  bench_size_args(base, width, height, size);
+  char *more[BENCH_CHILD_ARGS];
+  bench_child_args(base, width, height, more);
   static char output[1 << 14];
   int status = 0;
   for (int s = 0; s < nscenes; s++) {
     /* The scene after "--": a name starting with '-' is a scene (it was
      * taken as an option of glint view: --scenes --help printed its help) */
-    char *argv[16] = {"/proc/self/exe",
-                      "view",
-                      "--benchmark",
-                      nframes,
-                      "-b",
-                      (char *)glint_backend_name(base->backend),
-                      "-d",
-                      depth,
-                      "-t",
-                      threads};
+    char *argv[16 + BENCH_CHILD_ARGS] = {
+        "/proc/self/exe",
+        "view",
+        "--benchmark",
+        nframes,
+        "-b",
+        (char *)glint_backend_name(base->backend),
+        "-d",
+        depth,
+        "-t",
+        threads};
     int n = 10;
-    for (int k = 0; k < 4 && size[k]; k++)
-      argv[n++] = size[k];
+    for (int k = 0; k < BENCH_CHILD_ARGS && more[k]; k++)
+      argv[n++] = more[k];
     argv[n++] = "--";
     argv[n++] = scenes[s];
     argv[n] = NULL;

@@ -91,6 +91,10 @@ int compare_parse(int argc, char **argv, compare_options *options);
  * built-in scene's name and a file of that name exists (read as a file, it
  * is refused as one; it was called an unknown built-in scene). */
 int cli_scene_is_file(const char *arg);
+/* The name a scene's outputs take: the file's base name without its
+ * extension, and without .gz before it (scene.json.gz: scene, as for
+ * scene.json); a built-in scene's name. */
+void cli_scene_stem(const char *arg, char *stem, size_t size);
 /* Loads a built-in scene by name, or a scene file when the argument names
  * one (cli_scene_is_file); prints one message and returns NULL on
  * error, with the exit status in *exit_code (EXIT_MEMORY or EXIT_USAGE).

@@ -330,12 +330,7 @@ static glint_scene *share_scene(const mpi_world *w, const mpi_options *o,
   }
   if (w->rank == 0)
     cli_note_scale(arg, scene);
-  /* The stem: the file's base name without its extension. */
-  const char *base = strrchr(arg, '/');
-  snprintf(stem, stem_size, "%s", base ? base + 1 : arg);
-  char *dot = strrchr(stem, '.');
-  if (dot && dot != stem)
-    *dot = '\0';
+  cli_scene_stem(arg, stem, stem_size);
   return scene;
 }
 

@@ -117,12 +117,15 @@ static void on_stop_overdue(int sig) {
   }
   if (stop_finishing)
     return;
+  static const char msg[] = "glint: interrupted; the render did not stop "
+                            "within " STOP_GRACE_TEXT " s and was abandoned";
+  static const char file_gone[] = ", leaving no partial file\n";
+  int wrote = stop_temp_set; /* glint render's file; glint view has none */
   if (stop_temp_set)
     unlink(stop_temp);
-  static const char msg[] = "glint: interrupted; the render did not stop "
-                            "within " STOP_GRACE_TEXT " s and was abandoned, "
-                            "leaving no partial file\n";
-  if (write(STDERR_FILENO, msg, sizeof msg - 1) < 0) {
+  if (write(STDERR_FILENO, msg, sizeof msg - 1) < 0 ||
+      write(STDERR_FILENO, wrote ? file_gone : "\n",
+            wrote ? sizeof file_gone - 1 : 1) < 0) {
     /* nothing else to try */
   }
   _exit(EXIT_INTERRUPTED);
@@ -247,11 +250,14 @@ glint_scene *cli_load_animation(const char *arg, char *stem,
     return NULL;
   }
   cli_note_scale(arg, scene);
-  /* The stem: the file's base name without its extension, and without
-   * .gz before it (scene.json.gz: scene, as for scene.json). */
+  cli_scene_stem(arg, stem, stem_size);
+  return scene;
+}
+
+void cli_scene_stem(const char *arg, char *stem, size_t size) {
   const char *base = strrchr(arg, '/');
   base = base ? base + 1 : arg;
-  snprintf(stem, stem_size, "%s", base);
+  snprintf(stem, size, "%s", base);
   for (int cut = 0; cut < 2; cut++) {
     char *dot = strrchr(stem, '.');
     int gz = dot && strcmp(dot, ".gz") == 0;
@@ -260,7 +266,6 @@ glint_scene *cli_load_animation(const char *arg, char *stem,
     if (!gz)
       break;
   }
-  return scene;
 }
 
 static double mega(uint64_t n) { return (double)n / 1e6; }

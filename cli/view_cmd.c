@@ -100,7 +100,7 @@ static void view_usage(FILE *f) {
       "The benchmark path orbits the scene's look-at point once, at the\n"
       "camera's distance and height, in N equal steps; each frame is one\n"
       "sample per pixel at full resolution, as while flying. Without a\n"
-      "display, SDL's dummy video driver is used.\n",
+      "display, the benchmark and a script run on SDL's dummy video driver.\n",
       f);
 }
 

@@ -163,7 +163,7 @@ static int parse_line(view_script *s, char *text, int line, command *c) {
     if (*end || end == word[i] || isnan(x))
       return script_error(s, line, "not a number:", word[i]);
     /* an underflow (ERANGE) reads as 0, as the options read it */
-    if (!(x > -1e6 && x < 1e6))
+    if (!(x >= -1e6 && x <= 1e6))
       return script_error(s, line, "a number outside -1e6..1e6:", word[i]);
     if (i == first_number)
       c->a = x;

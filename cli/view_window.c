@@ -12,6 +12,8 @@
 #include <SDL.h>
 #include <errno.h>
 #include <math.h>
+#include <pthread.h>
+#include <stdatomic.h>
 #include <stdbool.h>
 #include <stdio.h>
 #include <stdlib.h>
@@ -105,16 +107,109 @@ static double scale_now(const viewer *v) {
   return v->moving ? fmin(v->auto_scale, v->user_scale) : v->user_scale;
 }
 
-/* Cancels the pass on Ctrl-C or SIGTERM (cli_catch_stop_signals). */
-static int cancel_on_stop(void *user, double fraction) {
-  (void)user;
+/* Esc and Ctrl-Q quit (on_key). */
+static int is_quit_key(const viewer *v, const SDL_KeyboardEvent *key) {
+  SDL_Keycode k = key->keysym.sym;
+  int ctrl = (key->keysym.mod & KMOD_CTRL) || v->held[SDL_SCANCODE_LCTRL] ||
+             v->held[SDL_SCANCODE_RCTRL];
+  return k == SDLK_ESCAPE || (k == SDLK_q && ctrl);
+}
+
+/* A pass renders on a thread of its own while this one goes on reading the
+ * window's events: a pass can take seconds (a deep recursion through glass,
+ * a large window), and a window that ignores its close button and Esc that
+ * long is a hung window to its user (events were read between passes
+ * only). A request to quit cancels the pass; other input waits for it. */
+typedef struct pass_job {
+  viewer *v;
+  glint_frame_settings frame;
+  glint_film *film;
+  glint_stats stats;
+  glint_error err;
+  glint_status status;
+  atomic_int quit; /* cancel: the user asked to quit */
+  int done;
+  pthread_mutex_t lock;
+  pthread_cond_t finished;
+} pass_job;
+
+/* Cancels the pass on Ctrl-C or SIGTERM (cli_catch_stop_signals), and on a
+ * request to quit from the window. */
+static int cancel_pass(void *user, double fraction) {
+  pass_job *job = user;
   (void)fraction;
-  return cli_stopped();
+  return cli_stopped() || atomic_load(&job->quit);
+}
+
+static void *render_job(void *arg) {
+  pass_job *job = arg;
+  job->status = glint_renderer_render(job->v->renderer, &job->frame, job->film,
+                                      &job->stats, &job->err);
+  pthread_mutex_lock(&job->lock);
+  job->done = 1;
+  pthread_cond_signal(&job->finished);
+  pthread_mutex_unlock(&job->lock);
+  return NULL;
+}
+
+/* Whether the window's queue holds a request to quit (closed, Esc,
+ * Ctrl-Q); it stays there for the event loop to act on. */
+static int quit_waiting(const viewer *v) {
+  SDL_PumpEvents();
+  if (SDL_PeepEvents(NULL, 0, SDL_PEEKEVENT, SDL_QUIT, SDL_QUIT) > 0)
+    return 1;
+  SDL_Event keys[64];
+  int n = SDL_PeepEvents(keys, 64, SDL_PEEKEVENT, SDL_KEYDOWN, SDL_KEYDOWN);
+  for (int i = 0; i < n; i++)
+    if (is_quit_key(v, &keys[i].key))
+      return 1;
+  return 0;
+}
+
+/* Renders the job's pass, reading the window's events every 10 ms until it
+ * ends (on this thread where no other can be started). */
+static void render_watching(pass_job *job) {
+  pthread_t thread;
+  if (pthread_mutex_init(&job->lock, NULL) != 0)
+    goto alone;
+  if (pthread_cond_init(&job->finished, NULL) != 0) {
+    pthread_mutex_destroy(&job->lock);
+    goto alone;
+  }
+  if (pthread_create(&thread, NULL, render_job, job) != 0) {
+    pthread_cond_destroy(&job->finished);
+    pthread_mutex_destroy(&job->lock);
+    goto alone;
+  }
+  pthread_mutex_lock(&job->lock);
+  while (!job->done) {
+    struct timespec until;
+    clock_gettime(CLOCK_REALTIME, &until);
+    until.tv_nsec += 10 * 1000 * 1000;
+    if (until.tv_nsec >= 1000 * 1000 * 1000)
+      until.tv_sec++, until.tv_nsec -= 1000 * 1000 * 1000;
+    pthread_cond_timedwait(&job->finished, &job->lock, &until);
+    if (job->done || atomic_load(&job->quit))
+      continue;
+    pthread_mutex_unlock(&job->lock);
+    if (quit_waiting(job->v))
+      atomic_store(&job->quit, 1);
+    pthread_mutex_lock(&job->lock);
+  }
+  pthread_mutex_unlock(&job->lock);
+  pthread_join(thread, NULL);
+  pthread_cond_destroy(&job->finished);
+  pthread_mutex_destroy(&job->lock);
+  return;
+alone:
+  job->status = glint_renderer_render(job->v->renderer, &job->frame, job->film,
+                                      &job->stats, &job->err);
 }
 
 /* One pass: sample 0 while moving (starting over), else the next sample of
- * the pattern, summed in. Returns 0, or the exit status of its failure
- * (EXIT_MEMORY where memory ran out). */
+ * the pattern, summed in. Returns 0, -1 when it was abandoned because the
+ * user asked to quit (the request waits in the event queue), or the exit
+ * status of its failure (EXIT_MEMORY where memory ran out). */
 static int render_pass(viewer *v) {
   double scale = scale_now(v);
   int rw = (int)(v->win_w * scale + 0.5), rh = (int)(v->win_h * scale + 0.5);
@@ -127,25 +222,32 @@ static int render_pass(viewer *v) {
     v->samples = 0;
   /* The field of view spans the width: rendering the window's aspect at a
    * lower resolution keeps the picture. */
-  glint_frame_settings frame;
-  glint_frame_settings_default(&frame);
-  frame.camera = &v->camera;
-  frame.width = rw;
-  frame.height = rh;
-  frame.spp = v->rs.spp;
-  frame.max_depth = v->rs.max_depth;
-  frame.sample_first = v->samples;
-  frame.sample_count = 1;
-  frame.progress = cancel_on_stop;
-  glint_stats st;
-  glint_error err;
-  double t0 = cli_now();
+  pass_job job;
+  memset(&job, 0, sizeof job);
+  job.v = v;
+  glint_frame_settings *frame = &job.frame;
+  glint_frame_settings_default(frame);
+  frame->camera = &v->camera;
+  frame->width = rw;
+  frame->height = rh;
+  frame->spp = v->rs.spp;
+  frame->max_depth = v->rs.max_depth;
+  frame->sample_first = v->samples;
+  frame->sample_count = 1;
+  frame->progress = cancel_pass;
+  frame->progress_user = &job;
   /* The first sample goes straight into the sum (and is the average); later
    * ones are added to it. */
-  if (glint_renderer_render(v->renderer, &frame,
-                            v->samples == 0 ? v->sum : v->pass, &st, &err)) {
+  job.film = v->samples == 0 ? v->sum : v->pass;
+  double t0 = cli_now();
+  render_watching(&job);
+  const glint_stats st = job.stats;
+  glint_error err = job.err;
+  if (job.status) {
     if (err.status == GLINT_E_CANCELLED && cli_stopped())
       return EXIT_INTERRUPTED;
+    if (err.status == GLINT_E_CANCELLED && atomic_load(&job.quit))
+      return -1;
     cli_error("view: %s", err.message);
     return cli_exit_code(err.status);
   }
@@ -382,17 +484,18 @@ static int compare_ms(const void *a, const void *b) {
  * reached, which would leave the user a viewer with no window. So, unless the
  * user names a driver in SDL_VIDEODRIVER, only the drivers that show a window
  * are tried (Wayland only where a compositor can be found), and SDL_Init fails
- * with the reason when none can. A benchmark needs no display: without one it
- * runs on SDL's dummy driver. */
-static void choose_video_driver(bool benchmark) {
+ * with the reason when none can. A benchmark or a script needs no display:
+ * without one it runs on SDL's dummy driver (a script failed there unless
+ * SDL_VIDEODRIVER named it). */
+static void choose_video_driver(bool headless) {
   const char *named = getenv("SDL_VIDEODRIVER");
   if (named && *named)
     return;
   bool x11 = getenv("DISPLAY") != NULL;
   bool wayland = getenv("WAYLAND_DISPLAY") || getenv("XDG_RUNTIME_DIR");
-  if (benchmark && !x11 && !getenv("WAYLAND_DISPLAY"))
+  if (headless && !x11 && !getenv("WAYLAND_DISPLAY"))
     SDL_SetHint(SDL_HINT_VIDEODRIVER, "dummy");
-  else if (!benchmark)
+  else if (!headless)
     SDL_SetHint(SDL_HINT_VIDEODRIVER,
                 wayland ? "x11,wayland,KMSDRM" : "x11,KMSDRM");
 }
@@ -420,9 +523,9 @@ static int run_benchmark(viewer *v) {
     v->moving = 1;
     double t0 = cli_now();
     int failed = render_pass(v);
-    if (failed) {
+    if (failed) { /* -1: the window asked to quit */
       free(frames);
-      return failed;
+      return failed < 0 ? EXIT_INTERRUPTED : failed;
     }
     present(v);
     frames[i].ms = (cli_now() - t0) * 1e3;
@@ -476,9 +579,7 @@ static int fly_keys(viewer *v, double dt) {
 static int on_key(viewer *v, const SDL_KeyboardEvent *key) {
   SDL_Keycode k = key->keysym.sym;
   glint_error err;
-  int ctrl = (key->keysym.mod & KMOD_CTRL) || v->held[SDL_SCANCODE_LCTRL] ||
-             v->held[SDL_SCANCODE_RCTRL];
-  if (k == SDLK_ESCAPE || (k == SDLK_q && ctrl))
+  if (is_quit_key(v, key))
     return 0;
   if (k >= SDLK_1 && k <= SDLK_9) {
     v->rs.max_depth = (int)(k - SDLK_0);
@@ -617,6 +718,8 @@ static int run_interactive(viewer *v) {
     }
     int was_moving = v->moving;
     int failed = render_pass(v);
+    if (failed < 0) /* the quit it was abandoned for is in the queue */
+      continue;
     if (failed)
       return failed;
     double end = cli_now();
@@ -665,7 +768,7 @@ int view_run(const view_options *o) {
     glint_scene_destroy(v.scene);
     return EXIT_USAGE;
   }
-  choose_video_driver(o->benchmark_frames > 0);
+  choose_video_driver(o->benchmark_frames > 0 || o->script_path);
   /* Ctrl-C and SIGTERM cancel the pass being rendered (a pass of a large
    * window takes seconds, and SDL's own handler is looked at between
    * passes only): glint's handlers, installed first, keep SDL's out. */

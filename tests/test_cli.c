@@ -557,6 +557,26 @@ static void bench_errors(void **state) {
                      "--csv", "-");
   EXPECT_USAGE_ERROR("benchmarks of their own: choose one", "bench",
                      "--time-to-image", "--frames", "2");
+  /* Options a benchmark would not use are refused (they were ignored:
+   * --spd rendered 512x512 at depth 5 whatever -W or --depths said) */
+  EXPECT_USAGE_ERROR("--spd renders the SPD files' own size, 1 spp, depth 5: "
+                     "-W is not used",
+                     "bench", "--spd", "/nonexistent", "-W", "32");
+  EXPECT_USAGE_ERROR("--depths is not used", "bench", "--spd", "/nonexistent",
+                     "--depths", "3");
+  EXPECT_USAGE_ERROR("--scenes is not used", "bench", "--spd", "/nonexistent",
+                     "--scenes", "whitted");
+  EXPECT_USAGE_ERROR("--meshes traces 1024x1024 primary rays on one thread: "
+                     "-t is not used",
+                     "bench", "--meshes", "/nonexistent", "-t", "2");
+  EXPECT_USAGE_ERROR("--view renders its frames once a scene: --runs is not "
+                     "used",
+                     "bench", "--view", "2", "--runs", "3");
+  EXPECT_USAGE_ERROR("a second scene is not used", "bench", "--frames", "2",
+                     "--scenes", "whitted,giza");
+  /* Two scenes of one name would share their rows and plots */
+  EXPECT_USAGE_ERROR("--scenes: two scenes named 'whitted'", "bench",
+                     "--scenes", "whitted,giza,whitted");
   EXPECT_USAGE_ERROR("--csv: /nonexistent/b.csv: cannot write here", "bench",
                      "--csv", "/nonexistent/b.csv", "--depths", "1", "--scenes",
                      "whitted", "--backends", "scalar-float", "-W", "8", "-H",

@@ -189,6 +189,18 @@ printf 'sleep 1e-400\nquit\n' >tiny.txt
 timeout 20 "$glint" view scene.json --script tiny.txt >out.txt 2>err.txt
 rc=$?
 [ $rc -eq 0 ] || fail "sleep 1e-400: exit status $rc, want 0: $(cat err.txt)"
+# Without a display a script needs no SDL_VIDEODRIVER, as --benchmark
+# needs none ("cannot open a window" before)
+printf 'wait\nquit\n' >plain.txt
+(unset SDL_VIDEODRIVER; timeout 20 "$glint" view scene.json --script plain.txt) \
+  >out.txt 2>err.txt
+rc=$?
+[ $rc -eq 0 ] || fail "a script without a display: exit status $rc: $(cat err.txt)"
+# ...and the range's ends are in it (1e6 was refused as outside -1e6..1e6)
+printf 'wheel 1000000\nwheel -1e6\nwait\nquit\n' >ends.txt
+timeout 20 "$glint" view scene.json --script ends.txt >out.txt 2>err.txt
+rc=$?
+[ $rc -eq 0 ] || fail "wheel 1e6: exit status $rc, want 0: $(cat err.txt)"
 # A copy that is refused: exit status 2 and its message.
 copy_refused() { # $1: the copy command; $2: the message
   printf '%s\nquit\n' "$1" >copy.txt
