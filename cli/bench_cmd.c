@@ -59,7 +59,7 @@ static void bench_usage(FILE *f) {
       "                     mount-s6, rings-s4, teapot-s4, tetra-s6, tree-s4)\n"
       "                     at 512x512, 1 spp, depth 5, against Tachyon when\n"
       "                     it is installed\n"
-      "      --frames N     instead: N frames of the first scene with the\n"
+      "      --frames N     instead: N frames of one scene with the\n"
       "                     camera orbiting, through one renderer and\n"
       "                     through N glint_render calls: the cost of a\n"
       "                     frame beyond its rendering (first depth,\n"
@@ -76,7 +76,9 @@ static void bench_usage(FILE *f) {
       "                     and DIR/dragon_vrip_res2.ply.gz (1024x1024, one\n"
       "                     thread), with Embree 3 on the same rays when\n"
       "                     glint-embree-bench was built\n"
-      "  -h, --help         this help\n",
+      "  -h, --help         this help\n"
+      "\n"
+      "An option the chosen benchmark does not use is refused.\n",
       f);
 }
 
