@@ -67,6 +67,9 @@ int main(int argc, char **argv) {
     return cmd_view(argc - 2, argv + 2);
   if (strcmp(cmd, "compare") == 0)
     return cmd_compare(argc - 2, argv + 2);
-  cli_error("unknown command '%s' (see glint --help)", cmd);
+  if (strncmp(cmd, "--help=", 7) == 0 || strncmp(cmd, "-h=", 3) == 0)
+    cli_error("--help takes no value: '%s'", cmd);
+  else
+    cli_error("unknown command '%s' (see glint --help)", cmd);
   return EXIT_USAGE;
 }

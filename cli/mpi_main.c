@@ -227,9 +227,10 @@ static int parse(int argc, char **argv, mpi_options *o) {
 /* Each rank's name for what it renders and how the work is shared; ranks
  * that differ would render different images, or wait for work that never
  * comes (an MPMD launch, `mpirun A : B`, gives each rank its own
- * arguments). What a rank may choose for itself is left out: its threads,
- * and rank 0's output, --timeout and -q. A scene file is rank 0's, sent to
- * all, so only whether the scene is a file counts. */
+ * arguments). What a rank may choose for itself is left out: its threads;
+ * and what only rank 0 reads: the output, --resume, --png-compression,
+ * --timeout and -q. A scene file is rank 0's, sent to all, so only whether
+ * the scene is a file counts. */
 static void fingerprint(const mpi_options *o, char *out, size_t size) {
   const render_options *ro = &o->render;
   const glint_render_settings *rs = &ro->settings;
@@ -248,8 +249,8 @@ static void fingerprint(const mpi_options *o, char *out, size_t size) {
     snprintf(tile, sizeof tile, "tile %d", o->tile_size);
   char frames[64] = "a still";
   if (ro->frames)
-    snprintf(frames, sizeof frames, "frames %d-%d%s", ro->first_frame,
-             ro->last_frame, ro->resume ? " resumed" : "");
+    snprintf(frames, sizeof frames, "frames %d-%d", ro->first_frame,
+             ro->last_frame);
   snprintf(out, size,
            "glint %s, backend %s, %s maths%s, accel %s; %s%.200s, %s, "
            "region %s, %d spp, depth %d, gamma %.17g; %s, %s schedule, %s",
@@ -272,8 +273,9 @@ static int same_renderers(const mpi_world *w, const mpi_options *o) {
       same &= strcmp(all, all + (size_t)r * sizeof mine) == 0;
     if (!same) {
       fprintf(stderr,
-              "glint-mpi: the ranks would render different images, so none "
-              "starts (give every rank the same glint and arguments):\n");
+              "glint-mpi: the ranks would render differently or share the "
+              "work differently, so none starts (give every rank the same "
+              "glint and arguments):\n");
       for (int r = 0; r < w->size; r++)
         fprintf(stderr, "  rank %d (%s): %s\n", r, w->hosts[r],
                 all + (size_t)r * sizeof mine);
@@ -429,14 +431,16 @@ static int parse_quietly(const mpi_world *w, int argc, char **argv,
   if (said) {
     rewind(said);
     char line[MPI_MESSAGE_CHARS];
-    if (status >= 0 && fgets(line, sizeof line, said)) {
+    if (status > 0 && fgets(line, sizeof line, said)) {
       line[strcspn(line, "\n")] = '\0';
       const char *text = strncmp(line, "glint: ", 7) ? line : line + 7;
       snprintf(message, size, "%s", text);
     }
     fclose(said);
   }
-  if (status >= 0 && !message[0])
+  if (status == 0) /* help, printed to no one */
+    snprintf(message, size, "its arguments ask for --help");
+  else if (status > 0 && !message[0])
     snprintf(message, size, "its arguments are refused");
   return status;
 }
@@ -506,8 +510,13 @@ static int run(mpi_world *w, int argc, char **argv) {
 int main(int argc, char **argv) {
   double start = cli_now();
   cli_write_errors_not_signals();
-  /* --help needs no MPI job: it works outside mpirun, at once. */
-  for (int i = 1; i < argc && strcmp(argv[i], "--"); i++)
+  /* --help needs no MPI job: outside mpirun it works at once. Inside one
+   * (Open MPI or PMIx name the rank) every rank must reach MPI_Init: one
+   * that left here held the others there for ever (an MPMD launch giving
+   * one rank --help); parse() answers it after. */
+  int launched = getenv("OMPI_COMM_WORLD_SIZE") || getenv("PMIX_RANK") ||
+                 getenv("PMI_RANK");
+  for (int i = 1; !launched && i < argc && strcmp(argv[i], "--"); i++)
     if (strcmp(argv[i], "-h") == 0 || strcmp(argv[i], "--help") == 0) {
       usage(stdout);
       return 0;

@@ -171,7 +171,7 @@ frames0=$(sed -n 's/^  rank 0 .*: \([0-9]*\) frames\{0,1\}, .*/\1/p' busy.out)
   -o x.png -b scalar-double >run.out 2>run.err
 status=$?
 [ "$status" -ne 0 ] || fail "mismatched ranks: exit status 0"
-grep -q "the ranks would render different images" run.err ||
+grep -q "the ranks would render differently" run.err ||
   fail "mismatched ranks: no message"
 grep -q "rank 1 (.*): glint .*, backend scalar-double" run.err ||
   fail "mismatched ranks: rank 1 not named"
@@ -186,7 +186,7 @@ for extra in "-d 1" "--tile 32"; do
     >run.out 2>run.err
   status=$?
   [ "$status" -eq 2 ] || fail "ranks given $extra apart: exit status $status"
-  grep -q "the ranks would render different images" run.err ||
+  grep -q "the ranks would render differently" run.err ||
     fail "ranks given $extra apart: no message"
   [ ! -e x.png ] || fail "ranks given $extra apart: an image was written"
 done
@@ -197,6 +197,23 @@ status=$?
 grep -q "rank 1 (.*): unknown option '--bogus'" run.err ||
   fail "a worker refusing its option: not named"
 [ ! -e x.png ] || fail "a worker refusing its option: an image was written"
+# A worker given --help (it left before MPI_Init, and the job hung there)
+timeout 60 "${mpi[@]}" -np 1 "$glint_mpi" whitted -W 64 -H 48 -o x.png : \
+  -np 1 "$glint_mpi" whitted --help >run.out 2>run.err
+status=$?
+[ "$status" -eq 2 ] || fail "a worker given --help: exit status $status"
+grep -q "rank 1 (.*): its arguments ask for --help" run.err ||
+  fail "a worker given --help: not named"
+# A scene file named without an extension is rank 0's file, as glint render
+# reads it: refused as no scene file, once (ranks called it an unknown
+# built-in scene)
+cp "$anim" bare
+run 2 bare -q -o x.png >run.out 2>run.err
+status=$?
+[ "$status" -eq 2 ] || fail "a bare-named file: exit status $status"
+[ "$(grep -c "bare: not a scene file" run.err)" -eq 1 ] ||
+  fail "a bare-named file: not one message"
+rm -f bare
 
 # Bad input: one message, status 2.
 run 3 nowhere.json -q >run.out 2>run.err

@@ -180,6 +180,7 @@ static void usage_errors(void **state) {
                      "--help=1");
   EXPECT_USAGE_ERROR("--help takes no value: '-h=1'", "render", "-h=1");
   EXPECT_USAGE_ERROR("--help takes no value", "bench", "--help=yes");
+  EXPECT_USAGE_ERROR("--help takes no value: '--help=1'", "--help=1");
   /* compare takes "--" as render does: images after it (it said "unknown
    * option '--'") */
   EXPECT_USAGE_ERROR("-x.png", "compare", "--", "-x.png", "-y.png");

@@ -356,7 +356,8 @@ static void put_chunk(FILE *f, const char *type, const uint8_t *data,
   uint8_t tail[4];
   put_be32(tail, (uint32_t)crc);
   assert_int_equal(fwrite(head, 1, 8, f), 8);
-  assert_int_equal(fwrite(data, 1, size, f), size);
+  if (size) /* (fwrite of a NULL buffer is undefined, even of 0 bytes) */
+    assert_int_equal(fwrite(data, 1, size, f), size);
   assert_int_equal(fwrite(tail, 1, 4, f), 4);
 }
 
@@ -405,6 +406,12 @@ static void png_flavours(void **state) {
   write_png_chunks(path, 2, 1, 8, 3, palette, 2, indices, sizeof indices);
   static const uint8_t two[6] = {200, 100, 50, 10, 20, 30};
   expect_pixels(path, two, 2);
+  /* two rows (each its filter byte): 1 0 / 0 1 */
+  static const uint8_t rows[] = {0, 1, 0, 0, 0, 1};
+  write_png_chunks(path, 2, 2, 8, 3, palette, 2, rows, sizeof rows);
+  static const uint8_t square[12] = {200, 100, 50, 10,  20,  30,
+                                     10,  20,  30, 200, 100, 50};
+  expect_pixels(path, square, 4);
   static const uint8_t bits[] = {0, 0xa0}; /* 3x1, 1 bit: 1, 0, 1 */
   write_png_chunks(path, 3, 1, 1, 3, palette, 2, bits, sizeof bits);
   static const uint8_t three[9] = {200, 100, 50, 10, 20, 30, 200, 100, 50};
@@ -430,6 +437,11 @@ static void png_flavours(void **state) {
   assert_int_equal(glint_image_read(path, &got, &e), GLINT_E_PARSE);
   assert_non_null(strstr(e.message, "flavour.png: a PNG of 16-bit samples"));
   assert_null(got);
+  /* cut inside its signature: a PNG cut short, not "not a PNG" */
+  write_bytes(path, "\x89PNG\r", 5);
+  assert_int_equal(glint_image_read(path, &got, &e), GLINT_E_PARSE);
+  assert_non_null(strstr(e.message, "flavour.png: truncated PNG file (5 bytes "
+                                    "of its signature)"));
   unlink(path);
 }
 

@@ -190,7 +190,8 @@ static glint_status add_to_scene(glint_scene *s, const char *path, mesh_data *m,
     st = gli_scene_check_triangle(m->pos[v[0]], m->pos[v[1]], m->pos[v[2]],
                                   triangle_normals(m, i, n), e);
     if (st) {
-      /* A coordinate beyond GLINT_MAX_COORDINATE, in the file or scaled:
+      /* A coordinate beyond GLINT_MAX_COORDINATE, in the file or once
+       * scaled and moved:
        * named by the vertex's number, as the file's faces name it. */
       char msg[sizeof e->message];
       snprintf(msg, sizeof msg, "%s", e ? e->message : "");
