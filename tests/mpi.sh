@@ -190,20 +190,18 @@ for extra in "-d 1" "--tile 32"; do
     fail "ranks given $extra apart: no message"
   [ ! -e x.png ] || fail "ranks given $extra apart: an image was written"
 done
-timeout 60 "${mpi[@]}" -np 1 "$glint_mpi" whitted -W 64 -H 48 -o x.png : \
-  -np 1 "$glint_mpi" whitted --bogus >run.out 2>run.err
-status=$?
-[ "$status" -eq 2 ] || fail "a worker refusing its option: exit status $status"
-grep -q "rank 1 (.*): unknown option '--bogus'" run.err ||
-  fail "a worker refusing its option: not named"
-[ ! -e x.png ] || fail "a worker refusing its option: an image was written"
-# A worker given --help (it left before MPI_Init, and the job hung there)
-timeout 60 "${mpi[@]}" -np 1 "$glint_mpi" whitted -W 64 -H 48 -o x.png : \
-  -np 1 "$glint_mpi" whitted --help >run.out 2>run.err
-status=$?
-[ "$status" -eq 2 ] || fail "a worker given --help: exit status $status"
-grep -q "rank 1 (.*): its arguments ask for --help" run.err ||
-  fail "a worker given --help: not named"
+# A worker refusing its own option, or given --help (it left before
+# MPI_Init, and the job hung there): named with what it says, no image.
+worker_refuses() { # $1: the worker's option; $2: what rank 0 says of it
+  timeout 60 "${mpi[@]}" -np 1 "$glint_mpi" whitted -W 64 -H 48 -o x.png : \
+    -np 1 "$glint_mpi" whitted "$1" >run.out 2>run.err
+  local status=$?
+  [ "$status" -eq 2 ] || fail "a worker given $1: exit status $status"
+  grep -q "rank 1 (.*): $2" run.err || fail "a worker given $1: not named"
+  [ ! -e x.png ] || fail "a worker given $1: an image was written"
+}
+worker_refuses --bogus "unknown option '--bogus'"
+worker_refuses --help "its arguments ask for --help"
 # A scene file named without an extension is rank 0's file, as glint render
 # reads it: refused as no scene file, once (ranks called it an unknown
 # built-in scene)

@@ -89,13 +89,17 @@ home='"camera": {"from": [0, 2, 6], "at": [0, 1, 0], "up": [0, 1, 0], "fov": 60}
 scene "$home" 1 > scene.json
 "$glint" view scene.json -s 2 -t 1 >out.txt 2>err.txt &
 viewer=$!
-window=
-for _ in $(seq 200); do
-  window=$(xdotool search --name "glint view: scene" 2>/dev/null | head -1)
-  [ -n "$window" ] && break
-  sleep 0.05
-done
-[ -n "$window" ] || fail "no window"
+# The window whose title starts with $1, within 10 s.
+find_window() {
+  window=
+  for _ in $(seq 200); do
+    window=$(xdotool search --name "$1" 2>/dev/null | head -1)
+    [ -n "$window" ] && return 0
+    sleep 0.05
+  done
+  return 1
+}
+find_window "glint view: scene" || fail "no window"
 xdotool windowfocus --sync "$window" 2>/dev/null || true
 lines() { grep -c "$1" out.txt 2>/dev/null; }
 has_lines() { [ "$(lines "$1")" -ge "$2" ]; }
@@ -203,13 +207,7 @@ printf 'b 0.2 0.3 0.5\nl 5 5 -5\nf 1 1 1 0 1 10 1 1.5\n%s\n' \
 printf 's 0 0 0 0.6\ns 0 0 0 0.3\n' >>nested.nff
 "$glint" view nested.nff -d 22 -t 1 >out.txt 2>err.txt &
 viewer=$!
-window=
-for _ in $(seq 200); do
-  window=$(xdotool search --name "glint view: nested" 2>/dev/null | head -1)
-  [ -n "$window" ] && break
-  sleep 0.05
-done
-[ -n "$window" ] || fail "no window for the deep scene"
+find_window "glint view: nested" || fail "no window for the deep scene"
 sleep 1
 xdotool key --window "$window" Escape
 start=$(date +%s%N)
