@@ -511,22 +511,26 @@ static int unused_options(const bench_options *o) {
   const glint_render_settings *rs = &o->settings;
   const char *option = NULL, *mode = NULL, *why = NULL;
   if (o->spd_dir || o->mesh_dir) {
-    option = rs->width                         ? "-W"
-             : rs->height                      ? "-H"
-             : rs->spp != defaults.spp         ? "-s"
-             : o->depths_given                 ? "--depths"
-             : o->scenes_given                 ? "--scenes"
-             : o->mesh_dir && o->threads_given ? "-t"
-                                               : NULL;
+    option = rs->width                                  ? "-W"
+             : rs->height                               ? "-H"
+             : rs->spp != defaults.spp                  ? "-s"
+             : o->depths_given                          ? "--depths"
+             : o->scenes_given                          ? "--scenes"
+             : o->mesh_dir && o->threads_given          ? "-t"
+             : o->mesh_dir && rs->math != defaults.math ? "--math"
+                                                        : NULL;
     mode = o->spd_dir ? "--spd" : "--meshes";
     why = o->spd_dir ? "renders the SPD files' own size, 1 spp, depth 5"
-                     : "traces 1024x1024 primary rays on one thread";
+                     : "traces 1024x1024 primary rays on one thread, "
+                       "shading none";
   } else if (o->view_frames || o->frames) {
-    option = o->runs_given                 ? "--runs"
-             : o->frames && o->nscenes > 1 ? "a second scene"
-                                           : NULL;
+    /* (--frames with no --scenes: the default list's first, Whitted) */
+    option = o->runs_given                                    ? "--runs"
+             : o->view_frames && rs->spp != defaults.spp      ? "-s"
+             : o->frames && o->scenes_given && o->nscenes > 1 ? "a second scene"
+                                                              : NULL;
     mode = o->view_frames ? "--view" : "--frames";
-    why = o->view_frames ? "renders its frames once a scene"
+    why = o->view_frames ? "renders its frames once a scene, at 1 spp"
                          : "renders its frames once, of one scene";
   }
   if (!option)

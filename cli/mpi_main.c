@@ -37,16 +37,18 @@ static void usage(FILE *f) {
       "                       rank i mod N, the baseline\n"
       "      --tile N         tile side in pixels, a multiple of 16 up to\n"
       "                       4096 (default: 64 for ranks of one thread,\n"
-      "                       larger for more, down to 64 for small images)\n"
+      "                       larger for more, down to 64 for small images);\n"
+      "                       one image only (refused with --frames)\n"
       "      --timeout S      a rank that owes work and sends nothing for S\n"
       "                       seconds is taken for hung (default: 120); more\n"
       "                       than one tile or frame takes\n"
       "  -t, --threads N      per rank; 0 (default) shares the CPUs this\n"
       "                       rank may use among the ranks on its host\n"
       "\n"
-      "Exit status: 0 on success, 2 on bad arguments or input, a failed or\n"
-      "silent rank, 130 when stopped. A failed job leaves no partial image;\n"
-      "frames already written stay, and --resume renders the rest.\n",
+      "Exit status: 0 on success, 1 out of memory, 2 on bad arguments or\n"
+      "input, a failed or silent rank, 130 when stopped. A failed job leaves\n"
+      "no partial image; frames already written stay, and --resume renders\n"
+      "the rest.\n",
       f);
 }
 

@@ -512,8 +512,9 @@ static int run_benchmark(viewer *v) {
   for (int i = 0; i < n; i++) {
     SDL_Event ev;
     int quit = cli_stopped();
-    while (!quit && SDL_PollEvent(&ev))
-      quit = ev.type == SDL_QUIT;
+    while (!quit && SDL_PollEvent(&ev)) /* as during a pass */
+      quit = ev.type == SDL_QUIT ||
+             (ev.type == SDL_KEYDOWN && is_quit_key(v, &ev.key));
     if (quit) {
       free(frames);
       return EXIT_INTERRUPTED;

@@ -567,14 +567,20 @@ static void bench_errors(void **state) {
                      "--depths", "3");
   EXPECT_USAGE_ERROR("--scenes is not used", "bench", "--spd", "/nonexistent",
                      "--scenes", "whitted");
-  EXPECT_USAGE_ERROR("--meshes traces 1024x1024 primary rays on one thread: "
+  EXPECT_USAGE_ERROR("--meshes traces 1024x1024 primary rays on one thread, "
+                     "shading none: "
                      "-t is not used",
                      "bench", "--meshes", "/nonexistent", "-t", "2");
-  EXPECT_USAGE_ERROR("--view renders its frames once a scene: --runs is not "
-                     "used",
+  EXPECT_USAGE_ERROR("--view renders its frames once a scene, at 1 spp: --runs "
+                     "is not used",
                      "bench", "--view", "2", "--runs", "3");
   EXPECT_USAGE_ERROR("a second scene is not used", "bench", "--frames", "2",
                      "--scenes", "whitted,giza");
+  EXPECT_USAGE_ERROR("--view renders its frames once a scene, at 1 spp: -s is "
+                     "not used",
+                     "bench", "--view", "2", "-s", "4");
+  EXPECT_USAGE_ERROR("--math is not used", "bench", "--meshes", "/nonexistent",
+                     "--math", "fast");
   /* Two scenes of one name would share their rows and plots */
   EXPECT_USAGE_ERROR("--scenes: two scenes named 'whitted'", "bench",
                      "--scenes", "whitted,giza,whitted");
@@ -1056,6 +1062,11 @@ static void bench_modes_and_their_files(void **state) {
   assert_int_equal(run("bench", "--frames", "300", "--scenes", "whitted", "-W",
                        "8", "-H", "8", "-s", "1", "--depths", "1", "--backends",
                        "scalar-float", "-t", "1", NULL),
+                   0);
+  assert_non_null(strstr(out, "one renderer"));
+  /* without --scenes: Whitted, the default list's first (README's example) */
+  assert_int_equal(run("bench", "--frames", "2", "-W", "8", "-H", "8", "-s",
+                       "1", "--backends", "scalar-float", NULL),
                    0);
   assert_non_null(strstr(out, "one renderer"));
   assert_int_equal(run("bench", "--time-to-image", "--scenes", "whitted", "-W",
