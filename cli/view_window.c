@@ -152,18 +152,16 @@ static void *render_job(void *arg) {
   return NULL;
 }
 
-/* Whether the window's queue holds a request to quit (closed, Esc,
- * Ctrl-Q); it stays there for the event loop to act on. */
-static int quit_waiting(const viewer *v) {
-  SDL_PumpEvents();
-  if (SDL_PeepEvents(NULL, 0, SDL_PEEKEVENT, SDL_QUIT, SDL_QUIT) > 0)
-    return 1;
-  SDL_Event keys[64];
-  int n = SDL_PeepEvents(keys, 64, SDL_PEEKEVENT, SDL_KEYDOWN, SDL_KEYDOWN);
-  for (int i = 0; i < n; i++)
-    if (is_quit_key(v, &keys[i].key))
-      return 1;
-  return 0;
+/* Sees each event as SDL_PumpEvents queues it during a pass: a request to
+ * quit (the window closed, Esc, Ctrl-Q) cancels the pass, and stays queued
+ * for the event loop to act on. (Peeking at the queue instead saw only its
+ * first events: behind a held key's repeats, Esc went unseen.) */
+static int watch_for_quit(void *user, SDL_Event *ev) {
+  pass_job *job = user;
+  if (ev->type == SDL_QUIT ||
+      (ev->type == SDL_KEYDOWN && is_quit_key(job->v, &ev->key)))
+    atomic_store(&job->quit, 1);
+  return 1;
 }
 
 /* Renders the job's pass, reading the window's events every 10 ms until it
@@ -181,6 +179,7 @@ static void render_watching(pass_job *job) {
     pthread_mutex_destroy(&job->lock);
     goto alone;
   }
+  SDL_AddEventWatch(watch_for_quit, job);
   pthread_mutex_lock(&job->lock);
   while (!job->done) {
     struct timespec until;
@@ -192,11 +191,11 @@ static void render_watching(pass_job *job) {
     if (job->done || atomic_load(&job->quit))
       continue;
     pthread_mutex_unlock(&job->lock);
-    if (quit_waiting(job->v))
-      atomic_store(&job->quit, 1);
+    SDL_PumpEvents(); /* on this thread, the window's */
     pthread_mutex_lock(&job->lock);
   }
   pthread_mutex_unlock(&job->lock);
+  SDL_DelEventWatch(watch_for_quit, job);
   pthread_join(thread, NULL);
   pthread_cond_destroy(&job->finished);
   pthread_mutex_destroy(&job->lock);
