@@ -214,9 +214,12 @@ int arg_flag(arg_cursor *c, const char *short_name, const char *long_name,
   return ARG_TAKEN;
 }
 
+int arg_is_help_with_value(const char *a) {
+  return strncmp(a, "--help=", 7) == 0 || strncmp(a, "-h=", 3) == 0;
+}
+
 void arg_unknown(const char *option, const char *command) {
-  /* --help=yes, -h=1: the right option with a value it does not take */
-  if (strncmp(option, "--help=", 7) == 0 || strncmp(option, "-h=", 3) == 0)
+  if (arg_is_help_with_value(option))
     cli_error("--help takes no value: '%s'", option);
   else
     cli_error("unknown option '%s' (see glint %s --help)", option, command);

@@ -72,6 +72,8 @@ int arg_scene_operand(arg_cursor *c, const char *command, const char **scene);
 
 /* -h or --help. */
 int arg_is_help(arg_cursor *c);
+/* --help=yes, -h=1: the right option with a value it does not take. */
+int arg_is_help_with_value(const char *a);
 /* The error for an option no parser took: "unknown option", or, for
  * --help=VALUE, that --help takes none. */
 void arg_unknown(const char *option, const char *command);

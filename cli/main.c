@@ -67,7 +67,7 @@ int main(int argc, char **argv) {
     return cmd_view(argc - 2, argv + 2);
   if (strcmp(cmd, "compare") == 0)
     return cmd_compare(argc - 2, argv + 2);
-  if (strncmp(cmd, "--help=", 7) == 0 || strncmp(cmd, "-h=", 3) == 0)
+  if (arg_is_help_with_value(cmd))
     cli_error("--help takes no value: '%s'", cmd);
   else
     cli_error("unknown command '%s' (see glint --help)", cmd);

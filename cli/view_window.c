@@ -141,10 +141,14 @@ static int cancel_pass(void *user, double fraction) {
   return cli_stopped() || atomic_load(&job->quit);
 }
 
-static void *render_job(void *arg) {
-  pass_job *job = arg;
+static void render_now(pass_job *job) {
   job->status = glint_renderer_render(job->v->renderer, &job->frame, job->film,
                                       &job->stats, &job->err);
+}
+
+static void *render_job(void *arg) {
+  pass_job *job = arg;
+  render_now(job);
   pthread_mutex_lock(&job->lock);
   job->done = 1;
   pthread_cond_signal(&job->finished);
@@ -201,8 +205,7 @@ static void render_watching(pass_job *job) {
   pthread_mutex_destroy(&job->lock);
   return;
 alone:
-  job->status = glint_renderer_render(job->v->renderer, &job->frame, job->film,
-                                      &job->stats, &job->err);
+  render_now(job);
 }
 
 /* One pass: sample 0 while moving (starting over), else the next sample of

@@ -198,12 +198,12 @@ static glint_status add_to_scene(glint_scene *s, const char *path, mesh_data *m,
       /* how the file's coordinates were placed: the scale, and the move
        * where there is one (a far translate was blamed on a scale of 1) */
       char placed[160];
-      int moved = tr.x != 0 || tr.y != 0 || tr.z != 0;
-      snprintf(placed, sizeof placed, "scaled by %g%s", scale,
-               moved ? " and moved by " : "");
-      if (moved)
-        snprintf(placed + strlen(placed), sizeof placed - strlen(placed),
-                 "(%g, %g, %g)", tr.x, tr.y, tr.z);
+      if (tr.x != 0 || tr.y != 0 || tr.z != 0)
+        snprintf(placed, sizeof placed,
+                 "scaled by %g and moved by (%g, %g, %g)", scale, tr.x, tr.y,
+                 tr.z);
+      else
+        snprintf(placed, sizeof placed, "scaled by %g", scale);
       int k = 0;
       while (k < 2 && gli_vec3_in_range(m->pos[v[k]]))
         k++;

@@ -108,14 +108,18 @@ static void update_corner(ring *g, size_t i) {
   g->reflex[i] = (unsigned char)now;
 }
 
-int gli_polygon_is_convex(const glint_vec3 *v, size_t n) {
-  glint_vec3 nrm = newell(v, NULL, n);
+/* No corner turns against nrm (corners that do not turn at all allowed). */
+static int convex_about(const glint_vec3 *v, size_t n, glint_vec3 nrm) {
   for (size_t i = 0; i < n; i++) {
     glint_vec3 a = v[i], b = v[(i + 1) % n], c = v[(i + 2) % n];
     if (dot(cross(sub(b, a), sub(c, b)), nrm) < 0)
       return 0;
   }
   return 1;
+}
+
+int gli_polygon_is_convex(const glint_vec3 *v, size_t n) {
+  return convex_about(v, n, newell(v, NULL, n));
 }
 
 /* The remaining vertex that came first in the polygon: what is left is
@@ -159,7 +163,7 @@ int gli_triangulate(const glint_vec3 *v, size_t n, gli_polygon_emit emit,
    * edge, each an inward corner to corner_reflex): bisected at once. Ear
    * clipping, as for a polygon with teeth, ran out of tests on a square of
    * 40 000 such vertices. */
-  int convex = gli_polygon_is_convex(v, n);
+  int convex = convex_about(v, n, g.nrm);
   for (size_t i = 0; i < n; i++) {
     reflex[i] = (unsigned char)(!convex && corner_reflex(&g, i));
     if (reflex[i])
