@@ -72,7 +72,9 @@ static inline int plane_hit(vec3 n, real d, vec3 o, vec3 dir, real tmin,
  * the two triangles. The ray hits where the three sides agree in sign (zero
  * counts as either); E over their sum is the barycentric weight of the
  * vertex opposite the edge. Then t from the plane through A with normal
- * N = (B - A) x (C - A). A degenerate triangle (N = 0) never hits. */
+ * N = (B - A) x (C - A), or any multiple of it (render/scalar_scene.c
+ * stores it scaled to about unit length, so that N·(A - O) cannot
+ * overflow). A degenerate triangle (N = 0) never hits. */
 static inline int triangle_hit(vec3 a, const vec3 edge[3], const vec3 moment[3],
                                vec3 n, vec3 o, vec3 d, vec3 l, real tmin,
                                real tmax, real *t, real *u, real *v) {

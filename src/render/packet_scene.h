@@ -29,7 +29,7 @@ typedef struct pplane {
 typedef struct ptriangle {
   vscalar a[3];
   vscalar edge[3][3], moment[3][3]; /* see triangle_hit, geometry/intersect.h */
-  vscalar n[3];                     /* (B - A) x (C - A), unnormalised */
+  vscalar n[3]; /* (B - A) x (C - A), scaled to a length in [0.5, 1) */
   int32_t object;
 } ptriangle;
 

@@ -110,7 +110,16 @@ glint_status scalar_scene_prepare(const glint_scene *g, double eps,
         t->moment[k] = from_d(dcross(dsub(from, r), dsub(to, r)));
       }
       t->ng = v3((real)(n.x / nl), (real)(n.y / nl), (real)(n.z / nl));
-      t->n = from_d(n);
+      /* N's length is the square of the triangle's size, and triangle_hit's
+       * N·(A - O) its cube: edges of 1e13 seen from 1e12 away overflow a
+       * float there (1e39), and the triangle vanished. t is a ratio of
+       * two products with N, so N is stored scaled by a power of two to a
+       * length in [0.5, 1): exact, t unchanged to the bit wherever it did
+       * not overflow or underflow. */
+      int exponent;
+      frexp(nl, &exponent);
+      t->n = from_d((glint_vec3){ldexp(n.x, -exponent), ldexp(n.y, -exponent),
+                                 ldexp(n.z, -exponent)});
     } /* else degenerate: zero edges and normal, never hit */
     t->object = p->object;
     t->normals = p->normals;

@@ -28,7 +28,7 @@ typedef struct triangle_r {
   vec3 edge[3];   /* B - A, C - B, A - C */
   vec3 moment[3]; /* (P - R) x (Q - R) per edge PQ (see triangle_hit) */
   vec3 ng; /* unit geometric normal, front side by counter-clockwise order */
-  vec3 n;  /* (B - A) x (C - A), unnormalised */
+  vec3 n;  /* (B - A) x (C - A), scaled by 2^k to a length in [0.5, 1) */
   uint32_t object;
   uint32_t normals; /* first of 3 vertex normals, or GLI_NO_NORMALS */
 } triangle_r;

@@ -265,27 +265,51 @@ static glint_status check_mesh_call(const glint_scene *scene, const char *path,
   return GLINT_OK;
 }
 
+/* The length of a PLY header whose lines end with a CR alone, through its
+ * end_header line, or the whole file where its format line says ascii (or
+ * no end_header line ends it, for the reader to refuse). Lines are matched
+ * whole: a comment that mentions "format ascii" or "end_header" is a
+ * comment. */
+static size_t ply_text_bytes(const char *data, size_t size) {
+  for (size_t i = 0; i < size;) {
+    const char *line = data + i, *cr = memchr(line, '\r', size - i);
+    size_t n = cr ? (size_t)(cr - line) : size - i;
+    while (n > 0 && (line[n - 1] == ' ' || line[n - 1] == '\t'))
+      n--;
+    if (n == 10 && memcmp(line, "end_header", 10) == 0)
+      return cr ? (size_t)(cr - data) + 1 : size;
+    if (n >= 12 && memcmp(line, "format ascii", 12) == 0 &&
+        (n == 12 || line[12] == ' ' || line[12] == '\t'))
+      return size;
+    if (!cr)
+      break;
+    i = (size_t)(cr - data) + 1;
+  }
+  return size;
+}
+
 /* Files from old Macs end their lines with a CR alone, which the readers,
  * like most, do not take for a line end: such a file gets LFs, in a copy
- * (NULL when the file's first line ends otherwise). A binary PLY's body is
- * not text and keeps its bytes. */
-static char *with_lf_line_ends(const char *data, size_t size, int is_ply) {
+ * (*copy stays NULL when the file's first line ends otherwise). A binary
+ * PLY's body is not text and keeps its bytes. Returns -1 when out of
+ * memory. */
+static int with_lf_line_ends(const char *data, size_t size, int is_ply,
+                             char **copy) {
+  *copy = NULL;
   const char *cr = memchr(data, '\r', size), *lf = memchr(data, '\n', size);
   if (!cr || (lf && lf < cr) || (cr + 1 < data + size && cr[1] == '\n'))
-    return NULL;
-  char *copy = malloc(size + 1);
-  if (!copy)
-    return NULL;
-  memcpy(copy, data, size);
-  copy[size] = '\0';
-  size_t limit = size;
-  const char *end_header = is_ply ? strstr(copy, "end_header") : NULL;
-  if (end_header && !strstr(copy, "format ascii"))
-    limit = (size_t)(end_header - copy) + sizeof "end_header";
-  for (size_t i = 0; i < limit && i < size; i++)
-    if (copy[i] == '\r' && (i + 1 == size || copy[i + 1] != '\n'))
-      copy[i] = '\n';
-  return copy;
+    return 0;
+  char *c = malloc(size + 1);
+  if (!c)
+    return -1;
+  memcpy(c, data, size);
+  c[size] = '\0';
+  size_t limit = is_ply ? ply_text_bytes(data, size) : size;
+  for (size_t i = 0; i < limit; i++)
+    if (c[i] == '\r' && (i + 1 == size || c[i + 1] != '\n'))
+      c[i] = '\n';
+  *copy = c;
+  return 0;
 }
 
 static glint_status add_mesh_text(glint_scene *scene, const char *path,
@@ -296,7 +320,9 @@ static glint_status add_mesh_text(glint_scene *scene, const char *path,
   /* Numbers in mesh files always use '.', whatever LC_NUMERIC the host
    * program chose; uselocale changes this thread only, and only for now. */
   gli_file_skip_bom(&data, &size);
-  char *lf = with_lf_line_ends(data, size, read == gli_ply_parse);
+  char *lf;
+  if (with_lf_line_ends(data, size, read == gli_ply_parse, &lf))
+    return gli_fail(error, GLINT_E_MEMORY, "%s: out of memory", path);
   number_locale locale = gli_number_locale_begin();
   mesh_data m;
   memset(&m, 0, sizeof m);
