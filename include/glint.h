@@ -148,7 +148,8 @@ glint_status glint_scene_load_memory(const void *data, size_t size,
 glint_status glint_scene_pack(const char *path, void **packed, size_t *size,
                               glint_error *error);
 /* The scene of a glint_scene_pack block; errors name the packed files as
- * glint_scene_load names the files, and a damaged block is GLINT_E_PARSE. */
+ * glint_scene_load names the files, and a damaged block (a CRC-32 covers
+ * every byte of it) is GLINT_E_PARSE. */
 glint_status glint_scene_load_packed(const void *packed, size_t size,
                                      glint_scene **scene, glint_error *error);
 /* Frees what glint allocated for the caller (a packed scene). */
@@ -423,7 +424,8 @@ const char *glint_backend_name(glint_backend backend);
 glint_status glint_backend_parse(const char *name, glint_backend *backend,
                                  glint_error *error);
 /* Whether this CPU (and this build) can run it: for AUTO, some backend;
- * for STREAM, some stream backend. */
+ * for STREAM, some stream backend (where there is none, rendering with
+ * STREAM is refused, though glint_backend_resolve names scalar-float). */
 int glint_backend_supported(glint_backend backend);
 /* AUTO and STREAM to the concrete backend they stand for on this CPU,
  * without a scene: AUTO is the widest beams. A concrete backend, or a value
@@ -506,7 +508,8 @@ typedef struct glint_render_settings {
                      thesis's figure 5.7 without it */
   glint_accel accel;
   /* Render only this window of the frame (pixels of the full width x
-   * height image); region_width = 0 renders it all. The image returned is
+   * height image); all four 0 (the default) render it all, and a window
+   * needs a width and a height of at least 1. The image returned is
    * region_width x region_height. */
   int region_x, region_y, region_width, region_height;
   int threads;  /* 0: all cores */
@@ -551,7 +554,11 @@ typedef struct glint_stats {
    * alone through the wide BVH, and the tests (wide nodes and primitives)
    * they made. */
   uint64_t alone_walks, alone_tests;
-  /* Stream backends, per generation (0 = primary rays). */
+  /* Stream backends, per generation (0 = primary rays). `generations` is
+   * how many were traced, up to the depth: it can exceed
+   * GLINT_STATS_MAX_GENERATIONS, whose last entries sum every generation
+   * from GLINT_STATS_MAX_GENERATIONS - 1 on, so read the arrays up to the
+   * smaller of the two. */
   int generations;
   uint64_t gen_rays[GLINT_STATS_MAX_GENERATIONS];
   uint64_t gen_packets[GLINT_STATS_MAX_GENERATIONS];
@@ -572,7 +579,8 @@ glint_status glint_render(const glint_scene *scene,
  * the intersection machinery alone, for comparison with Embree's
  * rtcIntersect. *hits receives how many rays hit something; stats the time
  * (render_seconds) and primary_rays. Backends, size and threads as for
- * glint_render; depth and maths do not apply. */
+ * glint_render; depth, maths and gamma change nothing, though every field
+ * is checked as glint_render checks it. */
 glint_status glint_trace_primary(const glint_scene *scene,
                                  const glint_render_settings *settings,
                                  uint64_t *hits, glint_stats *stats,
@@ -668,7 +676,9 @@ void glint_world_get_info(const glint_world *world, glint_scene_info *info);
  * memory. It is created from a world and the settings that stay fixed for
  * its life: backend, math, rcp_newton, accel and threads. Its other fields
  * (size, region, depth, spp, progress) are the defaults of each frame.
- * `settings` may be NULL: glint_render_settings_default's. */
+ * Every field is checked as glint_render checks it, gamma included, though
+ * a renderer's films are linear. `settings` may be NULL:
+ * glint_render_settings_default's. */
 typedef struct glint_renderer glint_renderer;
 
 glint_status glint_renderer_create(glint_world *world,
@@ -711,7 +721,8 @@ typedef int (*glint_tile_fn)(void *user, const glint_tile *tile);
 typedef struct glint_frame_settings {
   const glint_camera *camera; /* NULL: the world's camera */
   int width, height;          /* 0: the renderer's (or else the world's) */
-  /* A window of the width x height frame; region_width = 0: all of it. */
+  /* A window of the width x height frame; all four 0: the renderer's
+   * (itself all of the frame by default), as glint_render_settings. */
   int region_x, region_y, region_width, region_height;
   int max_depth; /* 0: the renderer's */
   int spp;       /* 0: the renderer's */

@@ -1471,9 +1471,10 @@ static void packed_scene_needs_no_files(void **state) {
     assert_memory_equal(&packed->triangles[i], &direct->triangles[i],
                         sizeof direct->triangles[i]);
   glint_scene_destroy(packed);
-  /* Every truncation, and a changed byte in each header field and in the
-   * scene file's name: damaged, GLINT_E_PARSE as glint.h says (a changed
-   * name was GLINT_E_ARGUMENT, "not a scene file") */
+  /* Every truncation, and a changed byte in each header field, in the
+   * scene file's name and in a file's text: damaged, GLINT_E_PARSE as
+   * glint.h says (a changed name was GLINT_E_ARGUMENT, "not a scene file";
+   * a changed digit in a file loaded as another scene) */
   for (size_t n = 0; n < size; n++) {
     glint_error e;
     glint_scene *s = NULL;
@@ -1481,7 +1482,7 @@ static void packed_scene_needs_no_files(void **state) {
     assert_null(s);
   }
   unsigned char *bytes = block;
-  const size_t fields[] = {0, 8, 12, 16, 18};
+  const size_t fields[] = {0, 8, 12, 16, 18, size / 2, size - 5, size - 1};
   for (size_t i = 0; i < sizeof fields / sizeof *fields; i++) {
     unsigned char saved = bytes[fields[i]];
     bytes[fields[i]] ^= 0x40;
@@ -1490,6 +1491,8 @@ static void packed_scene_needs_no_files(void **state) {
     glint_status st = glint_scene_load_packed(block, size, &s, &e);
     assert_int_equal(st, GLINT_E_PARSE);
     assert_non_null(strstr(e.message, "packed scene: damaged"));
+    if (i > 0) /* past the magic, the checksum finds it */
+      assert_non_null(strstr(e.message, "checksum"));
     bytes[fields[i]] = saved;
   }
   glint_free(block);

@@ -365,6 +365,18 @@ static void bad_arguments_are_refused(void **state) {
   fs.region_x = W - 4, fs.region_width = 8, fs.region_height = 8;
   expect_error(glint_renderer_render(renderer, &fs, film, NULL, &e),
                GLINT_E_ARGUMENT, &e, "region");
+  /* A corner without a size, or one side without the other: named, not
+   * ignored (x 5 with width 0 rendered the whole frame) nor called outside
+   * the image (0,0 0x5 was "not inside the image") */
+  glint_frame_settings_default(&fs);
+  fs.region_x = 5;
+  expect_error(glint_renderer_render(renderer, &fs, film, NULL, &e),
+               GLINT_E_ARGUMENT, &e, "region at 5,0 has no size");
+  glint_frame_settings_default(&fs);
+  fs.region_height = 5;
+  expect_error(glint_renderer_render(renderer, &fs, film, NULL, &e),
+               GLINT_E_ARGUMENT, &e,
+               "region 0x5: its width and height must both be at least 1");
   glint_scene_info info;
   glint_scene_get_info(scene, &info);
   glint_camera cam = info.camera;

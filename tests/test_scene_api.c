@@ -4,6 +4,7 @@
 
 #include <math.h>
 #include <stdio.h>
+#include <stdlib.h>
 #include <string.h>
 
 typedef glint_vec3 V;
@@ -380,6 +381,23 @@ static void render_refuses_bad_settings(void **state) {
   CASE(backend, (glint_backend)99, "backend")
   CASE(rcp_newton, 5, "rcp_newton 5 is neither 0 nor 1")
 #undef CASE
+  /* Without SIMD (GLINT_ISA=none) there is no stream backend: STREAM is
+   * refused as glint_backend_supported says, not run as scalar-float; AUTO
+   * still renders (with scalar-float). */
+  setenv("GLINT_ISA", "none", 1);
+  assert_false(glint_backend_supported(GLINT_BACKEND_STREAM));
+  glint_render_settings_default(&rs);
+  rs.width = 8, rs.height = 6, rs.threads = 1;
+  rs.backend = GLINT_BACKEND_STREAM;
+  EXPECT_ERR(glint_render(s, &rs, &im, NULL, &e_), GLINT_E_UNSUPPORTED,
+             "backend 'stream' is not supported");
+  assert_null(im);
+  rs.backend = GLINT_BACKEND_AUTO;
+  glint_stats st;
+  ASSERT_OK(glint_render(s, &rs, &im, &st, &e_));
+  assert_int_equal(st.backend, GLINT_BACKEND_SCALAR_FLOAT);
+  glint_image_destroy(im);
+  unsetenv("GLINT_ISA");
   glint_scene_destroy(s);
 }
 
@@ -478,6 +496,15 @@ static void region_is_a_window_of_the_frame(void **state) {
     glint_error e;
     assert_int_equal(glint_render(s, &rs, &bad, NULL, &e), GLINT_E_ARGUMENT);
     assert_non_null(strstr(e.message, "region"));
+    rs.region_width = 0; /* one side without the other */
+    assert_int_equal(glint_render(s, &rs, &bad, NULL, &e), GLINT_E_ARGUMENT);
+    assert_non_null(strstr(e.message, "region 0x30: its width and height"));
+    rs.region_height = 0; /* a corner without a size */
+    assert_int_equal(glint_render(s, &rs, &bad, NULL, &e), GLINT_E_ARGUMENT);
+    assert_non_null(strstr(e.message, "region at 60,7 has no size"));
+    rs.region_x = rs.region_y = -3;
+    assert_int_equal(glint_render(s, &rs, &bad, NULL, &e), GLINT_E_ARGUMENT);
+    assert_non_null(strstr(e.message, "region at -3,-3 has no size"));
     glint_image_destroy(full);
     glint_image_destroy(part);
   }
@@ -536,6 +563,11 @@ static void scenes_load_from_memory(void **state) {
   assert_non_null(strstr(e.message, "whitted: not a scene file"));
   assert_int_equal(glint_scene_load_memory(NULL, 4, "a.json", &from_memory, &e),
                    GLINT_E_ARGUMENT);
+  /* NULL is refused whatever the size, as every required pointer is (it
+   * was read as an empty file when the size was 0) */
+  assert_int_equal(glint_scene_load_memory(NULL, 0, "a.json", &from_memory, &e),
+                   GLINT_E_ARGUMENT);
+  assert_non_null(strstr(e.message, "glint_scene_load_memory: data is NULL"));
   /* empty JSON text is no scene */
   assert_int_equal(
       glint_scene_load_memory("", 0, "empty.json", &from_memory, &e),

@@ -112,8 +112,21 @@ static glint_status frame_check(int w, int h, int depth, int spp, int rx,
     return gli_fail(e, GLINT_E_ARGUMENT,
                     "samples per pixel %d is outside 1..%d", spp,
                     GLINT_MAX_SPP);
-  if ((rw != 0 || rh != 0) &&
-      (rw < 1 || rh < 1 || rx < 0 || ry < 0 || rx > w - rw || ry > h - rh))
+  if (rw == 0 && rh == 0) { /* the whole frame: nothing else may be said */
+    if (rx != 0 || ry != 0)
+      return gli_fail(e, GLINT_E_ARGUMENT,
+                      "region at %d,%d has no size (its width and height "
+                      "are 0; all four 0 render the whole image)",
+                      rx, ry);
+    return GLINT_OK;
+  }
+  if (rw < 1 || rh < 1)
+    return gli_fail(e, GLINT_E_ARGUMENT,
+                    "region %dx%d: its width and height must both be at "
+                    "least 1 (both 0, and its corner 0,0, render the whole "
+                    "image)",
+                    rw, rh);
+  if (rx < 0 || ry < 0 || rx > w - rw || ry > h - rh)
     return gli_fail(e, GLINT_E_ARGUMENT,
                     "region %d,%d %dx%d is not inside the %dx%d image", rx, ry,
                     rw, rh, w, h);
@@ -194,10 +207,14 @@ glint_status glint_renderer_create(glint_world *world,
     return st;
   glint_backend backend =
       glint_backend_choose(settings->backend, world->scene, settings);
-  if (!glint_backend_supported(backend))
+  /* STREAM resolves to scalar-float where there is no stream backend: that
+   * stand-in is refused, as glint_backend_supported(STREAM) says. */
+  glint_backend missing =
+      !glint_backend_supported(settings->backend) ? settings->backend : backend;
+  if (!glint_backend_supported(missing))
     return gli_fail(error, GLINT_E_UNSUPPORTED,
                     "backend '%s' is not supported by this CPU or build",
-                    glint_backend_name(backend));
+                    glint_backend_name(missing));
 
   glint_renderer *r = calloc(1, sizeof *r);
   if (!r)
@@ -467,7 +484,8 @@ static glint_status render_frame(glint_renderer *r,
   int height = pick(frame->height, pick(s->height, scene->height));
   int depth = pick(frame->max_depth, s->max_depth);
   int spp = pick(frame->spp, s->spp);
-  int own_region = frame->region_width || frame->region_height;
+  int own_region = frame->region_width || frame->region_height ||
+                   frame->region_x || frame->region_y;
   int rx = own_region ? frame->region_x : s->region_x;
   int ry = own_region ? frame->region_y : s->region_y;
   int rw = own_region ? frame->region_width : s->region_width;

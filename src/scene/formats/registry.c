@@ -92,8 +92,7 @@ glint_status gli_scene_load_from(const gli_file_source *files, const char *path,
 glint_status glint_scene_load_memory(const void *data, size_t size,
                                      const char *name, glint_scene **out,
                                      glint_error *error) {
-  if (!data && size)
-    return gli_fail(error, GLINT_E_ARGUMENT, "%s: data is NULL", __func__);
+  GLI_NOT_NULL(data, "data", error); /* even for 0 bytes: "" is empty */
   GLI_NOT_NULL(name, "name", error);
   GLI_NOT_NULL(out, "scene", error);
   const scene_format *f = scene_format_of(name);
