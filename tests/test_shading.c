@@ -178,6 +178,26 @@ static void glass_shadow(void **state) {
                0.05 + 0.33 * S[2]);
 }
 
+/* The light inside a glass sphere of radius 1 around it: the shadow ray
+ * enters it 1 before the light and never leaves, one crossing (kt) and a
+ * stretch of 1 (Beer): S = .8 exp(-absorb). (The stretch had no exit, and
+ * went unabsorbed: S = .8.) */
+static void light_inside_glass(void **state) {
+  (void)state;
+  glint_material m = phong_material(), glass;
+  glint_material_default(&glass);
+  glass.kt = 0.8;
+  glass.ior = 1.5;
+  glass.absorb = (V){0.5, 0, 0.25};
+  glint_scene *s = wall(&m, (V){1, 1, 1});
+  ASSERT_OK(glint_scene_add_light(s, (V){0, 4, 3}, (V){1, 1, 1}, &e_));
+  ASSERT_OK(
+      glint_scene_add_sphere(s, (V){0, 4, 3}, 1, material(s, &glass), &e_));
+  double S[3] = {0.8 * exp(-0.5), 0.8, 0.8 * exp(-0.25)};
+  expect_pixel(s, 5, 0.05 + 0.33 * S[0], 0.05 + 0.33 * S[1],
+               0.05 + 0.33 * S[2]);
+}
+
 /* A mirror reflects the background: kr bg. Depth 1 traces no reflection. */
 static glint_scene *mirror(void) {
   glint_material m;
@@ -366,6 +386,7 @@ int main(void) {
       cmocka_unit_test(reflection_of_background),
       cmocka_unit_test(depth_one_has_no_reflection),
       cmocka_unit_test(beer_through_glass),
+      cmocka_unit_test(light_inside_glass),
       cmocka_unit_test(depth_limit_blacks_out),
       cmocka_unit_test(total_internal_reflection_weight),
       cmocka_unit_test(faint_rays_end),

@@ -232,11 +232,12 @@ static ALWAYS_INLINE void packet_nearest(const packet_scene *ps, vvec3 o,
 /* ---- shadow rays ------------------------------------------------------ */
 
 /* docs/specification.md §4's transmission toward a light, for W shadow rays at
- * once (the scalar_transmission of scalar_scene.c, lane-parallel): each opaque
- * crossing kills its lane; each transparent one multiplies by kt and adds to
- * the Beer exponent (+a t entering, -a t leaving). */
+ * once (the ray_transmission of render/scalar_rays.h, lane-parallel): each
+ * opaque crossing kills its lane; each transparent one multiplies by kt and
+ * adds to the Beer exponent (+a t entering, -a t leaving) and to what the
+ * lane entered and did not leave (+a entering, -a leaving: shadow_acc). */
 typedef struct shadow_state {
-  vvec3 kt, exponent;
+  vvec3 kt, exponent, open;
   vmask alive;
   int absorbed; /* bit c: channel c met an absorbing surface */
 } shadow_state;
@@ -258,7 +259,13 @@ static ALWAYS_INLINE void shadow_cross(const packet_scene *ps, int object,
   if (m->absorbs) {
     vfloat signed_t = vf_select(entering, t, vf_neg(t));
     vfloat st = vf_keep(crossing, signed_t);
-    sh->exponent = vv_madd(sh->exponent, st, vv_get(pm->absorb));
+    vvec3 a = vv_get(pm->absorb);
+    sh->exponent = vv_madd(sh->exponent, st, a);
+    if (ps->s->lights_in_absorbers) { /* else open stays 0 */
+      vfloat sign =
+          vf_keep(crossing, vf_select(entering, vf_set1(1), vf_set1(-1)));
+      sh->open = vv_madd(sh->open, sign, a);
+    }
     sh->absorbed |= m->absorbs;
   }
 }
@@ -339,18 +346,20 @@ segment_alone(void *ctx, uint32_t wide, vmask m) {
   shadow_state *sh = q->sh;
   lane_rays lanes;
   lane_rays_store(&lanes, q->o, q->d);
-  SIMD_ALIGN float kt[3][LANES], ex[3][LANES], dist[LANES];
+  SIMD_ALIGN float kt[3][LANES], ex[3][LANES], open[3][LANES], dist[LANES];
   vf_store(kt[0], sh->kt.x), vf_store(kt[1], sh->kt.y),
       vf_store(kt[2], sh->kt.z);
   vf_store(ex[0], sh->exponent.x), vf_store(ex[1], sh->exponent.y),
       vf_store(ex[2], sh->exponent.z);
+  vf_store(open[0], sh->open.x), vf_store(open[1], sh->open.y),
+      vf_store(open[2], sh->open.z);
   vf_store(dist, q->dist);
   int alive = vm_bits(sh->alive), crossed = 0;
   for (int bits = vm_bits(m); bits; bits &= bits - 1) {
     int k = __builtin_ctz((unsigned)bits);
     vec3 o, d;
     lane_ray(&lanes, k, &o, &d);
-    shadow_acc acc = {v3(1, 1, 1), v3(0, 0, 0)};
+    shadow_acc acc = SHADOW_ACC_CLEAR;
     q->st->alone_walks++;
     if (!block_segment_below(q->ps, q->ps->blocks, wide, o, d, dist[k],
                              q->newton, &acc, &q->st->alone_tests)) {
@@ -364,6 +373,8 @@ segment_alone(void *ctx, uint32_t wide, vmask m) {
     kt[0][k] *= acc.kt.x, kt[1][k] *= acc.kt.y, kt[2][k] *= acc.kt.z;
     ex[0][k] += acc.exponent.x, ex[1][k] += acc.exponent.y,
         ex[2][k] += acc.exponent.z;
+    open[0][k] += acc.open.x, open[1][k] += acc.open.y,
+        open[2][k] += acc.open.z;
     sh->absorbed |= (acc.exponent.x != 0) | (acc.exponent.y != 0) << 1 |
                     (acc.exponent.z != 0) << 2;
   }
@@ -372,6 +383,7 @@ segment_alone(void *ctx, uint32_t wide, vmask m) {
     return;
   sh->kt = (vvec3){vf_load(kt[0]), vf_load(kt[1]), vf_load(kt[2])};
   sh->exponent = (vvec3){vf_load(ex[0]), vf_load(ex[1]), vf_load(ex[2])};
+  sh->open = (vvec3){vf_load(open[0]), vf_load(open[1]), vf_load(open[2])};
 }
 
 static ALWAYS_INLINE void segment_leaf(void *ctx, uint32_t ref, vmask alive) {
@@ -411,6 +423,7 @@ static ALWAYS_INLINE vvec3 packet_transmission(const packet_scene *ps, vvec3 o,
   const scene_r *s = ps->s;
   shadow_state sh = {{vf_set1(1), vf_set1(1), vf_set1(1)},
                      {vf_zero(), vf_zero(), vf_zero()},
+                     {vf_zero(), vf_zero(), vf_zero()},
                      active,
                      0};
   vfloat eps = vs_get(&ps->eps);
@@ -447,6 +460,12 @@ static ALWAYS_INLINE vvec3 packet_transmission(const packet_scene *ps, vvec3 o,
   if (vm_none(sh.alive))
     return z;
   vvec3 r = sh.kt;
+  if (s->lights_in_absorbers) { /* stretches that end at the light */
+    vfloat zero = vf_zero();
+    sh.exponent.x = vf_fnmadd(vf_max(sh.open.x, zero), dist, sh.exponent.x);
+    sh.exponent.y = vf_fnmadd(vf_max(sh.open.y, zero), dist, sh.exponent.y);
+    sh.exponent.z = vf_fnmadd(vf_max(sh.open.z, zero), dist, sh.exponent.z);
+  }
   if (sh.absorbed & 1)
     r.x = vf_mul(r.x, vm_exp(vf_min(sh.exponent.x, vf_zero()), math));
   if (sh.absorbed & 2)

@@ -145,14 +145,26 @@ ray_nearest(const scene_r *s, vec3 o, vec3 d, real tmax, hit_r *hit) {
 
 /* The transmission along a shadow ray is a product over crossings, so their
  * order does not matter. The distance travelled inside objects is
- * sum(t_exit) - sum(t_entry) over the crossings on the segment (an object
- * the ray starts inside has no entry; lights are assumed to lie outside
- * transparent objects), so absorption needs no pairing of crossings either:
- * exp(sum over entries of a t - sum over exits of a t). */
+ * sum(t_exit) - sum(t_entry) over the crossings on the segment: an object
+ * the ray starts inside has no entry, and its exit's -a t counts the
+ * stretch from the origin. One the light lies inside has no exit, and its
+ * stretch ends at the light, dist: -a (dist - t). So absorption needs no
+ * pairing of crossings either: exp(sum over entries of a t - sum over exits
+ * of a t - max(0, open) dist), open being the sum of a over entries less
+ * that over exits, what the ray entered and did not leave. (Exact unless
+ * the origin and the light lie inside two different objects that absorb
+ * one channel, where the two terms of open cancel.) */
 typedef struct shadow_acc {
   vec3 kt;       /* product of kt */
-  vec3 exponent; /* Beer's law exponent, <= 0 */
+  vec3 exponent; /* sum of +a t entering, -a t leaving */
+  vec3 open;     /* sum of +a entering, -a leaving, where the scene's
+                    lights_in_absorbers (else 0) */
 } shadow_acc;
+
+#define SHADOW_ACC_CLEAR                                                       \
+  {                                                                            \
+    {1, 1, 1}, {0, 0, 0}, { 0, 0, 0 }                                          \
+  }
 
 /* Returns 0 when the crossing is opaque. */
 static inline int cross_surface(const scene_r *s, shadow_acc *acc,
@@ -161,8 +173,11 @@ static inline int cross_surface(const scene_r *s, shadow_acc *acc,
   if (m->kt == 0)
     return 0;
   acc->kt = v3_scale(acc->kt, m->kt);
-  if (m->absorbs)
+  if (m->absorbs) {
     acc->exponent = v3_madd(acc->exponent, entering ? t : -t, m->absorb);
+    if (s->lights_in_absorbers) /* else open stays 0 */
+      acc->open = v3_madd(acc->open, entering ? 1 : -1, m->absorb);
+  }
   return 1;
 }
 
@@ -244,13 +259,21 @@ static __attribute__((noinline)) int ray_segment_wide(const scene_r *s,
                       ray_segment_wide_leaf, &q, &tests);
 }
 
-/* The light a shadow ray's crossings let through: kt times Beer's law. */
-static inline vec3 shadow_acc_result(const shadow_acc *acc) {
+/* Beer's law's exponent for a shadow ray's crossings over (0, dist), at
+ * most 0 (see shadow_acc). */
+static inline real shadow_exponent(real exponent, real open, real dist) {
+  return r_fmin(exponent - r_fmax(open, 0) * dist, 0);
+}
+
+/* The light a shadow ray's crossings let through over (0, dist): kt times
+ * Beer's law. */
+static inline vec3 shadow_acc_result(const shadow_acc *acc, real dist) {
   if (acc->exponent.x == 0 && acc->exponent.y == 0 && acc->exponent.z == 0)
     return acc->kt;
-  return v3_mul(acc->kt, v3(r_exp(r_fmin(acc->exponent.x, 0)),
-                            r_exp(r_fmin(acc->exponent.y, 0)),
-                            r_exp(r_fmin(acc->exponent.z, 0))));
+  const vec3 e = acc->exponent, open = acc->open;
+  return v3_mul(acc->kt, v3(r_exp(shadow_exponent(e.x, open.x, dist)),
+                            r_exp(shadow_exponent(e.y, open.y, dist)),
+                            r_exp(shadow_exponent(e.z, open.z, dist))));
 }
 
 /* docs/specification.md §4's transmission from o along unit d over dist:
@@ -258,7 +281,7 @@ static inline vec3 shadow_acc_result(const shadow_acc *acc) {
 static inline __attribute__((always_inline)) vec3
 ray_transmission(const scene_r *s, vec3 o, vec3 d, real dist) {
   vec3 l = ray_moment(s, o, d);
-  shadow_acc acc = {v3(1, 1, 1), v3(0, 0, 0)};
+  shadow_acc acc = SHADOW_ACC_CLEAR;
   const vec3 black = v3(0, 0, 0);
   real t;
   for (size_t i = 0; i < s->plane_count; i++) {
@@ -286,7 +309,7 @@ ray_transmission(const scene_r *s, vec3 o, vec3 d, real dist) {
     if (!bvh_segment(s->bvh, o, d, s->eps, dist, ray_segment_leaf, &q))
       return black;
   }
-  return shadow_acc_result(&acc);
+  return shadow_acc_result(&acc, dist);
 }
 
 #endif

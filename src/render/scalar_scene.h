@@ -78,6 +78,9 @@ typedef struct scene_r {
   /* Single rays walk the wide tree (bvh->wide, --accel bvh8) rather than
    * the binary one. */
   int walk_wide;
+  /* A light may lie inside a transparent absorbing object: shadow rays
+   * then count what they enter and do not leave (shadow_acc). */
+  int lights_in_absorbers;
   vec3 background, ambient;
   vec3 tri_origin; /* R of triangle_hit: the centre of the triangles */
   real eps;
