@@ -198,6 +198,28 @@ static void light_inside_glass(void **state) {
                0.05 + 0.33 * S[2]);
 }
 
+/* A light on a surface: a ceiling plane through the light, whose crossing
+ * lies at the shadow ray's very end. Lit as without the ceiling, at every
+ * place along it (rounding put the crossing before the light at some and
+ * after it at others, and the lit wall was speckled with shadow). */
+static void light_on_a_surface(void **state) {
+  (void)state;
+  for (int k = 0; k < 8; k++) {
+    glint_material m = phong_material(), ceiling;
+    glint_material_default(&ceiling);
+    glint_scene *s = wall(&m, (V){1, 1, 1});
+    double y = 4 + 0.37 * k, z = 3 + 0.61 * k;
+    ASSERT_OK(glint_scene_add_light(s, (V){0, y, z}, (V){1, 1, 1}, &e_));
+    ASSERT_OK(glint_scene_add_plane(s, (V){0, -1, 0}, (V){0, y, 0},
+                                    material(s, &ceiling), &e_));
+    /* L = (0, y, z)/|.|, N·L = z/|.|, V·R = N·L (V = N): I = .05 + .25 N·L
+     * + .5 (N·L)^2 */
+    double nl = z / sqrt(y * y + z * z);
+    double i = 0.05 + 0.25 * nl + 0.5 * nl * nl;
+    expect_pixel(s, 5, i, i, i);
+  }
+}
+
 /* A mirror reflects the background: kr bg. Depth 1 traces no reflection. */
 static glint_scene *mirror(void) {
   glint_material m;
@@ -387,6 +409,7 @@ int main(void) {
       cmocka_unit_test(depth_one_has_no_reflection),
       cmocka_unit_test(beer_through_glass),
       cmocka_unit_test(light_inside_glass),
+      cmocka_unit_test(light_on_a_surface),
       cmocka_unit_test(depth_limit_blacks_out),
       cmocka_unit_test(total_internal_reflection_weight),
       cmocka_unit_test(faint_rays_end),
