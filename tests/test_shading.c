@@ -159,10 +159,10 @@ static void opaque_shadow(void **state) {
   expect_pixel(s, 5, 0.05, 0.05, 0.05);
 }
 
-/* A glass sphere on the shadow ray, crossed through its centre: two
- * crossings (kt^2) and a chord of 1 (Beer): S = .64 exp(-absorb). */
-static void glass_shadow(void **state) {
-  (void)state;
+/* The wall lit from (0, 4, 3) through a glass sphere (kt .8, absorb
+ * (.5, 0, .25)) of centre c and radius r, which lets S through per channel:
+ * I = C (ka + kd .6 S) + ks .36 S = .05 + .33 S. */
+static void expect_through_glass(V c, double r, const double S[3]) {
   glint_material m = phong_material(), glass;
   glint_material_default(&glass);
   glass.kt = 0.8;
@@ -170,12 +170,17 @@ static void glass_shadow(void **state) {
   glass.absorb = (V){0.5, 0, 0.25};
   glint_scene *s = wall(&m, (V){1, 1, 1});
   ASSERT_OK(glint_scene_add_light(s, (V){0, 4, 3}, (V){1, 1, 1}, &e_));
-  ASSERT_OK(
-      glint_scene_add_sphere(s, (V){0, 2, 1.5}, 0.5, material(s, &glass), &e_));
-  double S[3] = {0.64 * exp(-0.5), 0.64, 0.64 * exp(-0.25)};
-  /* I = C (ka + kd .6 S) + ks .36 S = .05 + .33 S */
+  ASSERT_OK(glint_scene_add_sphere(s, c, r, material(s, &glass), &e_));
   expect_pixel(s, 5, 0.05 + 0.33 * S[0], 0.05 + 0.33 * S[1],
                0.05 + 0.33 * S[2]);
+}
+
+/* A glass sphere on the shadow ray, crossed through its centre: two
+ * crossings (kt^2) and a chord of 1 (Beer): S = .64 exp(-absorb). */
+static void glass_shadow(void **state) {
+  (void)state;
+  const double S[3] = {0.64 * exp(-0.5), 0.64, 0.64 * exp(-0.25)};
+  expect_through_glass((V){0, 2, 1.5}, 0.5, S);
 }
 
 /* The light inside a glass sphere of radius 1 around it: the shadow ray
@@ -184,18 +189,8 @@ static void glass_shadow(void **state) {
  * went unabsorbed: S = .8.) */
 static void light_inside_glass(void **state) {
   (void)state;
-  glint_material m = phong_material(), glass;
-  glint_material_default(&glass);
-  glass.kt = 0.8;
-  glass.ior = 1.5;
-  glass.absorb = (V){0.5, 0, 0.25};
-  glint_scene *s = wall(&m, (V){1, 1, 1});
-  ASSERT_OK(glint_scene_add_light(s, (V){0, 4, 3}, (V){1, 1, 1}, &e_));
-  ASSERT_OK(
-      glint_scene_add_sphere(s, (V){0, 4, 3}, 1, material(s, &glass), &e_));
-  double S[3] = {0.8 * exp(-0.5), 0.8, 0.8 * exp(-0.25)};
-  expect_pixel(s, 5, 0.05 + 0.33 * S[0], 0.05 + 0.33 * S[1],
-               0.05 + 0.33 * S[2]);
+  const double S[3] = {0.8 * exp(-0.5), 0.8, 0.8 * exp(-0.25)};
+  expect_through_glass((V){0, 4, 3}, 1, S);
 }
 
 /* A light on a surface: a ceiling plane through the light, whose crossing
