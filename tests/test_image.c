@@ -582,6 +582,28 @@ static void damaged_files_are_refused(void **state) {
   assert_non_null(strstr(e.message, "head.bmp: truncated BMP file (10 bytes of "
                                     "its 54-byte header)"));
   unlink(path);
+  /* Headers that claim 16384 x 16384 pixels over a few bytes: refused from
+   * the file's size, before 805 MB are reserved for the pixels (which a
+   * process with little address space could not) */
+  unsigned char big_bmp[60] = {'B', 'M'};
+  big_bmp[10] = 54, big_bmp[14] = 40, big_bmp[28] = 24;
+  big_bmp[19] = big_bmp[23] = 0x40; /* 16384 = 0x4000, little-endian */
+  snprintf(path, sizeof path, "%s/claims.bmp", dir);
+  write_bytes(path, (const char *)big_bmp, sizeof big_bmp);
+  assert_int_equal(glint_image_read(path, &got, &e), GLINT_E_PARSE);
+  assert_non_null(strstr(e.message, "claims.bmp: truncated BMP file (60 bytes, "
+                                    "where its 16384 x 16384 pixels end at "
+                                    "byte 805306422)"));
+  unlink(path);
+  snprintf(path, sizeof path, "%s/claims.ppm", dir);
+  static const char claims_ppm[] = "P6\n16384 16384\n255\nabc";
+  write_bytes(path, claims_ppm, sizeof claims_ppm - 1);
+  assert_int_equal(glint_image_read(path, &got, &e), GLINT_E_PARSE);
+  assert_non_null(strstr(e.message,
+                         "claims.ppm: truncated PPM file (3 bytes of "
+                         "pixels after its header, where 16384 x "
+                         "16384 pixels need 805306368)"));
+  unlink(path);
   snprintf(path, sizeof path, "%s/cut.png", dir);
   unlink(path);
   snprintf(path, sizeof path, "%s/tall.bmp", dir);

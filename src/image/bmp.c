@@ -97,13 +97,24 @@ glint_status gli_bmp_decode(FILE *f, const char *path, glint_image **out,
   size[1] = h;
   if (!out)
     return GLINT_OK;
+  uint32_t stride = ((uint32_t)w * 3 + 3) & ~3u;
+  uint64_t needed = offset + (uint64_t)stride * (uint64_t)h;
+  long long bytes = gli_file_size(f);
+  if (bytes >= 0 && (uint64_t)bytes < needed)
+    return gli_fail(error, GLINT_E_PARSE,
+                    "%s: truncated BMP file (%lld bytes, where its %ld x %ld "
+                    "pixels end at byte %llu)",
+                    path, bytes, (long)w, (long)h, (unsigned long long)needed);
   glint_image *im;
   glint_status st = glint_image_create(w, h, &im, error);
   if (st)
     return st;
-  uint32_t stride = ((uint32_t)w * 3 + 3) & ~3u;
   uint8_t *row = malloc(stride);
-  if (!row || fseek(f, (long)offset, SEEK_SET) != 0) {
+  if (!row) {
+    glint_image_destroy(im);
+    return gli_fail(error, GLINT_E_MEMORY, "%s: out of memory", path);
+  }
+  if (fseek(f, (long)offset, SEEK_SET) != 0) {
     free(row);
     glint_image_destroy(im);
     return gli_fail(error, GLINT_E_PARSE, "%s: truncated BMP file", path);

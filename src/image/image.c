@@ -490,6 +490,13 @@ static glint_status read_image(const char *path, glint_image **out, int size[2],
   return st;
 }
 
+long long gli_file_size(FILE *f) {
+  struct stat sb;
+  if (fstat(fileno(f), &sb) != 0 || !S_ISREG(sb.st_mode))
+    return -1;
+  return (long long)sb.st_size;
+}
+
 glint_status glint_image_read(const char *path, glint_image **out,
                               glint_error *error) {
   GLI_NOT_NULL(path, "path", error);

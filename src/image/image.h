@@ -94,6 +94,12 @@ int gli_ppm_header(FILE *f, int width, int height); /* before the rows */
 /* Decoders read a whole image, or with `image` NULL its header alone,
  * checked as for reading it; `size` gets the width and height. On failure
  * they fill error naming `path`. */
+
+/* The size of the file f reads, or -1 where it has none (not a regular
+ * file): a header's pixel count is checked against it before the pixels
+ * are allocated (a 100-byte file claiming 16384 x 16384 pixels had 805 MB
+ * reserved). */
+long long gli_file_size(FILE *f);
 glint_status gli_png_decode(FILE *f, const char *path, glint_image **image,
                             int size[2], glint_error *error);
 glint_status gli_bmp_decode(FILE *f, const char *path, glint_image **image,

@@ -90,11 +90,17 @@ glint_status gli_ppm_decode(FILE *f, const char *path, glint_image **out,
   size[1] = (int)h;
   if (!out)
     return GLINT_OK;
+  size_t n = (size_t)w * (size_t)h * 3;
+  long long bytes = gli_file_size(f), here = ftell(f);
+  if (bytes >= 0 && here >= 0 && (unsigned long long)(bytes - here) < n)
+    return gli_fail(error, GLINT_E_PARSE,
+                    "%s: truncated PPM file (%lld bytes of pixels after its "
+                    "header, where %ld x %ld pixels need %zu)",
+                    path, bytes - here, w, h, n);
   glint_image *im;
   glint_status st = glint_image_create((int)w, (int)h, &im, error);
   if (st)
     return st;
-  size_t n = (size_t)w * (size_t)h * 3;
   if (fread(im->rgb, 1, n, f) != n) {
     glint_image_destroy(im);
     return gli_fail(error, GLINT_E_PARSE, "%s: truncated PPM file", path);
