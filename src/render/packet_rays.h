@@ -359,7 +359,7 @@ segment_alone(void *ctx, uint32_t wide, vmask m) {
     int k = __builtin_ctz((unsigned)bits);
     vec3 o, d;
     lane_ray(&lanes, k, &o, &d);
-    shadow_acc acc = SHADOW_ACC_CLEAR;
+    shadow_acc acc = shadow_acc_clear();
     q->st->alone_walks++;
     if (!block_segment_below(q->ps, q->ps->blocks, wide, o, d, dist[k],
                              q->newton, &acc, &q->st->alone_tests)) {

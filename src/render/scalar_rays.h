@@ -161,10 +161,11 @@ typedef struct shadow_acc {
                     lights_in_absorbers (else 0) */
 } shadow_acc;
 
-#define SHADOW_ACC_CLEAR                                                       \
-  {                                                                            \
-    {1, 1, 1}, {0, 0, 0}, { 0, 0, 0 }                                          \
-  }
+/* What a shadow ray that crossed nothing lets through. */
+static inline shadow_acc shadow_acc_clear(void) {
+  shadow_acc acc = {v3(1, 1, 1), v3(0, 0, 0), v3(0, 0, 0)};
+  return acc;
+}
 
 /* Returns 0 when the crossing is opaque. */
 static inline int cross_surface(const scene_r *s, shadow_acc *acc,
@@ -281,7 +282,7 @@ static inline vec3 shadow_acc_result(const shadow_acc *acc, real dist) {
 static inline __attribute__((always_inline)) vec3
 ray_transmission(const scene_r *s, vec3 o, vec3 d, real dist) {
   vec3 l = ray_moment(s, o, d);
-  shadow_acc acc = SHADOW_ACC_CLEAR;
+  shadow_acc acc = shadow_acc_clear();
   const vec3 black = v3(0, 0, 0);
   real t;
   for (size_t i = 0; i < s->plane_count; i++) {
