@@ -193,6 +193,17 @@ static void light_inside_glass(void **state) {
   expect_through_glass((V){0, 4, 3}, 1, S);
 }
 
+/* Glass whose far side lies 0.002 short of the light, seen through as
+ * glass_shadow's: kt^2 and a chord of 1. (Shadow rays that ended a
+ * thousandth of the way short of the light, 0.005 here, lost its exit and
+ * counted one kt and no Beer.) */
+static void glass_just_short_of_the_light(void **state) {
+  (void)state;
+  const double S[3] = {0.64 * exp(-0.5), 0.64, 0.64 * exp(-0.25)};
+  const double along = 4.498 / 5; /* the centre, 4.498 along L */
+  expect_through_glass((V){0, 4 * along, 3 * along}, 0.5, S);
+}
+
 /* A light on a surface: a ceiling plane through the light, whose crossing
  * lies at the shadow ray's very end. Lit as without the ceiling, at every
  * place along it (rounding put the crossing before the light at some and
@@ -405,6 +416,7 @@ int main(void) {
       cmocka_unit_test(beer_through_glass),
       cmocka_unit_test(light_inside_glass),
       cmocka_unit_test(light_on_a_surface),
+      cmocka_unit_test(glass_just_short_of_the_light),
       cmocka_unit_test(depth_limit_blacks_out),
       cmocka_unit_test(total_internal_reflection_weight),
       cmocka_unit_test(faint_rays_end),

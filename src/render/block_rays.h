@@ -193,7 +193,7 @@ static int block_segment_leaf(void *ctx, uint32_t first, uint32_t count) {
       vfloat t = vf_zero(), u, v;
       vmask c = triangle_cross_lanes(tl, r->o, r->d, r->l, active, r->eps,
                                      q->dist, r->newton, &t, &u, &v);
-      /* Entering: against the normal, which the unnormalised one shares. */
+      /* Entering: against the normal, which the scaled one shares. */
       if (!block_cross(s, b->prim, GLI_SHAPE_TRIANGLE, c, t,
                        vf_lt(vv_dot(tri_normal(tl), r->d), vf_zero()), q->acc))
         return 0;

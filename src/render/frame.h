@@ -36,14 +36,14 @@ void gli_camera_basis_init(camera_basis *basis, const glint_camera *camera,
  * counts the rays it leaves). */
 #define GLI_MIN_RAY_WEIGHT 0x1p-24
 
-/* A shadow ray ends this fraction of the way to its light, short of it:
- * a light on a surface (a lamp on a wall) has that surface at the
- * segment's end, where rounding (and without Newton's step, rsqrt's 2^-12)
- * put the crossing before or after the light pixel by pixel, and the lit
- * side was speckled with shadow. pbrt-v4 ends its shadow rays so (1 -
- * ShadowEpsilon, 1e-4, of the segment). Occluders nearer the light than a
- * thousandth of the way do not shadow. */
-#define GLI_SHADOW_REACH (1 - 0x1p-10)
+/* A shadow ray's crossings are looked for short of its light, by the
+ * scene's epsilon or 2^-20 of the distance, whichever is more: a light on
+ * a surface (a lamp on a wall) has that surface at the segment's very end,
+ * where rounding put the crossing before the light at some pixels and
+ * after it at others, and the lit side was speckled with shadow. (pbrt-v4
+ * ends its shadow rays short so, by 1e-4 of the segment.) The stretch to
+ * the light inside an object (Beer's law) still runs to the light. */
+#define GLI_SHADOW_SHORT 0x1p-20
 
 typedef struct frame_params {
   camera_basis camera;

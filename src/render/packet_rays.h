@@ -9,6 +9,7 @@
 #include "geometry/packet_intersect.h"
 #include "render/packet_scene.h"
 #include "render/block_rays.h"
+#include "render/frame.h"
 #include "scene/scene.h"
 #include "simd/vmath.h"
 
@@ -295,7 +296,7 @@ static ALWAYS_INLINE void packet_cross_prim(const packet_scene *ps,
     vfloat t, u, v;
     vmask c = packet_triangle_cross(tr, o, d, moment_of(ps, l, o, d), sh->alive,
                                     eps, dist, newton, &t, &u, &v);
-    /* Entering: against the normal, which the unnormalised one shares. */
+    /* Entering: against the normal, which the scaled one shares. */
     shadow_cross(ps, tr->object, c, t,
                  vf_lt(vv_dot(vv_get(tr->n), d), vf_zero()), sh);
     break;
@@ -421,6 +422,9 @@ static ALWAYS_INLINE vvec3 packet_transmission(const packet_scene *ps, vvec3 o,
                                                glint_math math, int newton,
                                                glint_stats *st) {
   const scene_r *s = ps->s;
+  const vfloat light = dist; /* Beer's stretches run to the light */
+  dist = vf_sub(
+      dist, vf_max(vs_get(&ps->eps), vf_mul(dist, vf_set1(GLI_SHADOW_SHORT))));
   shadow_state sh = {{vf_set1(1), vf_set1(1), vf_set1(1)},
                      {vf_zero(), vf_zero(), vf_zero()},
                      {vf_zero(), vf_zero(), vf_zero()},
@@ -462,9 +466,9 @@ static ALWAYS_INLINE vvec3 packet_transmission(const packet_scene *ps, vvec3 o,
   vvec3 r = sh.kt;
   if (s->lights_in_absorbers) { /* stretches that end at the light */
     vfloat zero = vf_zero();
-    sh.exponent.x = vf_fnmadd(vf_max(sh.open.x, zero), dist, sh.exponent.x);
-    sh.exponent.y = vf_fnmadd(vf_max(sh.open.y, zero), dist, sh.exponent.y);
-    sh.exponent.z = vf_fnmadd(vf_max(sh.open.z, zero), dist, sh.exponent.z);
+    sh.exponent.x = vf_fnmadd(vf_max(sh.open.x, zero), light, sh.exponent.x);
+    sh.exponent.y = vf_fnmadd(vf_max(sh.open.y, zero), light, sh.exponent.y);
+    sh.exponent.z = vf_fnmadd(vf_max(sh.open.z, zero), light, sh.exponent.z);
   }
   if (sh.absorbed & 1)
     r.x = vf_mul(r.x, vm_exp(vf_min(sh.exponent.x, vf_zero()), math));

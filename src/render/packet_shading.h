@@ -383,9 +383,8 @@ static ALWAYS_INLINE vvec3 packet_lights(
       continue;
     st->shadow_rays += (uint64_t)vm_count(lit);
     uint64_t t0 = shadow_ticks ? __rdtsc() : 0;
-    vvec3 sj = packet_transmission(ps, f->p, &po, l,
-                                   vf_mul(dist, vf_set1(GLI_SHADOW_REACH)), lit,
-                                   math, newton, st);
+    vvec3 sj =
+        packet_transmission(ps, f->p, &po, l, dist, lit, math, newton, st);
     if (shadow_ticks)
       *shadow_ticks += __rdtsc() - t0;
     vvec3 il = vv_mul(sj, vv_get(li->color));

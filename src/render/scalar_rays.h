@@ -10,6 +10,7 @@
 #include "accel/traverse.h"
 #include "accel/wide_traverse.h"
 #include "geometry/intersect.h"
+#include "render/frame.h"
 #include "render/scalar_scene.h"
 #include "scene/scene.h"
 
@@ -151,9 +152,10 @@ ray_nearest(const scene_r *s, vec3 o, vec3 d, real tmax, hit_r *hit) {
  * stretch ends at the light, dist: -a (dist - t). So absorption needs no
  * pairing of crossings either: exp(sum over entries of a t - sum over exits
  * of a t - max(0, open) dist), open being the sum of a over entries less
- * that over exits, what the ray entered and did not leave. (Exact unless
- * the origin and the light lie inside two different objects that absorb
- * one channel, where the two terms of open cancel.) */
+ * that over exits, what the ray entered and did not leave. (Not where the
+ * origin and the light lie inside one object, with no crossing between
+ * them, nor inside two different objects that absorb one channel, where
+ * the two terms of open cancel.) */
 typedef struct shadow_acc {
   vec3 kt;       /* product of kt */
   vec3 exponent; /* sum of +a t entering, -a t leaving */
@@ -281,6 +283,8 @@ static inline vec3 shadow_acc_result(const shadow_acc *acc, real dist) {
  * the planes, then the BVH as ray_nearest walks it. */
 static inline __attribute__((always_inline)) vec3
 ray_transmission(const scene_r *s, vec3 o, vec3 d, real dist) {
+  const real light = dist; /* Beer's stretches run to the light */
+  dist -= r_fmax(s->eps, dist * (real)GLI_SHADOW_SHORT);
   vec3 l = ray_moment(s, o, d);
   shadow_acc acc = shadow_acc_clear();
   const vec3 black = v3(0, 0, 0);
@@ -310,7 +314,7 @@ ray_transmission(const scene_r *s, vec3 o, vec3 d, real dist) {
     if (!bvh_segment(s->bvh, o, d, s->eps, dist, ray_segment_leaf, &q))
       return black;
   }
-  return shadow_acc_result(&acc, dist);
+  return shadow_acc_result(&acc, light);
 }
 
 #endif

@@ -127,7 +127,7 @@ static vec3 trace(const scene_r *s, int max_depth, vec3 o, vec3 d, int level,
     if (nl <= 0)
       continue; /* the light is behind the surface: no diffuse, no highlight */
     st->shadow_rays++;
-    vec3 sj = scalar_transmission(s, &f.p, &l, dist * (real)GLI_SHADOW_REACH);
+    vec3 sj = scalar_transmission(s, &f.p, &l, dist);
     if (sj.x == 0 && sj.y == 0 && sj.z == 0)
       continue;
     vec3 il = v3_mul(sj, li->color);
