@@ -103,9 +103,11 @@ int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size) {
     uint8_t *block = malloc(size ? size : 1);
     if (!block)
       return 0;
-    memcpy(block, data, size);
-    /* the block's last 4 bytes: zlib's CRC-32 of the rest (src/scene/pack.c) */
-    if (size >= 4 && data[0] % 8 != 7) {
+    if (size)
+      memcpy(block, data, size);
+    /* The block's last 4 bytes: zlib's CRC-32 of the rest (src/scene/pack.c).
+     * The mutated last byte decides (the first is the magic's 'G'). */
+    if (size >= 4 && data[size - 1] % 8 != 7) {
       uint32_t crc = (uint32_t)crc32_z(0, block, size - 4);
       for (int i = 0; i < 4; i++)
         block[size - 4 + (size_t)i] = (uint8_t)(crc >> (8 * i));

@@ -582,15 +582,16 @@ static void unusual_text_files_load(void **state) {
     glint_scene_destroy(s);
   }
 
-  /* A binary PLY whose header lines end in CR alone: only the header gets
-   * LFs, wherever a comment says "format ascii" or "end_header" (such a
+  /* A binary PLY whose header lines end in CR alone (its end_header line
+   * indented, as the reader allows): only the header gets LFs, wherever a
+   * comment says "format ascii" or "end_header" (such a
    * comment made the body text, and its CR byte in index 13 became an LF,
    * index 10). Vertex 13 is (0, 1, 0), vertex 10 (0, 5, 0). */
   static const char header[] =
       "ply\rformat binary_little_endian 1.0\rcomment not format ascii\r"
       "comment end_header\relement vertex 14\r"
       "property float x\rproperty float y\rproperty float z\relement face 1\r"
-      "property list uchar int vertex_indices\rend_header\r";
+      "property list uchar int vertex_indices\r  end_header\t\r";
   unsigned char ply[sizeof header - 1 + 14 * 12 + 13];
   memcpy(ply, header, sizeof header - 1);
   float xyz[14][3] = {{0, 0, 0}, {1, 0, 0}};
