@@ -41,14 +41,6 @@ static void planar_axes(glint_vec3 n, int *u, int *v) {
 /* The view of a world converted without a BVH, and of --accel none. */
 static const gli_bvh no_bvh;
 
-/* Grows the box lo..hi by the point p, padded by r. */
-static void box_grow(glint_vec3 *lo, glint_vec3 *hi, glint_vec3 p, double r) {
-  lo->x = fmin(lo->x, p.x - r), lo->y = fmin(lo->y, p.y - r);
-  lo->z = fmin(lo->z, p.z - r);
-  hi->x = fmax(hi->x, p.x + r), hi->y = fmax(hi->y, p.y + r);
-  hi->z = fmax(hi->z, p.z + r);
-}
-
 /* Whether a light may lie inside an object that lets light through and
  * absorbs it: inside the box of its primitives, or behind such a plane.
  * Only then can a shadow ray enter an object it does not leave, and need
@@ -64,29 +56,19 @@ static int light_may_be_inside_absorber(const glint_scene *g) {
       continue;
     if (o->shape == GLI_SHAPE_PLANE)
       return 1; /* a half-space: rare enough to take as yes */
-    glint_vec3 lo = {INFINITY, INFINITY, INFINITY},
-               hi = {-INFINITY, -INFINITY, -INFINITY};
+    /* its primitives' boxes as the BVH builder bounds them */
+    float lo[3] = {INFINITY, INFINITY, INFINITY},
+          hi[3] = {-INFINITY, -INFINITY, -INFINITY};
     for (uint32_t k = o->first; k < o->first + o->count; k++) {
-      if (o->shape == GLI_SHAPE_SPHERE) {
-        box_grow(&lo, &hi, g->spheres[k].center, g->spheres[k].radius);
-      } else if (o->shape == GLI_SHAPE_TRIANGLE) {
-        for (int v = 0; v < 3; v++)
-          box_grow(&lo, &hi, g->triangles[k].v[v], 0);
-      } else {
-        const gli_cone_prim *c = &g->cones[k];
-        double r = fmax(fabs(c->base_radius), fabs(c->apex_radius));
-        box_grow(&lo, &hi, c->base, r);
-        box_grow(&lo, &hi, c->apex, r);
-      }
+      float plo[3], phi[3];
+      gli_bvh_ref_box(g, GLI_REF(o->shape, k), plo, phi);
+      for (int a = 0; a < 3; a++)
+        lo[a] = fminf(lo[a], plo[a]), hi[a] = fmaxf(hi[a], phi[a]);
     }
-    /* padded by a millionth of its size and of its place, for rounding */
-    double pad = 1e-6 * (fabs(hi.x - lo.x) + fabs(hi.y - lo.y) +
-                         fabs(hi.z - lo.z) + fabs(lo.x) + fabs(lo.y) +
-                         fabs(lo.z) + fabs(hi.x) + fabs(hi.y) + fabs(hi.z));
     for (size_t j = 0; j < g->light_count; j++) {
       glint_vec3 p = g->lights[j].position;
-      if (p.x >= lo.x - pad && p.x <= hi.x + pad && p.y >= lo.y - pad &&
-          p.y <= hi.y + pad && p.z >= lo.z - pad && p.z <= hi.z + pad)
+      if (p.x >= lo[0] && p.x <= hi[0] && p.y >= lo[1] && p.y <= hi[1] &&
+          p.z >= lo[2] && p.z <= hi[2])
         return 1;
     }
   }

@@ -16,7 +16,6 @@
 #include "scene/number.h"
 #include "scene/polygon.h"
 #include "scene/scene.h"
-#include "scene/text.h"
 
 #include <math.h>
 #include <stdio.h>
@@ -266,48 +265,6 @@ static glint_status check_mesh_call(const glint_scene *scene, const char *path,
   return GLINT_OK;
 }
 
-/* The next blank-separated word of [*p, end), or an empty one; *p moves
- * past it. Blanks as the PLY reader's (gli_text_is_blank). */
-static size_t next_word(const char **p, const char *end, const char **word) {
-  const char *b = *p;
-  while (b < end && gli_text_is_blank(*b))
-    b++;
-  const char *w = b;
-  while (b < end && !gli_text_is_blank(*b))
-    b++;
-  *word = w;
-  *p = b;
-  return (size_t)(b - w);
-}
-
-static int word_is(const char *w, size_t n, const char *text) {
-  return n == strlen(text) && memcmp(w, text, n) == 0;
-}
-
-/* The length of a PLY header whose lines end with a CR alone, through its
- * end_header line, or the whole file where its format line says ascii (or
- * no end_header line ends it, for the reader to refuse). A line's words
- * are split as the PLY reader splits them, so a comment that mentions
- * "format ascii" or "end_header" is a comment. */
-static size_t ply_text_bytes(const char *data, size_t size) {
-  for (size_t i = 0; i < size;) {
-    const char *line = data + i, *cr = memchr(line, '\r', size - i);
-    const char *end = cr ? cr : data + size, *p = line, *w;
-    size_t n = next_word(&p, end, &w);
-    if (word_is(w, n, "end_header"))
-      return cr ? (size_t)(cr - data) + 1 : size;
-    if (word_is(w, n, "format")) {
-      n = next_word(&p, end, &w);
-      if (word_is(w, n, "ascii"))
-        return size;
-    }
-    if (!cr)
-      break;
-    i = (size_t)(cr - data) + 1;
-  }
-  return size;
-}
-
 /* Files from old Macs end their lines with a CR alone, which the readers,
  * like most, do not take for a line end: such a file gets LFs, in a copy
  * (*copy stays NULL when the file's first line ends otherwise). A binary
@@ -324,7 +281,7 @@ static int with_lf_line_ends(const char *data, size_t size, int is_ply,
     return -1;
   memcpy(c, data, size);
   c[size] = '\0';
-  size_t limit = is_ply ? ply_text_bytes(data, size) : size;
+  size_t limit = is_ply ? gli_ply_text_bytes(data, size) : size;
   for (size_t i = 0; i < limit; i++)
     if (c[i] == '\r' && (i + 1 == size || c[i + 1] != '\n'))
       c[i] = '\n';

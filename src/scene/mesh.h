@@ -87,5 +87,10 @@ glint_status gli_obj_parse(const char *path, const char *data, size_t size,
                            mesh_data *m, glint_error *e);
 glint_status gli_ply_parse(const char *path, const char *data, size_t size,
                            mesh_data *m, glint_error *e);
+/* The length of a PLY header whose lines end with a CR alone, through its
+ * end_header line, or the whole file where its format line says ascii (or
+ * no end_header line ends it, for the reader to refuse): what of such a
+ * file is text, to be given LFs before gli_ply_parse reads it. */
+size_t gli_ply_text_bytes(const char *data, size_t size);
 
 #endif

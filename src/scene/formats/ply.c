@@ -730,6 +730,23 @@ static glint_status ply_element_line(ply_reader *r, size_t line,
   return GLINT_OK;
 }
 
+/* Lines are split into words as ply_header splits them, so a comment that
+ * mentions "format ascii" or "end_header" is a comment. */
+size_t gli_ply_text_bytes(const char *data, size_t size) {
+  for (const char *b = data, *end = data + size; b < end;) {
+    const char *cr = memchr(b, '\r', (size_t)(end - b));
+    const char *le = cr ? cr : end;
+    span tok[2];
+    size_t ntok = split(b, le, tok, 2);
+    if (ntok >= 1 && span_is(tok[0], "end_header"))
+      return cr ? (size_t)(cr - data) + 1 : size;
+    if (ntok >= 2 && span_is(tok[0], "format") && span_is(tok[1], "ascii"))
+      return size;
+    b = cr ? cr + 1 : end;
+  }
+  return size;
+}
+
 /* Reads the header up to and including end_header's newline. */
 static glint_status ply_header(ply_reader *r, glint_error *e) {
   const char *data = (const char *)r->data, *end = data + r->size;
