@@ -8,6 +8,7 @@
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
+#include <sys/resource.h>
 #include <sys/stat.h>
 #include <unistd.h>
 
@@ -326,4 +327,28 @@ void cli_write_errors_not_signals(void) {
   signal(SIGPIPE, SIG_IGN);
   signal(SIGXFSZ, SIG_IGN);
   atexit(check_stdout);
+}
+
+int cli_ensure_stack(char *why, size_t size) {
+  const rlim_t wanted = (rlim_t)8 << 20, needed = (rlim_t)512 << 10;
+  struct rlimit stack;
+  if (getrlimit(RLIMIT_STACK, &stack) != 0 || stack.rlim_cur == RLIM_INFINITY ||
+      stack.rlim_cur >= wanted)
+    return 0;
+  rlim_t most = stack.rlim_max == RLIM_INFINITY || stack.rlim_max > wanted
+                    ? wanted
+                    : stack.rlim_max;
+  if (most > stack.rlim_cur) {
+    stack.rlim_cur = most;
+    setrlimit(RLIMIT_STACK, &stack);
+  }
+  if (getrlimit(RLIMIT_STACK, &stack) == 0 && stack.rlim_cur < needed) {
+    snprintf(why, size,
+             "the stack limit (ulimit -s) is %llu KiB; glint needs at least "
+             "%llu KiB",
+             (unsigned long long)stack.rlim_cur >> 10,
+             (unsigned long long)needed >> 10);
+    return -1;
+  }
+  return 0;
 }

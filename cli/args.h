@@ -97,6 +97,14 @@ void cli_error(const char *format, ...)
  * program. */
 void cli_write_errors_not_signals(void);
 
+/* Raises the stack limit (ulimit -s) to 8 MiB, the usual default, where a
+ * lower soft limit allows: the main thread's stack grows on demand up to
+ * the limit of the moment, and the commands' deepest paths (the scene
+ * loaders, bench's tables) need up to about 128 KiB of it (a process run
+ * under ulimit -s 64 crashed). 0; or -1, with why in `why`, when the hard
+ * limit is below 512 KiB. Called next by every program. */
+int cli_ensure_stack(char *why, size_t size);
+
 /* Splits a comma-separated list in place, empty items included (the
  * caller's parsing refuses them); returns the item count or -1 if there are
  * more than max. */

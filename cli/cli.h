@@ -134,6 +134,12 @@ glint_status cli_check_output_format(const char *path, const char *scene,
  * quarter (tree-s4), and get none. */
 void cli_note_scale(const char *arg, const glint_scene *scene);
 
+/* SIGINT, SIGTERM and SIGHUP end the process at once, with a message and
+ * exit status 130, until cli_catch_stop_signals: while a scene loads and
+ * its BVH builds (neither can be cancelled) and before any file is
+ * created. Called by every program but glint-mpi, which stops its ranks
+ * its own way. */
+void cli_end_on_stop_signals(void);
 /* SIGINT, SIGTERM and SIGHUP only take note from then on; cli_stopped says
  * whether one came (cancel, say so, exit 130). */
 void cli_catch_stop_signals(void);

@@ -34,6 +34,12 @@ static void usage(FILE *f) {
 
 int main(int argc, char **argv) {
   cli_write_errors_not_signals();
+  char why[128];
+  if (cli_ensure_stack(why, sizeof why)) {
+    cli_error("%s", why);
+    return EXIT_MEMORY;
+  }
+  cli_end_on_stop_signals();
   if (argc < 2) {
     usage(stderr);
     return EXIT_USAGE;

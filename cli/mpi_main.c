@@ -15,10 +15,12 @@
 #include <glint.h>
 
 #include <fcntl.h>
+#include <signal.h>
 #include <stdarg.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
+#include <sys/time.h>
 #include <unistd.h>
 
 static void usage(FILE *f) {
@@ -41,7 +43,9 @@ static void usage(FILE *f) {
       "                       one image only (refused with --frames)\n"
       "      --timeout S      a rank that owes work and sends nothing for S\n"
       "                       seconds is taken for hung (default: 120); more\n"
-      "                       than one tile or frame takes\n"
+      "                       than one tile or frame takes; and ranks that\n"
+      "                       cannot all reach each other within S seconds\n"
+      "                       of starting stop the job\n"
       "  -t, --threads N      per rank; 0 (default) shares the CPUs this\n"
       "                       rank may use among the ranks on its host\n"
       "\n"
@@ -509,9 +513,65 @@ static int run(mpi_world *w, int argc, char **argv) {
   return status;
 }
 
+/* Start-up's watchdog: MPI_Init can succeed where messages cannot pass (a
+ * rank whose memory limit, ulimit -v, broke Open MPI's shared memory: its
+ * warning said so, and then every rank waited for ever). Until each rank
+ * has heard from every other, an alarm after --timeout seconds ends the
+ * rank with a message, and mpirun the job. */
+static char startup_overdue[160];
+
+static void on_startup_overdue(int sig) {
+  (void)sig;
+  if (write(STDERR_FILENO, startup_overdue, strlen(startup_overdue)) < 0) {
+    /* nothing else to try */
+  }
+  _exit(EXIT_USAGE);
+}
+
+/* --timeout's seconds, read before MPI_Init takes its own arguments out;
+ * parse() checks the value, and refuses a bad one after start-up. */
+static double startup_timeout(int argc, char **argv) {
+  double seconds = 120;
+  for (int i = 1; i < argc && strcmp(argv[i], "--"); i++) {
+    const char *value = strncmp(argv[i], "--timeout=", 10) == 0 ? argv[i] + 10
+                        : strcmp(argv[i], "--timeout") == 0 && i + 1 < argc
+                            ? argv[i + 1]
+                            : NULL;
+    char *end;
+    double v = value ? strtod(value, &end) : 0;
+    if (value && end != value && !*end && v >= 0.001 && v <= 1e6)
+      seconds = v;
+  }
+  return seconds;
+}
+
+static void watch_startup(double seconds) {
+  snprintf(startup_overdue, sizeof startup_overdue,
+           "glint-mpi: the ranks did not all reach each other within %g s of "
+           "starting (--timeout; MPI's messages above may say why)\n",
+           seconds);
+  struct sigaction sa;
+  memset(&sa, 0, sizeof sa);
+  sa.sa_handler = on_startup_overdue;
+  sigemptyset(&sa.sa_mask);
+  sigaction(SIGALRM, &sa, NULL);
+  struct itimerval timer = {
+      {0, 0},
+      {(time_t)seconds, (suseconds_t)((seconds - (time_t)seconds) * 1e6)}};
+  setitimer(ITIMER_REAL, &timer, NULL);
+}
+
+static void startup_done(void) {
+  struct itimerval off = {{0, 0}, {0, 0}};
+  setitimer(ITIMER_REAL, &off, NULL);
+  signal(SIGALRM, SIG_DFL);
+}
+
 int main(int argc, char **argv) {
   double start = cli_now();
   cli_write_errors_not_signals();
+  char stack_problem[128];
+  int stack_bad = cli_ensure_stack(stack_problem, sizeof stack_problem);
   /* --help needs no MPI job: outside mpirun it works at once. Inside one
    * (Open MPI or PMIx name the rank) every rank must reach MPI_Init: one
    * that left here held the others there for ever (an MPMD launch giving
@@ -523,6 +583,7 @@ int main(int argc, char **argv) {
       usage(stdout);
       return 0;
     }
+  watch_startup(startup_timeout(argc, argv));
   int provided;
   /* Only the main thread calls MPI; the renderer's threads never do. */
   if (MPI_Init_thread(&argc, &argv, MPI_THREAD_FUNNELED, &provided) !=
@@ -547,6 +608,13 @@ int main(int argc, char **argv) {
             MPI_Allgather(host, MPI_HOST_CHARS, MPI_CHAR, w.hosts,
                           MPI_HOST_CHARS, MPI_CHAR, w.comm),
             "gathering the host names");
+  /* (every rank has heard every other: the host names came, and a barrier
+   * passes only once each rank's word has reached all) */
+  mpi_check(&w, MPI_Barrier(w.comm), "waiting for every rank");
+  startup_done();
+  if (stack_bad) /* (said here, where every rank has reached MPI_Init) */
+    mpi_fail(&w, EXIT_MEMORY, "rank %d (%s): %s", w.rank, w.hosts[w.rank],
+             stack_problem);
   if (provided < MPI_THREAD_FUNNELED)
     mpi_fail(&w, EXIT_USAGE,
              "this MPI cannot run threads beside MPI (MPI_THREAD_FUNNELED)");

@@ -134,6 +134,27 @@ static void on_stop_overdue(int sig) {
 
 int cli_stopped(void) { return stop_signal != 0; }
 
+static void on_stop_before_catching(int sig) {
+  static const char sigint[] = "glint: interrupted (SIGINT)\n",
+                    sigterm[] = "glint: interrupted (SIGTERM)\n",
+                    sighup[] = "glint: interrupted (SIGHUP)\n";
+  const char *msg = sig == SIGINT ? sigint : sig == SIGTERM ? sigterm : sighup;
+  if (write(STDERR_FILENO, msg, strlen(msg)) < 0) {
+    /* nothing else to try */
+  }
+  _exit(EXIT_INTERRUPTED);
+}
+
+void cli_end_on_stop_signals(void) {
+  struct sigaction sa;
+  memset(&sa, 0, sizeof sa);
+  sa.sa_handler = on_stop_before_catching;
+  sigemptyset(&sa.sa_mask);
+  sigaction(SIGINT, &sa, NULL);
+  sigaction(SIGTERM, &sa, NULL);
+  sigaction(SIGHUP, &sa, NULL);
+}
+
 void cli_catch_stop_signals(void) {
   struct sigaction sa;
   memset(&sa, 0, sizeof sa);
@@ -635,6 +656,9 @@ int cmd_render(int argc, char **argv) {
     glint_scene_destroy(scene);
     return EXIT_USAGE;
   }
+  /* From here on a stop signal cancels the render and says so: once the
+   * image's temporary file exists, glint must remove it. */
+  cli_catch_stop_signals();
   /* An image file is encoded while the frame renders (glint_image_writer);
    * opening it checks the path. */
   cli_tile_sink sink = {NULL, rs.region_x, rs.region_y, 0, {0}};
@@ -652,7 +676,6 @@ int cmd_render(int argc, char **argv) {
     return cli_exit_code(opened);
   }
 
-  cli_catch_stop_signals(); /* from here on Ctrl-C cancels and says so */
   cli_remove_on_stop(sink.writer);
   progress_state ps = {-1, !quiet && isatty(STDERR_FILENO)};
   rs.progress = on_progress;

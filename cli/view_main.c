@@ -7,6 +7,12 @@
 
 int main(int argc, char **argv) {
   cli_write_errors_not_signals();
+  char why[128];
+  if (cli_ensure_stack(why, sizeof why)) {
+    cli_error("%s", why);
+    return EXIT_MEMORY;
+  }
+  cli_end_on_stop_signals();
   glint_error err;
   if (glint_isa_cap_check(&err)) {
     cli_error("%s", err.message);

@@ -673,8 +673,12 @@ void glint_world_destroy(glint_world *world);
 void glint_world_get_info(const glint_world *world, glint_scene_info *info);
 
 /* A renderer owns a pool of worker threads, started once, and their scratch
- * memory. It is created from a world and the settings that stay fixed for
- * its life: backend, math, rcp_newton, accel and threads. Its other fields
+ * memory. The calling thread works as one of them when it has 1 MiB of
+ * stack to spare, else a thread of the pool (8 MiB of stack) works in its
+ * place: glint renders from an application's small threads too (loading a
+ * scene and committing a world need under 64 KiB of stack). It is created
+ * from a world and the settings that stay fixed for its life: backend, math,
+ * rcp_newton, accel and threads. Its other fields
  * (size, region, depth, spp, progress) are the defaults of each frame.
  * Every field is checked as glint_render checks it, gamma included, though
  * a renderer's films are linear. `settings` may be NULL:

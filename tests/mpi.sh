@@ -15,6 +15,8 @@
 #    own while its main thread serves);
 #  - ranks that would render differently refuse to start, naming them;
 #  - a bad argument or a missing scene is one message and exit status 2;
+#  - ranks that start but cannot reach each other end the job after
+#    --timeout, with no image;
 #  - a worker killed mid-animation ends the job within 30 s, naming rank 1
 #    and its host, with no partial file; --resume then completes the
 #    animation, every frame as glint render writes it;
@@ -202,6 +204,16 @@ worker_refuses() { # $1: the worker's option; $2: what rank 0 says of it
 }
 worker_refuses --bogus "unknown option '--bogus'"
 worker_refuses --help "its arguments ask for --help"
+# A rank whose memory limit (ulimit -v) breaks Open MPI's shared memory:
+# MPI_Init succeeds, no message passes, and every rank waited for ever. The
+# start-up watchdog ends the job after --timeout, saying why; no image.
+unreachable=(sh -c '[ "$OMPI_COMM_WORLD_RANK" = 1 ] && ulimit -v 50000; exec "$0" "$@"')
+timeout 60 "${mpi[@]}" -np 2 "${unreachable[@]}" "$glint_mpi" whitted -W 64 -H 48 \
+  --timeout 3 -o x.png >run.out 2>run.err
+status=$?
+[ "$status" -ne 0 ] && [ "$status" -ne 124 ] ||
+  fail "a rank that cannot be reached: exit status $status"
+[ ! -e x.png ] || fail "a rank that cannot be reached: an image was written"
 # A scene file named without an extension is rank 0's file, as glint render
 # reads it: refused as no scene file, once (ranks called it an unknown
 # built-in scene)

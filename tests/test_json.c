@@ -796,8 +796,9 @@ static void syntax_errors_give_line_and_column(void **state) {
   load_fails(path, GLINT_E_PARSE, ":2:5: a NUL byte");
   write_bytes(f, "utf16.json", "\xff\xfe{\0}\0", 6, path, sizeof path);
   load_fails(path, GLINT_E_PARSE, ": UTF-16 text");
-  /* Nesting deeper than cJSON takes is refused, not a crash, and named
-   * (it was "found '['"); a string's brackets do not count. */
+  /* Nesting deeper than glint takes is refused, not a crash, and named
+   * (beyond cJSON's limit it was "found '['"; within it, cJSON's recursion
+   * overflowed a 64 KiB stack); a string's brackets do not count. */
   char deep[4012];
   memcpy(deep, "[\"[[[[\",", 8);
   memset(deep + 8, '[', 2000);
@@ -805,8 +806,13 @@ static void syntax_errors_give_line_and_column(void **state) {
   deep[4009] = '\0';
   write_bytes(f, "deep.json", deep, 4009, path, sizeof path);
   load_fails(path, GLINT_E_PARSE,
-             ":1:1008: JSON syntax error: arrays and objects nested deeper "
-             "than 1000 levels");
+             ":1:108: JSON syntax error: arrays and objects nested deeper "
+             "than 100 levels");
+  /* ... unless a syntax error comes before it */
+  memcpy(deep, "[1,}", 4);
+  write_bytes(f, "deep-after-error.json", deep, 4009, path, sizeof path);
+  load_fails(path, GLINT_E_PARSE,
+             ":1:4: JSON syntax error: found '}' after a comma");
 }
 
 static void structure_errors_give_the_json_path(void **state) {

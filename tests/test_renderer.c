@@ -8,6 +8,7 @@
  *  - the tile callback hands over every pixel exactly once, with the film's
  *    final values, and cancels the frame when it asks to;
  *  - two renderers of one world render at the same time on two threads;
+ *  - a thread with a small stack renders as deep as the renderer goes;
  *  - each bad argument is refused with a message. */
 #include "test_util.h"
 
@@ -472,6 +473,52 @@ static void auto_picks_streams_where_rays_scatter(void **state) {
   glint_scene_destroy(b);
 }
 
+/* glint_render from a thread with a 64 KiB stack, in every backend at the
+ * deepest depth: the tracers' recursion runs on the renderer's own threads
+ * (the AVX-512 beams at depth 64 need about 512 KiB; while the calling
+ * thread worked as one of them, this crashed). */
+typedef struct small_stack_render {
+  glint_scene *scene;
+  glint_backend backend;
+  glint_status status;
+  glint_image *image;
+} small_stack_render;
+
+static void *render_on_a_small_stack(void *p) {
+  small_stack_render *r = p;
+  glint_render_settings rs = settings_for(r->backend);
+  rs.width = 32;
+  rs.height = 24;
+  rs.max_depth = 64;
+  rs.threads = 1;
+  glint_error e;
+  r->status = glint_render(r->scene, &rs, &r->image, NULL, &e);
+  return NULL;
+}
+
+static void a_small_thread_renders_deep(void **state) {
+  (void)state;
+  glint_scene *s;
+  ASSERT_OK(glint_scene_builtin("billiard", &s, &e_));
+  for (int b = GLINT_BACKEND_SCALAR_FLOAT; b <= GLINT_BACKEND_STREAM_AVX512;
+       b++) {
+    if (!glint_backend_supported((glint_backend)b))
+      continue;
+    small_stack_render r = {s, (glint_backend)b, GLINT_E_ARGUMENT, NULL};
+    pthread_attr_t attr;
+    pthread_t thread;
+    assert_int_equal(pthread_attr_init(&attr), 0);
+    assert_int_equal(pthread_attr_setstacksize(&attr, (size_t)64 << 10), 0);
+    assert_int_equal(
+        pthread_create(&thread, &attr, render_on_a_small_stack, &r), 0);
+    pthread_join(thread, NULL);
+    pthread_attr_destroy(&attr);
+    assert_int_equal(r.status, GLINT_OK);
+    glint_image_destroy(r.image);
+  }
+  glint_scene_destroy(s);
+}
+
 /* Calls that overlap on one renderer are refused, not left to hang on its
  * threads or to overwrite the frame being rendered: from the frame's own
  * tile callback, and from a second thread. */
@@ -582,6 +629,7 @@ int main(void) {
       cmocka_unit_test(overlapping_calls_are_refused),
       cmocka_unit_test(bad_arguments_are_refused),
       cmocka_unit_test(auto_picks_streams_where_rays_scatter),
+      cmocka_unit_test(a_small_thread_renders_deep),
   };
   return cmocka_run_group_tests(tests, NULL, NULL);
 }

@@ -19,6 +19,7 @@
 #include "image/image.h"
 
 #include "core/error.h"
+#include "core/thread.h"
 
 #include <errno.h>
 #include <limits.h>
@@ -277,7 +278,7 @@ static glint_status start_encoder(glint_image_writer *w, const char *label,
     header_bad = gli_ppm_header(w->file.f, w->width, w->height);
   int thread_err = 0;
   if (!own_label || header_bad ||
-      (thread_err = pthread_create(&w->encoder, NULL, encode_loop, w)) != 0) {
+      (thread_err = gli_thread_start(&w->encoder, encode_loop, w)) != 0) {
     if (w->in_memory) {
       fclose(w->file.f);
       free(w->memory);

@@ -4,6 +4,7 @@
 #include "render/thread_pool.h"
 
 #include "core/error.h"
+#include "core/thread.h"
 
 #include <pthread.h>
 #include <stdlib.h>
@@ -19,12 +20,14 @@ struct thread_pool {
   pthread_cond_t wake, done;
   unsigned long generation; /* bumped by each run */
   int quit;
-  int size;    /* workers, the caller included */
+  int size;    /* spawned workers */
+  int first;   /* of the current run's on spawned threads: 1 while the
+                  caller works as worker 0, else 0 */
   int workers; /* of the current run */
   int pending; /* spawned workers of the current run still working */
   pool_task task;
   void *arg;
-  pool_thread *threads; /* size - 1 spawned threads, indices 1.. */
+  pool_thread *threads; /* size of them */
 };
 
 static void *thread_main(void *p) {
@@ -38,7 +41,7 @@ static void *thread_main(void *p) {
     if (pool->quit)
       break;
     seen = pool->generation;
-    if (self->index >= pool->workers)
+    if (self->index < pool->first || self->index >= pool->workers)
       continue;
     pool_task task = pool->task;
     void *arg = pool->arg;
@@ -55,8 +58,8 @@ static void *thread_main(void *p) {
 glint_status gli_thread_pool_create(int threads, thread_pool **out,
                                     glint_error *error) {
   thread_pool *pool = calloc(1, sizeof *pool);
-  pool_thread *t = threads > 1 ? calloc((size_t)threads - 1, sizeof *t) : NULL;
-  if (!pool || (threads > 1 && !t)) {
+  pool_thread *t = calloc((size_t)(threads > 1 ? threads : 1), sizeof *t);
+  if (!pool || !t) {
     free(pool);
     free(t);
     return gli_fail(error, GLINT_E_MEMORY, "out of memory");
@@ -65,11 +68,10 @@ glint_status gli_thread_pool_create(int threads, thread_pool **out,
   pthread_cond_init(&pool->wake, NULL);
   pthread_cond_init(&pool->done, NULL);
   pool->threads = t;
-  pool->size = 1;
-  for (int i = 1; i < threads; i++) {
-    t[i - 1].pool = pool;
-    t[i - 1].index = i;
-    if (pthread_create(&t[i - 1].id, NULL, thread_main, &t[i - 1]) != 0)
+  for (int i = 0; i < threads || i == 0; i++) {
+    t[i].pool = pool;
+    t[i].index = i;
+    if (gli_thread_start(&t[i].id, thread_main, &t[i]) != 0)
       break; /* the threads that did start do all the work */
     pool->size = i + 1;
   }
@@ -84,8 +86,8 @@ void gli_thread_pool_destroy(thread_pool *pool) {
   pool->quit = 1;
   pthread_cond_broadcast(&pool->wake);
   pthread_mutex_unlock(&pool->lock);
-  for (int i = 1; i < pool->size; i++)
-    pthread_join(pool->threads[i - 1].id, NULL);
+  for (int i = 0; i < pool->size; i++)
+    pthread_join(pool->threads[i].id, NULL);
   pthread_cond_destroy(&pool->wake);
   pthread_cond_destroy(&pool->done);
   pthread_mutex_destroy(&pool->lock);
@@ -93,24 +95,32 @@ void gli_thread_pool_destroy(thread_pool *pool) {
   free(pool);
 }
 
-int gli_thread_pool_size(const thread_pool *pool) { return pool->size; }
+int gli_thread_pool_size(const thread_pool *pool) {
+  return pool->size > 1 ? pool->size : 1;
+}
 
 void gli_thread_pool_run(thread_pool *pool, int workers, pool_task task,
                          void *arg) {
-  if (workers > pool->size)
-    workers = pool->size;
-  if (workers > 1) {
+  if (workers > gli_thread_pool_size(pool))
+    workers = gli_thread_pool_size(pool);
+  /* The caller works too where its stack allows: a frame then stays on
+   * the core whose caches hold the last one (a single-threaded viewer's
+   * frames took 8% longer handed to a thread and back). */
+  int first = pool->size == 0 || gli_thread_can_render() ? 1 : 0;
+  if (workers > first) {
     pthread_mutex_lock(&pool->lock);
     pool->task = task;
     pool->arg = arg;
+    pool->first = first;
     pool->workers = workers;
-    pool->pending = workers - 1;
+    pool->pending = workers - first;
     pool->generation++;
     pthread_cond_broadcast(&pool->wake);
     pthread_mutex_unlock(&pool->lock);
   }
-  task(arg, 0);
-  if (workers > 1) {
+  if (first)
+    task(arg, 0);
+  if (workers > first) {
     pthread_mutex_lock(&pool->lock);
     while (pool->pending > 0)
       pthread_cond_wait(&pool->done, &pool->lock);

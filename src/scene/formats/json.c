@@ -1180,9 +1180,19 @@ static const char *number_problem(const char *p, const char *end,
   return q;
 }
 
+/* The deepest nesting a scene may have. A scene nests five levels (a
+ * mesh's vertex inside its vertices inside an object inside objects inside
+ * the scene), and cJSON parses by recursion, about 100 bytes of stack a
+ * level: its own limit, 1000 levels, took more than the 64 KiB stack of a
+ * process run under ulimit -s 64, which crashed. */
+#define JSON_NESTING_LIMIT 100
 #define TEXT_OF_(x) #x
 #define TEXT_OF(x) TEXT_OF_(x)
-#define NESTING_LIMIT_TEXT TEXT_OF(CJSON_NESTING_LIMIT)
+#define NESTING_LIMIT_TEXT TEXT_OF(JSON_NESTING_LIMIT)
+_Static_assert(JSON_NESTING_LIMIT <= CJSON_NESTING_LIMIT,
+               "cJSON must take every nesting glint does");
+static const char too_deep[] =
+    "arrays and objects nested deeper than " NESTING_LIMIT_TEXT " levels";
 
 /* What cJSON reads but JSON (RFC 8259) refuses, found before it parses, so
  * that glint is exactly as strict as the format: an escape other than \"
@@ -1190,9 +1200,9 @@ static const char *number_problem(const char *p, const char *end,
  * silently cutting a name), \u0000 (no name can hold a NUL), a control
  * character inside a string, text that is not UTF-8 inside a string, and
  * a number outside JSON's grammar (01, 1., .5, -.5, 1e); and nesting
- * deeper than cJSON's limit, which cJSON reports as a bare syntax error at
- * the bracket. NULL when the text is clean, else where the problem is and
- * *what it is. */
+ * deeper than JSON_NESTING_LIMIT (beyond cJSON's own limit, cJSON reports
+ * a bare syntax error at the bracket). NULL when the text is clean, else where
+ * the problem is and *what it is. */
 static const char *grammar_problem(const char *data, size_t size,
                                    const char **what) {
   const char *p = data, *end = data + size;
@@ -1239,9 +1249,8 @@ static const char *grammar_problem(const char *data, size_t size,
     } else if (c == '"') {
       in_string = 1;
     } else if (c == '[' || c == '{') {
-      if (++depth > CJSON_NESTING_LIMIT) {
-        *what = "arrays and objects nested deeper than " NESTING_LIMIT_TEXT
-                " levels";
+      if (++depth > JSON_NESTING_LIMIT) {
+        *what = too_deep;
         return p;
       }
     } else if (c == ']' || c == '}') {
@@ -1272,18 +1281,32 @@ static glint_status parse_text(const char *path, const char *data, size_t size,
   gli_file_skip_bom(&data, &size);
   /* return_parse_end rather than cJSON_GetErrorPtr, which reads a global
    * that another thread's parse may have changed. */
+  /* What JSON forbids and cJSON lets pass; the first problem of either
+   * kind is the one said. Nesting too deep could overflow the stack in
+   * cJSON's recursion, so there cJSON reads only the text before it. */
+  const char *what, *bad = grammar_problem(data, size, &what);
   const char *end = NULL;
-  cJSON *root = cJSON_ParseWithOpts(text, &end, 1);
+  cJSON *root;
+  if (bad && what == too_deep) { /* (a copy: cJSON's text ends at a NUL) */
+    size_t n = (size_t)(bad - text);
+    char *before = malloc(n + 1);
+    if (!before)
+      return gli_fail(e, GLINT_E_MEMORY, "%s: out of memory", path);
+    memcpy(before, text, n);
+    before[n] = '\0';
+    root = cJSON_ParseWithOpts(before, &end, 1);
+    end = end ? text + (end - before) : NULL;
+    free(before);
+  } else {
+    root = cJSON_ParseWithOpts(text, &end, 1);
+  }
   char hint[160];
   if (!root) {
     if (!end || end < data || end > data + size)
       end = data + size;
     syntax_hint(data, &end, hint, sizeof hint);
   }
-  /* What JSON forbids and cJSON lets pass; the first problem of either
-   * kind is the one said. */
   size_t line, column;
-  const char *what, *bad = grammar_problem(data, size, &what);
   if (bad && (root || bad <= end)) {
     cJSON_Delete(root);
     gli_text_line_column(data, bad, 1, &line, &column);
