@@ -2,6 +2,7 @@
 
 #include <ctype.h>
 #include <errno.h>
+#include <fcntl.h>
 #include <math.h>
 #include <signal.h>
 #include <stdarg.h>
@@ -323,7 +324,22 @@ static void check_stdout(void) {
   _exit(EXIT_USAGE);
 }
 
+/* Whether standard output was closed when the program started. */
+static int stdout_closed;
+
+int cli_stdout_closed(void) { return stdout_closed; }
+
 void cli_write_errors_not_signals(void) {
+  for (int fd = STDIN_FILENO; fd <= STDERR_FILENO; fd++) {
+    if (fcntl(fd, F_GETFD) >= 0 || errno != EBADF)
+      continue;
+    stdout_closed |= fd == STDOUT_FILENO;
+    int null = open("/dev/null", fd == STDIN_FILENO ? O_RDONLY : O_WRONLY);
+    if (null >= 0 && null != fd) {
+      dup2(null, fd);
+      close(null);
+    }
+  }
   signal(SIGPIPE, SIG_IGN);
   signal(SIGXFSZ, SIG_IGN);
   atexit(check_stdout);

@@ -93,9 +93,13 @@ void cli_error(const char *format, ...)
  * temporary file removed) instead of a signal killing it: EPIPE for a
  * reader that went away (glint render -o - | head), EFBIG for a file past
  * the size limit (ulimit -f); and at exit, text that standard output could
- * not take is reported, with exit status 2. Called first by every
- * program. */
+ * not take is reported, with exit status 2. A standard stream that is
+ * closed (glint render >&-) is opened on /dev/null, its text discarded:
+ * the next file glint opened took its number, and the stream's text went
+ * into that file. Called first by every program. */
 void cli_write_errors_not_signals(void);
+/* Whether standard output was closed at the start (-o - is refused). */
+int cli_stdout_closed(void);
 
 /* Raises the stack limit (ulimit -s) to 8 MiB, the usual default, where a
  * lower soft limit allows: the main thread's stack grows on demand up to

@@ -14,6 +14,7 @@
 
 #include <glint.h>
 
+#include <errno.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
@@ -38,11 +39,15 @@ static double time_child(char **argv, double *render) {
 
 int bench_time_to_image(char **scenes, int nscenes,
                         const glint_render_settings *base, int runs) {
-  const char *tmp = getenv("TMPDIR") ? getenv("TMPDIR") : "/tmp";
+  /* (an empty TMPDIR is unset, as mktemp takes it; it made "/glint-...") */
+  const char *tmp = getenv("TMPDIR");
+  if (!tmp || !*tmp)
+    tmp = "/tmp";
   char folder[512], png[600], ppm[600];
   snprintf(folder, sizeof folder, "%s/glint-bench-XXXXXX", tmp);
   if (!mkdtemp(folder)) {
-    cli_error("%s: cannot make a folder for the images", folder);
+    cli_error("%s%s: cannot make a folder there for the images: %s",
+              tmp == getenv("TMPDIR") ? "TMPDIR " : "", tmp, strerror(errno));
     return EXIT_USAGE;
   }
   /* Ctrl-C ends the runs and still removes the folder (it was left). */

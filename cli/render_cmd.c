@@ -614,6 +614,11 @@ int cmd_render(int argc, char **argv) {
   glint_png_compression png_compression = o.png_compression;
   glint_image_format stream_format = o.stream_format;
   glint_error err;
+  if (to_stdout && cli_stdout_closed()) {
+    cli_error("-o -: standard output is closed; redirect it to a file or a "
+              "program");
+    return EXIT_USAGE;
+  }
   if (to_stdout && isatty(STDOUT_FILENO)) {
     cli_error("-o -: standard output is a terminal; redirect it to a file or "
               "a program");

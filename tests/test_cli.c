@@ -23,7 +23,8 @@ extern char **environ;
 
 static char dir[64];
 static char out[65536], err[65536];
-static const char *extra_env; /* one more NAME=value for the next run */
+static const char *extra_env; /* one more NAME=value (or one in its
+                                  place) for the next run */
 
 static int setup(void **state) {
   (void)state;
@@ -89,8 +90,10 @@ static int run(const char *first, ...) {
     fail_msg("cannot enter %s", dir);
   const char *envp[512];
   int ne = 0;
+  size_t replaced = extra_env ? strcspn(extra_env, "=") + 1 : 0;
   for (char **e = environ; *e && ne < 510; e++)
-    envp[ne++] = *e;
+    if (!extra_env || strncmp(*e, extra_env, replaced) != 0)
+      envp[ne++] = *e;
   if (extra_env)
     envp[ne++] = extra_env;
   envp[ne] = NULL;
@@ -523,6 +526,12 @@ static void bench_time_to_image(void **state) {
   assert_true(folder_is_empty());
   EXPECT_USAGE_ERROR("unknown scene 'atlantis'", "bench", "--time-to-image",
                      "--scenes", "atlantis");
+  /* A TMPDIR that cannot take the folder is named, with why */
+  extra_env = "TMPDIR=/nonexistent-glint-tmp";
+  EXPECT_USAGE_ERROR("glint: TMPDIR /nonexistent-glint-tmp: cannot make a "
+                     "folder there for the images: No such file or directory",
+                     "bench", "--time-to-image", "--scenes", "whitted");
+  extra_env = NULL;
 }
 
 static void bench_errors(void **state) {
@@ -807,6 +816,63 @@ static void a_closed_pipe_is_an_error(void **state) {
   if (!WIFEXITED(status))
     fail_msg("glint was killed by signal %d", WTERMSIG(status));
   assert_int_equal(WEXITSTATUS(status), 2);
+}
+
+/* Runs glint with standard stream `closed` closed, the other one of stdout
+ * and stderr into err; its exit status. */
+static int run_with_closed(int closed, char *const argv[]) {
+  char path[600];
+  snprintf(path, sizeof path, "%s/.other", dir);
+  posix_spawn_file_actions_t fa;
+  posix_spawn_file_actions_init(&fa);
+  posix_spawn_file_actions_addclose(&fa, closed);
+  posix_spawn_file_actions_addopen(&fa, closed == 1 ? 2 : 1, path,
+                                   O_WRONLY | O_CREAT | O_TRUNC, 0644);
+  char cwd[512];
+  if (!getcwd(cwd, sizeof cwd) || chdir(dir) != 0)
+    fail_msg("cannot enter %s", dir);
+  pid_t pid;
+  int rc = posix_spawn(&pid, GLINT_EXE, &fa, NULL, argv, environ);
+  posix_spawn_file_actions_destroy(&fa);
+  if (chdir(cwd) != 0 || rc != 0)
+    fail_msg("cannot run %s", GLINT_EXE);
+  int status;
+  assert_int_equal(waitpid(pid, &status, 0), pid);
+  slurp(path, err, sizeof err);
+  unlink(path);
+  if (!WIFEXITED(status))
+    fail_msg("glint was killed by signal %d", WTERMSIG(status));
+  return WEXITSTATUS(status);
+}
+
+/* A closed standard stream (glint render >&-) is /dev/null to glint: the
+ * image is written whole and the status is 0 (it was 2, "Bad file
+ * descriptor", after the image was written: the first file glint opened
+ * took the stream's number). -o - is refused when standard output is
+ * closed; an error with standard error closed is still status 2, with
+ * nothing written. */
+static void closed_standard_streams(void **state) {
+  (void)state;
+  char *render[] = {"glint", "render", "whitted", "-W",         "16",
+                    "-H",    "12",     "-o",      "closed.png", NULL};
+  assert_int_equal(run_with_closed(1, render), 0);
+  assert_string_equal(err, "");
+  assert_int_equal(run("render", "whitted", "-W", "16", "-H", "12", "-q", "-o",
+                       "open.png", NULL),
+                   0);
+  assert_int_equal(run("compare", "closed.png", "open.png", NULL), 0);
+  assert_non_null(strstr(out, "identical"));
+  char *to_stdout[] = {"glint", "render", "-W", "16", "-H",
+                       "12",    "-o",     "-",  NULL};
+  assert_int_equal(run_with_closed(1, to_stdout), 2);
+  assert_string_equal(err, "glint: -o -: standard output is closed; redirect "
+                           "it to a file or a program\n");
+  char *missing[] = {"glint", "render", "nowhere.nff", "-o", "never.png", NULL};
+  assert_int_equal(run_with_closed(2, missing), 2);
+  assert_false(exists("never.png"));
+  assert_int_equal(remove_in_folder("closed.png"), 0);
+  assert_int_equal(remove_in_folder("open.png"), 0);
+  assert_true(folder_is_empty());
 }
 
 /* What standard output cannot take is an error (exit 2, said on standard
@@ -1843,6 +1909,7 @@ int main(void) {
       cmocka_unit_test(bench_errors),
       cmocka_unit_test(a_closed_pipe_is_an_error),
       cmocka_unit_test(a_full_standard_output_is_an_error),
+      cmocka_unit_test(closed_standard_streams),
       cmocka_unit_test(resume_checks_the_frames_it_renders_again),
       cmocka_unit_test(a_file_past_the_size_limit_is_an_error),
       cmocka_unit_test(a_small_stack_limit),

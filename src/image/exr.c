@@ -116,7 +116,8 @@ int gli_exr_encode(const glint_film *film, FILE *f) {
   if (rv == EXR_ERR_SUCCESS)
     rv = done;
   if (rv != EXR_ERR_SUCCESS) {
-    errno = sink.error; /* 0 when the encoder itself failed */
+    /* 0 when the encoder itself failed, unless for memory */
+    errno = sink.error ? sink.error : rv == EXR_ERR_OUT_OF_MEMORY ? ENOMEM : 0;
     return -1;
   }
   /* The stream's own position never moved: put it at the end, so the
