@@ -133,8 +133,10 @@ int parse_double(const char *option, const char *text, double min,
   char *end;
   errno = 0;
   double v = strtod(text, &end);
-  /* strtod skips leading blanks; refused as parse_int refuses them */
-  if (end == text || *end != '\0' || isspace((unsigned char)*text)) {
+  /* strtod skips leading blanks, refused as parse_int refuses them, and
+   * reads hexadecimal (0x10 is 16), which no other number of glint's is */
+  if (end == text || *end != '\0' || isspace((unsigned char)*text) ||
+      strpbrk(text, "xX")) {
     cli_error("%s: '%s' is not a number", option, text);
     return -1;
   }

@@ -207,6 +207,8 @@ static void usage_errors(void **state) {
                      "0");
   EXPECT_USAGE_ERROR("--gamma: ' 2' is not a number", "render", "--gamma",
                      " 2");
+  EXPECT_USAGE_ERROR("--gamma: '0x2' is not a number", "render", "--gamma",
+                     "0x2");
   EXPECT_USAGE_ERROR("--gamma: 1e308 is outside 0.01..100", "render", "--gamma",
                      "1e308");
   EXPECT_USAGE_ERROR("--gamma: 1e-308 is outside 0.01..100", "view", "--gamma",
