@@ -39,6 +39,9 @@ static double time_child(char **argv, double *render) {
 
 int bench_time_to_image(char **scenes, int nscenes,
                         const glint_render_settings *base, int runs) {
+  /* Ctrl-C ends the runs and still removes the folder (it was left), even
+   * as the folder is being made. */
+  cli_catch_stop_signals();
   /* (an empty TMPDIR is unset, as mktemp takes it; it made "/glint-...") */
   const char *tmp = getenv("TMPDIR");
   if (!tmp || !*tmp)
@@ -50,8 +53,6 @@ int bench_time_to_image(char **scenes, int nscenes,
               tmp == getenv("TMPDIR") ? "TMPDIR " : "", tmp, strerror(errno));
     return EXIT_USAGE;
   }
-  /* Ctrl-C ends the runs and still removes the folder (it was left). */
-  cli_catch_stop_signals();
   snprintf(png, sizeof png, "%s/image.png", folder);
   snprintf(ppm, sizeof ppm, "%s/image.ppm", folder);
   char depth[16], spp[16], threads[16], width[16], height[16];

@@ -45,7 +45,7 @@ static void usage(FILE *f) {
       "                       seconds is taken for hung (default: 120); more\n"
       "                       than one tile or frame takes; and ranks that\n"
       "                       cannot all reach each other within S seconds\n"
-      "                       of starting stop the job\n"
+      "                       (at least 10) of starting stop the job\n"
       "  -t, --threads N      per rank; 0 (default) shares the CPUs this\n"
       "                       rank may use among the ranks on its host\n"
       "\n"
@@ -528,8 +528,10 @@ static void on_startup_overdue(int sig) {
   _exit(EXIT_USAGE);
 }
 
-/* --timeout's seconds, read before MPI_Init takes its own arguments out;
- * parse() checks the value, and refuses a bad one after start-up. */
+/* --timeout's seconds, read before MPI_Init takes its own arguments out
+ * (parse() checks the value, and refuses a bad one after start-up), and at
+ * least 10: a --timeout of 1 s for hung renders must not stop ranks that
+ * take a few seconds to start on a loaded machine. */
 static double startup_timeout(int argc, char **argv) {
   double seconds = 120;
   for (int i = 1; i < argc && strcmp(argv[i], "--"); i++) {
@@ -542,7 +544,7 @@ static double startup_timeout(int argc, char **argv) {
     if (value && end != value && !*end && v >= 0.001 && v <= 1e6)
       seconds = v;
   }
-  return seconds;
+  return seconds > 10 ? seconds : 10;
 }
 
 static void watch_startup(double seconds) {

@@ -145,37 +145,50 @@ static void on_stop_before_catching(int sig) {
   _exit(EXIT_INTERRUPTED);
 }
 
-void cli_end_on_stop_signals(void) {
+/* Handles the stop signals with `handler`, but leaves one the process was
+ * started with ignored (nohup's SIGHUP, the SIGINT of a script's
+ * background job) ignored, as a shell does. */
+static void handle_stop_signals(void (*handler)(int)) {
+  static const int stops[] = {SIGINT, SIGTERM, SIGHUP};
   struct sigaction sa;
   memset(&sa, 0, sizeof sa);
-  sa.sa_handler = on_stop_before_catching;
+  sa.sa_handler = handler;
   sigemptyset(&sa.sa_mask);
-  sigaction(SIGINT, &sa, NULL);
-  sigaction(SIGTERM, &sa, NULL);
-  sigaction(SIGHUP, &sa, NULL);
+  for (size_t i = 0; i < sizeof stops / sizeof *stops; i++) {
+    struct sigaction was;
+    if (sigaction(stops[i], NULL, &was) == 0 && was.sa_handler == SIG_IGN)
+      continue;
+    sigaction(stops[i], &sa, NULL);
+  }
+}
+
+void cli_end_on_stop_signals(void) {
+  handle_stop_signals(on_stop_before_catching);
 }
 
 void cli_catch_stop_signals(void) {
+  handle_stop_signals(on_stop_signal);
   struct sigaction sa;
   memset(&sa, 0, sizeof sa);
-  sa.sa_handler = on_stop_signal;
   sigemptyset(&sa.sa_mask);
-  sigaction(SIGINT, &sa, NULL);
-  sigaction(SIGTERM, &sa, NULL);
-  sigaction(SIGHUP, &sa, NULL);
   sa.sa_handler = on_stop_overdue;
   sa.sa_flags = SA_RESTART; /* an image being finished must not see EINTR */
   sigaction(SIGALRM, &sa, NULL);
 }
 
 void cli_remove_on_stop(const glint_image_writer *writer) {
-  stop_watch = 1;
   stop_temp_set = 0;
   const char *temp = glint_image_writer_temp_path(writer);
   if (temp && strlen(temp) < sizeof stop_temp) {
     memcpy(stop_temp, temp, strlen(temp) + 1);
     stop_temp_set = 1;
   }
+  /* A signal that came before (while the file was being opened) started
+   * no grace: start it now, or a render that does not stop never would. */
+  int watching = stop_watch;
+  stop_watch = 1;
+  if (!watching && stop_signal)
+    alarm(STOP_GRACE);
 }
 
 void cli_stop_finishing(int finishing) {

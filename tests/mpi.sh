@@ -213,6 +213,11 @@ timeout 60 "${mpi[@]}" -np 2 "${unreachable[@]}" "$glint_mpi" whitted -W 64 -H 4
 status=$?
 [ "$status" -ne 0 ] && [ "$status" -ne 124 ] ||
   fail "a rank that cannot be reached: exit status $status"
+# (AddressSanitizer, reserving its shadow memory, cannot start under the
+# limit at all)
+grep -q "AddressSanitizer" run.err ||
+  grep -q "the ranks did not all reach each other within 10 s" run.err ||
+  fail "a rank that cannot be reached: not said"
 [ ! -e x.png ] || fail "a rank that cannot be reached: an image was written"
 # A scene file named without an extension is rank 0's file, as glint render
 # reads it: refused as no scene file, once (ranks called it an unknown

@@ -13,6 +13,7 @@
 
 #include <dirent.h>
 #include <math.h>
+#include <pthread.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
@@ -810,9 +811,62 @@ static void syntax_errors_give_line_and_column(void **state) {
              "than 100 levels");
   /* ... unless a syntax error comes before it */
   memcpy(deep, "[1,}", 4);
-  write_bytes(f, "deep-after-error.json", deep, 4009, path, sizeof path);
+  memset(deep + 4, '[', 2000);
+  write_bytes(f, "deep-after-error.json", deep, 2004, path, sizeof path);
   load_fails(path, GLINT_E_PARSE,
              ":1:4: JSON syntax error: found '}' after a comma");
+}
+
+/* A file nested 999 deep loads (and is refused) on a thread of 64 KiB of
+ * stack, whatever comes before the nesting: cJSON never parses deeper than
+ * 100 levels (it parsed the whole text when a problem it lets pass, such
+ * as 01 or a tab in a string, came first, and its recursion overflowed the
+ * stack). */
+typedef struct small_load {
+  const char *path;
+  glint_status status;
+  char message[sizeof((glint_error *)0)->message];
+} small_load;
+
+static void *load_on_a_small_stack(void *p) {
+  small_load *l = p;
+  glint_scene *s = NULL;
+  glint_error e;
+  l->status = glint_scene_load(l->path, &s, &e);
+  snprintf(l->message, sizeof l->message, "%s", l->status ? e.message : "");
+  glint_scene_destroy(s);
+  return NULL;
+}
+
+static void deep_nesting_on_a_small_stack(void **state) {
+  const fixture *f = *state;
+  static const struct {
+    const char *start, *said;
+  } cases[] = {
+      {"{\"a\": 01, \"b\": ", ":1:7: JSON syntax error: "},
+      {"{\"a\": \"x\ty\", \"b\": ", ":1:9: JSON syntax error: a control"},
+      {"{\"a\": \"x\ny\", \"b\": ", ": JSON syntax error: "},
+      {"{\"a\": \"x\\\"[[[[\", \"b\": ", ":1:122: JSON syntax error: arrays"},
+  };
+  for (size_t i = 0; i < sizeof cases / sizeof *cases; i++) {
+    char text[1100], path[256];
+    size_t n = strlen(cases[i].start);
+    memcpy(text, cases[i].start, n);
+    memset(text + n, '[', 999);
+    write_bytes(f, "deep-small.json", text, n + 999, path, sizeof path);
+    small_load l = {path, GLINT_OK, ""};
+    pthread_attr_t attr;
+    pthread_t thread;
+    assert_int_equal(pthread_attr_init(&attr), 0);
+    assert_int_equal(pthread_attr_setstacksize(&attr, (size_t)64 << 10), 0);
+    assert_int_equal(pthread_create(&thread, &attr, load_on_a_small_stack, &l),
+                     0);
+    pthread_join(thread, NULL);
+    pthread_attr_destroy(&attr);
+    assert_int_equal(l.status, GLINT_E_PARSE);
+    if (!strstr(l.message, cases[i].said))
+      fail_msg("case %zu: '%s' lacks '%s'", i, l.message, cases[i].said);
+  }
 }
 
 static void structure_errors_give_the_json_path(void **state) {
@@ -858,6 +912,7 @@ int main(void) {
       cmocka_unit_test(scene_files_are_the_builtins),
       cmocka_unit_test(meshes_resolve_beside_the_scene),
       cmocka_unit_test(syntax_errors_give_line_and_column),
+      cmocka_unit_test(deep_nesting_on_a_small_stack),
       cmocka_unit_test(structure_errors_give_the_json_path),
       cmocka_unit_test(unreadable_files_are_io_errors),
   };

@@ -1,10 +1,8 @@
 /* The threads of core/thread.h. */
-#define _GNU_SOURCE /* pthread_getattr_np, gettid */
+#define _GNU_SOURCE /* pthread_getattr_np */
 #include "core/thread.h"
 
 #include <stdint.h>
-#include <sys/resource.h>
-#include <unistd.h>
 
 int gli_thread_start(pthread_t *id, void *(*run)(void *), void *arg) {
   pthread_attr_t attr;
@@ -19,14 +17,7 @@ int gli_thread_start(pthread_t *id, void *(*run)(void *), void *arg) {
 }
 
 int gli_thread_can_render(void) {
-  /* The main thread's stack grows on demand up to the stack limit of the
-   * moment (glibc would read /proc/self/maps to tell its extent). */
-  if (gettid() == getpid()) {
-    struct rlimit stack;
-    return getrlimit(RLIMIT_STACK, &stack) == 0 &&
-           (stack.rlim_cur == RLIM_INFINITY ||
-            stack.rlim_cur >= 2 * GLI_RENDER_STACK);
-  }
+  /* (for the main thread glibc reads /proc/self/maps: some 30 us) */
   pthread_attr_t attr;
   void *lowest;
   size_t size;
@@ -36,5 +27,6 @@ int gli_thread_can_render(void) {
   pthread_attr_destroy(&attr);
   char here;
   uintptr_t at = (uintptr_t)&here, bottom = (uintptr_t)lowest;
-  return !err && at > bottom && at - bottom >= GLI_RENDER_STACK;
+  return !err && at > bottom && at - bottom <= size &&
+         at - bottom >= GLI_RENDER_STACK;
 }

@@ -22,7 +22,8 @@
 int gli_thread_start(pthread_t *id, void *(*run)(void *), void *arg);
 
 /* Whether the calling thread's stack has GLI_RENDER_STACK bytes left below
- * the caller's frame (0 where that cannot be told). */
+ * the caller's frame (0 where that cannot be told). Costs a system call or
+ * a read of /proc/self/maps: ask once per thread. */
 int gli_thread_can_render(void);
 
 #endif

@@ -20,9 +20,11 @@ struct thread_pool {
   pthread_cond_t wake, done;
   unsigned long generation; /* bumped by each run */
   int quit;
-  int size;    /* spawned workers */
-  int first;   /* of the current run's on spawned threads: 1 while the
-                  caller works as worker 0, else 0 */
+  int size;         /* spawned workers */
+  int first;        /* the first worker of the current run on a spawned thread:
+                       1 while the caller works as worker 0, else 0 */
+  pthread_t caller; /* the last caller, and whether it can be worker 0 */
+  int caller_known, caller_can_work;
   int workers; /* of the current run */
   int pending; /* spawned workers of the current run still working */
   pool_task task;
@@ -106,7 +108,12 @@ void gli_thread_pool_run(thread_pool *pool, int workers, pool_task task,
   /* The caller works too where its stack allows: a frame then stays on
    * the core whose caches hold the last one (a single-threaded viewer's
    * frames took 8% longer handed to a thread and back). */
-  int first = pool->size == 0 || gli_thread_can_render() ? 1 : 0;
+  if (!pool->caller_known || !pthread_equal(pool->caller, pthread_self())) {
+    pool->caller = pthread_self();
+    pool->caller_can_work = gli_thread_can_render();
+    pool->caller_known = 1;
+  }
+  int first = pool->size == 0 || pool->caller_can_work ? 1 : 0;
   if (workers > first) {
     pthread_mutex_lock(&pool->lock);
     pool->task = task;

@@ -1191,23 +1191,44 @@ static const char *number_problem(const char *p, const char *end,
 #define NESTING_LIMIT_TEXT TEXT_OF(JSON_NESTING_LIMIT)
 _Static_assert(JSON_NESTING_LIMIT <= CJSON_NESTING_LIMIT,
                "cJSON must take every nesting glint does");
-static const char too_deep[] =
-    "arrays and objects nested deeper than " NESTING_LIMIT_TEXT " levels";
+
+/* Where the nesting first goes deeper than JSON_NESTING_LIMIT, or NULL;
+ * strings are taken as cJSON takes them (to the next unescaped quote,
+ * whatever lies between), since their ends decide how deep cJSON goes. A
+ * closing bracket with nothing open (which cJSON refuses there) counts for
+ * nothing. */
+static const char *too_deep(const char *p, const char *end) {
+  int in_string = 0;
+  long depth = 0;
+  for (; p < end; p++) {
+    if (in_string) {
+      if (*p == '\\')
+        p++;
+      else if (*p == '"')
+        in_string = 0;
+    } else if (*p == '"') {
+      in_string = 1;
+    } else if (*p == '[' || *p == '{') {
+      if (++depth > JSON_NESTING_LIMIT)
+        return p;
+    } else if ((*p == ']' || *p == '}') && depth > 0) {
+      depth--;
+    }
+  }
+  return NULL;
+}
 
 /* What cJSON reads but JSON (RFC 8259) refuses, found before it parses, so
  * that glint is exactly as strict as the format: an escape other than \"
  * \\ \/ \b \f \n \r \t and \uXXXX (cJSON ends the string at a bad one,
  * silently cutting a name), \u0000 (no name can hold a NUL), a control
  * character inside a string, text that is not UTF-8 inside a string, and
- * a number outside JSON's grammar (01, 1., .5, -.5, 1e); and nesting
- * deeper than JSON_NESTING_LIMIT (beyond cJSON's own limit, cJSON reports
- * a bare syntax error at the bracket). NULL when the text is clean, else where
- * the problem is and *what it is. */
+ * a number outside JSON's grammar (01, 1., .5, -.5, 1e). NULL when the text is
+ * clean, else where the problem is and *what it is. */
 static const char *grammar_problem(const char *data, size_t size,
                                    const char **what) {
   const char *p = data, *end = data + size;
   int in_string = 0;
-  long depth = 0;
   for (; p < end; p++) {
     unsigned char c = (unsigned char)*p;
     if (in_string) {
@@ -1248,13 +1269,6 @@ static const char *grammar_problem(const char *data, size_t size,
       }
     } else if (c == '"') {
       in_string = 1;
-    } else if (c == '[' || c == '{') {
-      if (++depth > JSON_NESTING_LIMIT) {
-        *what = too_deep;
-        return p;
-      }
-    } else if (c == ']' || c == '}') {
-      depth--;
     } else if (c == '.') {
       *what = "a number without a digit before its decimal point";
       return p;
@@ -1281,14 +1295,21 @@ static glint_status parse_text(const char *path, const char *data, size_t size,
   gli_file_skip_bom(&data, &size);
   /* return_parse_end rather than cJSON_GetErrorPtr, which reads a global
    * that another thread's parse may have changed. */
-  /* What JSON forbids and cJSON lets pass; the first problem of either
-   * kind is the one said. Nesting too deep could overflow the stack in
-   * cJSON's recursion, so there cJSON reads only the text before it. */
+  /* What JSON forbids and cJSON lets pass, nesting too deep among it; the
+   * first problem of either kind is the one said. Nesting too deep could
+   * overflow the stack in cJSON's recursion, so there cJSON reads only the
+   * text before it (to the same end where it meets a problem earlier). */
   const char *what, *bad = grammar_problem(data, size, &what);
+  const char *deep = too_deep(data, data + size);
+  if (deep && (!bad || deep < bad)) {
+    bad = deep;
+    what =
+        "arrays and objects nested deeper than " NESTING_LIMIT_TEXT " levels";
+  }
   const char *end = NULL;
   cJSON *root;
-  if (bad && what == too_deep) { /* (a copy: cJSON's text ends at a NUL) */
-    size_t n = (size_t)(bad - text);
+  if (deep) { /* (a copy: cJSON's text ends at a NUL) */
+    size_t n = (size_t)(deep - text);
     char *before = malloc(n + 1);
     if (!before)
       return gli_fail(e, GLINT_E_MEMORY, "%s: out of memory", path);
