@@ -12,6 +12,7 @@
 typedef struct pool_thread {
   thread_pool *pool;
   int index;
+  unsigned long seen; /* the run it last saw (at its start: the current) */
   pthread_t id;
 } pool_thread;
 
@@ -20,22 +21,23 @@ struct thread_pool {
   pthread_cond_t wake, done;
   unsigned long generation; /* bumped by each run */
   int quit;
-  int size;         /* spawned workers */
-  int first;        /* the first worker of the current run on a spawned thread:
-                       1 while the caller works as worker 0, else 0 */
+  int size;         /* workers: the caller (or its stand-in) and the threads */
+  int stand_in;     /* whether threads[0], worker 0's stand-in, has started */
+  int first;        /* the first worker of the current run on a thread: 1 while
+                       the caller works as worker 0, else 0 */
   pthread_t caller; /* the last caller, and whether it can be worker 0 */
   int caller_known, caller_can_work;
   int workers; /* of the current run */
-  int pending; /* spawned workers of the current run still working */
+  int pending; /* workers of the current run on threads still working */
   pool_task task;
   void *arg;
-  pool_thread *threads; /* size of them */
+  pool_thread *threads; /* worker i's at [i] */
 };
 
 static void *thread_main(void *p) {
   pool_thread *self = p;
   thread_pool *pool = self->pool;
-  unsigned long seen = 0;
+  unsigned long seen = self->seen;
   pthread_mutex_lock(&pool->lock);
   for (;;) {
     while (!pool->quit && pool->generation == seen)
@@ -70,7 +72,8 @@ glint_status gli_thread_pool_create(int threads, thread_pool **out,
   pthread_cond_init(&pool->wake, NULL);
   pthread_cond_init(&pool->done, NULL);
   pool->threads = t;
-  for (int i = 0; i < threads || i == 0; i++) {
+  pool->size = 1;
+  for (int i = 1; i < threads; i++) {
     t[i].pool = pool;
     t[i].index = i;
     if (gli_thread_start(&t[i].id, thread_main, &t[i]) != 0)
@@ -88,7 +91,7 @@ void gli_thread_pool_destroy(thread_pool *pool) {
   pool->quit = 1;
   pthread_cond_broadcast(&pool->wake);
   pthread_mutex_unlock(&pool->lock);
-  for (int i = 0; i < pool->size; i++)
+  for (int i = pool->stand_in ? 0 : 1; i < pool->size; i++)
     pthread_join(pool->threads[i].id, NULL);
   pthread_cond_destroy(&pool->wake);
   pthread_cond_destroy(&pool->done);
@@ -97,23 +100,30 @@ void gli_thread_pool_destroy(thread_pool *pool) {
   free(pool);
 }
 
-int gli_thread_pool_size(const thread_pool *pool) {
-  return pool->size > 1 ? pool->size : 1;
-}
+int gli_thread_pool_size(const thread_pool *pool) { return pool->size; }
 
 void gli_thread_pool_run(thread_pool *pool, int workers, pool_task task,
                          void *arg) {
-  if (workers > gli_thread_pool_size(pool))
-    workers = gli_thread_pool_size(pool);
+  if (workers > pool->size)
+    workers = pool->size;
   /* The caller works too where its stack allows: a frame then stays on
    * the core whose caches hold the last one (a single-threaded viewer's
-   * frames took 8% longer handed to a thread and back). */
+   * frames took 8% longer handed to a thread and back). Where it does not,
+   * a thread stands in for it, started the first time it is needed (when
+   * the system refuses one, the caller works whatever its stack). */
   if (!pool->caller_known || !pthread_equal(pool->caller, pthread_self())) {
     pool->caller = pthread_self();
     pool->caller_can_work = gli_thread_can_render();
     pool->caller_known = 1;
   }
-  int first = pool->size == 0 || pool->caller_can_work ? 1 : 0;
+  if (!pool->caller_can_work && !pool->stand_in) {
+    pool_thread *t = &pool->threads[0];
+    t->pool = pool;
+    t->index = 0;
+    t->seen = pool->generation; /* (no run is under way: runs never overlap) */
+    pool->stand_in = gli_thread_start(&t->id, thread_main, t) == 0;
+  }
+  int first = pool->caller_can_work || !pool->stand_in ? 1 : 0;
   if (workers > first) {
     pthread_mutex_lock(&pool->lock);
     pool->task = task;

@@ -14,10 +14,8 @@ typedef struct thread_pool thread_pool;
 /* The work of one worker: index 0 .. workers - 1. */
 typedef void (*pool_task)(void *arg, int worker);
 
-/* Starts `threads` threads, worker 0's stand-in among them (fewer if the
- * system refuses some: the pool then has fewer workers, which
- * gli_thread_pool_size tells, and when it refuses all, the caller works as
- * the one worker whatever its stack). */
+/* Starts threads - 1 threads (fewer if the system refuses some: the pool
+ * then has fewer workers, which gli_thread_pool_size tells). */
 glint_status gli_thread_pool_create(int threads, thread_pool **pool,
                                     glint_error *error);
 void gli_thread_pool_destroy(thread_pool *pool);
