@@ -74,6 +74,20 @@ static pid_t spawn_glint(char *const argv[], char *const envp[],
   return pid;
 }
 
+/* Waits for glint (pid) to end, puts what it wrote to err_path in err (and
+ * removes the file), and returns its exit status; a glint killed by a
+ * signal fails the test. */
+static int exit_status(pid_t pid, const char *err_path) {
+  int status;
+  assert_int_equal(waitpid(pid, &status, 0), pid);
+  slurp(err_path, err, sizeof err);
+  unlink(err_path);
+  if (!WIFEXITED(status))
+    fail_msg("glint was killed by signal %d; stderr: %s", WTERMSIG(status),
+             err);
+  return WEXITSTATUS(status);
+}
+
 static int run(const char *first, ...) {
   const char *argv[64] = {GLINT_EXE};
   int n = 1;
@@ -834,13 +848,7 @@ static int run_with_closed(int closed, char *const argv[]) {
   snprintf(path, sizeof path, "%s/.other", dir);
   pid_t pid = spawn_glint(argv, environ, closed == 1 ? NULL : path,
                           closed == 2 ? NULL : path);
-  int status;
-  assert_int_equal(waitpid(pid, &status, 0), pid);
-  slurp(path, err, sizeof err);
-  unlink(path);
-  if (!WIFEXITED(status))
-    fail_msg("glint was killed by signal %d", WTERMSIG(status));
-  return WEXITSTATUS(status);
+  return exit_status(pid, path);
 }
 
 /* A closed standard stream (glint render >&-) is /dev/null to glint: the
@@ -949,6 +957,19 @@ static void a_file_past_the_size_limit_is_an_error(void **state) {
   assert_true(folder_is_empty()); /* no temporary file */
 }
 
+/* Whether glint runs under AddressSanitizer (gcc's macro, clang's
+ * feature), which reserves terabytes of address space at start-up. */
+#if defined(__SANITIZE_ADDRESS__)
+#define UNDER_ADDRESS_SANITIZER 1
+#elif defined(__has_feature)
+#if __has_feature(address_sanitizer)
+#define UNDER_ADDRESS_SANITIZER 1
+#endif
+#endif
+#ifndef UNDER_ADDRESS_SANITIZER
+#define UNDER_ADDRESS_SANITIZER 0
+#endif
+
 /* Runs glint with the stack limit (ulimit -s) `soft` and `hard` bytes,
  * stderr into err; its exit status. */
 static int run_with_stack_limit(rlim_t soft, rlim_t hard, const char *scene,
@@ -967,14 +988,7 @@ static int run_with_stack_limit(rlim_t soft, rlim_t hard, const char *scene,
           depth, "-q", "-o", output, (char *)NULL);
     _exit(98);
   }
-  int status;
-  assert_int_equal(waitpid(pid, &status, 0), pid);
-  slurp(err_path, err, sizeof err);
-  unlink(err_path);
-  if (!WIFEXITED(status))
-    fail_msg("glint was killed by signal %d; stderr: %s", WTERMSIG(status),
-             err);
-  return WEXITSTATUS(status);
+  return exit_status(pid, err_path);
 }
 
 /* A small stack limit (ulimit -s 64) crashed glint in cJSON's recursion
@@ -985,13 +999,8 @@ static int run_with_stack_limit(rlim_t soft, rlim_t hard, const char *scene,
  * more than 64 KiB.) */
 static void a_small_stack_limit(void **state) {
   (void)state;
-#if defined(__SANITIZE_ADDRESS__)
-  skip();
-#elif defined(__has_feature)
-#if __has_feature(address_sanitizer)
-  skip();
-#endif
-#endif
+  if (UNDER_ADDRESS_SANITIZER)
+    skip();
   struct rlimit saved;
   getrlimit(RLIMIT_STACK, &saved);
   const rlim_t small = (rlim_t)64 << 10;
@@ -1029,13 +1038,8 @@ static void a_small_stack_limit(void **state) {
  * AddressSanitizer, which reserves terabytes of address space.) */
 static void out_of_memory_exits_1(void **state) {
   (void)state;
-#if defined(__SANITIZE_ADDRESS__)
-  skip();
-#elif defined(__has_feature)
-#if __has_feature(address_sanitizer)
-  skip();
-#endif
-#endif
+  if (UNDER_ADDRESS_SANITIZER)
+    skip();
   struct rlimit saved, small;
   getrlimit(RLIMIT_AS, &saved);
   small = saved;
@@ -1788,13 +1792,7 @@ static void stopped_while_loading(void **state) {
     for (int tries = 0; cpu_ticks(pid) < ticks && tries < 30000; tries++)
       usleep(1000);
     kill(pid, signals[k]);
-    int status;
-    assert_int_equal(waitpid(pid, &status, 0), pid);
-    slurp(err_path, err, sizeof err);
-    unlink(err_path);
-    if (!WIFEXITED(status))
-      fail_msg("glint was killed by signal %d", WTERMSIG(status));
-    assert_int_equal(WEXITSTATUS(status), 130);
+    assert_int_equal(exit_status(pid, err_path), 130);
     /* "glint: interrupted (SIGINT)" while loading, as it should be; the
      * render's own message should the load have ended */
     assert_int_equal(strncmp(err, "glint: interrupted", 18), 0);
