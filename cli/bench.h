@@ -57,6 +57,24 @@ void bench_csv_row(FILE *csv, const char *scene, int depth,
                    const bench_column *col, const glint_stats *st,
                    const double *seconds, int runs);
 
+/* One scene's world and a renderer per column of a benchmark table, each
+ * kept across the table's runs and depths (cli/bench_renderers.c says
+ * why). open prints its error; render returns glint's. */
+typedef struct bench_renderers {
+  glint_world *world;
+  glint_renderer **renderers; /* one per column, made at its first frame */
+  glint_film *film;
+  int ncols, deepest;
+} bench_renderers;
+int bench_renderers_open(bench_renderers *renderers, const glint_scene *scene,
+                         int ncols, int deepest);
+/* One frame of `settings` (backend, threads, size, depth and spp) with
+ * column `col`'s renderer, made from the settings when it has none. */
+glint_status bench_renderers_render(bench_renderers *renderers, int col,
+                                    const glint_render_settings *settings,
+                                    glint_stats *stats, glint_error *error);
+void bench_renderers_close(bench_renderers *renderers);
+
 /* The thesis-style tables over scenes x depths x columns. */
 int bench_scenes(char **names, int nscenes, const int *depths, int ndepths,
                  const glint_render_settings *base, const bench_column *cols,

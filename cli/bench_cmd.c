@@ -31,8 +31,11 @@ static void bench_usage(FILE *f) {
       "and prints the median seconds per depth and backend (the shape of the\n"
       "thesis's tables A.1-A.3), rays per second, speed-ups over\n"
       "scalar-float, SIMD lane utilisation and the stream backends' stages.\n"
-      "Runs are interleaved so that all columns come from the same run,\n"
-      "after one untimed warm-up render of each scene and column.\n"
+      "Each scene is committed once and each column keeps one renderer\n"
+      "for all its frames, as an application rendering many frames does\n"
+      "(--time-to-image measures a whole glint render process). Runs are\n"
+      "interleaved so that a scene's columns come from the same run, after\n"
+      "one untimed warm-up frame of each column.\n"
       "\n"
       "Options:\n"
       "  --scenes LIST      built-in scenes or scene files, comma-separated\n"
@@ -693,36 +696,47 @@ int bench_scenes(char **names, int nscenes, const int *depths, int ndepths,
   glint_render_settings rs = *base;
   int tty = isatty(STDERR_FILENO), status = 0;
   size_t done = 0, total = ncells * (size_t)runs;
-  /* Run -1 warms up, untimed: each scene and column once at the first
+  int deepest = depths[0];
+  for (int d = 1; d < ndepths; d++)
+    deepest = depths[d] > deepest ? depths[d] : deepest;
+  /* Scene by scene, each column's renderer kept for all of the scene's
+   * runs and depths (cli/bench_renderers.c); within a scene the runs are
+   * interleaved. Run -1 warms up, untimed: each column once at the first
    * depth (page faults in fresh scratch memory, cold caches, the clock
    * ramping up would otherwise land on the first row). */
-  for (int r = -1; r < runs && !status; r++)
-    for (int s = 0; s < nscenes && !status; s++)
+  for (int s = 0; s < nscenes && !status; s++) {
+    bench_renderers br;
+    if (bench_renderers_open(&br, scenes[s], ncols, deepest)) {
+      status = 1;
+      break;
+    }
+    for (int r = -1; r < runs && !status; r++)
       for (int d = 0; d < (r < 0 ? 1 : ndepths) && !status; d++)
         for (int c = 0; c < ncols && !status; c++) {
           rs.max_depth = depths[d];
           rs.backend = cols[c].backend;
           rs.threads = cols[c].threads;
           if (tty && r < 0) {
-            fprintf(stderr, "\r[warm-up] %s %s\033[K", stems[s], cols[c].name);
+            fprintf(stderr, "\r[warm-up] %s %s\033[K", stems[s],
+                    cols[c].name);
             fflush(stderr);
           } else if (tty) {
             fprintf(stderr, "\r[%zu/%zu] %s depth %d %s\033[K", ++done, total,
                     stems[s], depths[d], cols[c].name);
             fflush(stderr);
           }
-          glint_image *image;
           glint_error err;
-          if (glint_render(scenes[s], &rs, &image, &stats[IDX(s, d, c)],
-                           &err)) {
+          if (bench_renderers_render(&br, c, &rs, &stats[IDX(s, d, c)],
+                                     &err)) {
             cli_error("%s: %s", stems[s], err.message);
             status = EXIT_USAGE;
             break;
           }
-          glint_image_destroy(image);
           if (r >= 0)
             SECONDS(s, d, c)[r] = stats[IDX(s, d, c)].render_seconds;
         }
+    bench_renderers_close(&br);
+  }
   if (tty)
     fputs("\r\033[K", stderr);
 

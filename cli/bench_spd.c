@@ -138,27 +138,31 @@ int bench_spd(const char *dir, const glint_render_settings *base,
   rs.spp = 1;
   rs.max_depth = 5;
   int status = 0, tty = isatty(STDERR_FILENO);
-  /* Run -1 warms up, untimed (see bench_cmd.c). */
-  for (int r = -1; r < runs && !status; r++)
-    for (size_t s = 0; s < SPD_COUNT && !status; s++) {
+  /* Scene by scene, each column's renderer kept for all its runs; run -1
+   * warms up, untimed (see bench_cmd.c). */
+  for (size_t s = 0; s < SPD_COUNT && !status; s++) {
+    bench_renderers br;
+    if (bench_renderers_open(&br, scenes[s], ncols, rs.max_depth)) {
+      status = 1;
+      break;
+    }
+    for (int r = -1; r < runs && !status; r++) {
       for (int b = 0; b < ncols; b++) {
         if (tty)
           fprintf(stderr, "\r[run %d/%d] %s %s\033[K", r + 1, runs,
                   spd_scenes[s], cols[b].name);
         rs.backend = cols[b].backend;
         rs.threads = cols[b].threads;
-        glint_image *im;
         glint_error err;
-        if (glint_render(scenes[s], &rs, &im, &ST(s, b), &err)) {
+        if (bench_renderers_render(&br, b, &rs, &ST(s, b), &err)) {
           cli_error("%s: %s", spd_scenes[s], err.message);
           status = EXIT_USAGE;
           break;
         }
-        glint_image_destroy(im);
         if (r >= 0)
           T(s, b, r) = ST(s, b).render_seconds;
       }
-      for (int k = 0; tachyon && r >= 0 && k < ntt; k++) {
+      for (int k = 0; tachyon && r >= 0 && !status && k < ntt; k++) {
         if (tty)
           fprintf(stderr, "\r[run %d/%d] %s tachyon %d thread%s\033[K", r + 1,
                   runs, spd_scenes[s], tthreads[k],
@@ -166,6 +170,8 @@ int bench_spd(const char *dir, const glint_render_settings *base,
         T(s, ncols + k, r) = tachyon_seconds(paths[s], tthreads[k], out);
       }
     }
+    bench_renderers_close(&br);
+  }
   if (tty)
     fputs("\r\033[K", stderr);
   if (tachyon)

@@ -534,6 +534,56 @@ static void bench_runs_and_writes_csv(void **state) {
   unlink(p);
 }
 
+/* The CSV row of `scene,depth,backend,` in csv, from its rays on (the
+ * timings before them differ from run to run). */
+static const char *csv_rays(const char *csv, const char *row) {
+  const char *p = strstr(csv, row);
+  assert_non_null(p);
+  for (int field = 0; field < 11; field++) {
+    p = strchr(p, ',');
+    assert_non_null(p);
+    p++;
+  }
+  return p;
+}
+
+/* A column keeps one renderer across the table's depths and runs: a depth
+ * rendered after a deeper one counts the rays, lanes and generations that
+ * a table of it alone counts (the renderer is made for the deepest, and its
+ * stream buffers hold the deeper generations' rays). */
+static void bench_reuses_a_renderer_per_column(void **state) {
+  (void)state;
+  const char *backends = glint_backend_supported(GLINT_BACKEND_STREAM_SSE)
+                             ? "scalar-float,stream-sse"
+                             : "scalar-float";
+  char p[128], alone[8192], after[8192];
+  snprintf(p, sizeof p, "%s/b.csv", dir);
+  assert_int_equal(run("bench", "--scenes", "billiard", "--depths", "2",
+                       "--runs", "1", "-W", "24", "-H", "16", "-s", "2",
+                       "--backends", backends, "--csv", "b.csv", NULL),
+                   0);
+  slurp(p, alone, sizeof alone);
+  assert_int_equal(run("bench", "--scenes", "billiard", "--depths", "9,2",
+                       "--runs", "2", "-W", "24", "-H", "16", "-s", "2",
+                       "--backends", backends, "--csv", "b.csv", NULL),
+                   0);
+  slurp(p, after, sizeof after);
+  unlink(p);
+  const char *rows[] = {"billiard,2,scalar-float,", "billiard,2,stream-sse,"};
+  for (int k = 0; k < (strchr(backends, 'm') ? 2 : 1); k++) {
+    const char *a = csv_rays(alone, rows[k]), *b = csv_rays(after, rows[k]);
+    /* rays, primary, secondary and shadow rays: four fields */
+    const char *end = a;
+    for (int field = 0; field < 4; field++)
+      end = strchr(end, ',') + 1;
+    assert_memory_equal(a, b, (size_t)(end - a));
+    assert_int_not_equal(strncmp(b, csv_rays(after, k ? "billiard,9,stream-sse,"
+                                                      : "billiard,9,scalar-float,"),
+                                 (size_t)(end - a)),
+                         0);
+  }
+}
+
 /* --time-to-image: glint render as a child process, PNG and PPM, against
  * the render; its images go to a folder of its own that it removes. */
 static void bench_time_to_image(void **state) {
@@ -1932,6 +1982,7 @@ int main(void) {
       cmocka_unit_test(defaults_quiet_and_stats),
       cmocka_unit_test(a_far_object_is_noted),
       cmocka_unit_test(bench_runs_and_writes_csv),
+      cmocka_unit_test(bench_reuses_a_renderer_per_column),
       cmocka_unit_test(bench_csv_keeps_files_on_error),
       cmocka_unit_test(output_linked_to_the_scene),
       cmocka_unit_test(default_output_is_named_after_the_scene),

@@ -1,0 +1,78 @@
+/* The renderers a benchmark table times: one scene's world, committed once,
+ * and a renderer per column, made at the column's first frame and kept for
+ * every later run and depth, as an application that renders many frames
+ * keeps one (glint view, animations, glint-mpi).
+ *
+ * Timing a glint_render call per run instead measured, besides the render,
+ * glibc returning the last call's scratch memory to the system and the
+ * next call faulting it in again: the renderer, its threads and their
+ * buffers were made and freed every call, and a worker thread allocates
+ * from a malloc arena of its own, which glibc trims. Whitted at 640x480,
+ * depth 5, 1 spp, two threads: the AVX-512 beams took 0.0037 s a frame
+ * between stream-avx512 frames and 0.0015 s alone, the stream renderer
+ * faulting in about 1 000 pages a call. A one-shot render's whole cost
+ * (loading, committing, writing the file) is what --time-to-image
+ * measures. */
+#include "args.h"
+#include "bench.h"
+
+#include <stdlib.h>
+
+int bench_renderers_open(bench_renderers *b, const glint_scene *scene,
+                         int ncols, int deepest) {
+  glint_error err;
+  b->ncols = ncols;
+  b->deepest = deepest;
+  b->film = NULL;
+  b->renderers = calloc((size_t)ncols, sizeof *b->renderers);
+  if (!b->renderers) {
+    cli_error("out of memory");
+    return -1;
+  }
+  if (glint_world_commit(scene, &b->world, NULL, &err)) {
+    cli_error("%s", err.message);
+    free(b->renderers);
+    return -1;
+  }
+  return 0;
+}
+
+glint_status bench_renderers_render(bench_renderers *b, int col,
+                                    const glint_render_settings *rs,
+                                    glint_stats *stats, glint_error *err) {
+  glint_status st;
+  if (!b->renderers[col]) {
+    /* Made for the deepest frame of the table, so that no later frame
+     * grows the stream buffers inside its timed render. */
+    glint_render_settings made = *rs;
+    made.max_depth = b->deepest;
+    if ((st = glint_renderer_create(b->world, &made, &b->renderers[col], err)))
+      return st;
+  }
+  glint_scene_info info;
+  glint_world_get_info(b->world, &info);
+  int w = rs->width ? rs->width : info.width;
+  int h = rs->height ? rs->height : info.height;
+  if (b->film &&
+      (glint_film_width(b->film) != w || glint_film_height(b->film) != h)) {
+    glint_film_destroy(b->film);
+    b->film = NULL;
+  }
+  if (!b->film && (st = glint_film_create(w, h, &b->film, err)))
+    return st;
+  glint_frame_settings frame;
+  glint_frame_settings_default(&frame);
+  frame.width = w;
+  frame.height = h;
+  frame.max_depth = rs->max_depth;
+  frame.spp = rs->spp;
+  return glint_renderer_render(b->renderers[col], &frame, b->film, stats, err);
+}
+
+void bench_renderers_close(bench_renderers *b) {
+  for (int c = 0; c < b->ncols; c++)
+    glint_renderer_destroy(b->renderers[c]);
+  free(b->renderers);
+  glint_film_destroy(b->film);
+  glint_world_destroy(b->world);
+}
