@@ -717,8 +717,7 @@ int bench_scenes(char **names, int nscenes, const int *depths, int ndepths,
           rs.backend = cols[c].backend;
           rs.threads = cols[c].threads;
           if (tty && r < 0) {
-            fprintf(stderr, "\r[warm-up] %s %s\033[K", stems[s],
-                    cols[c].name);
+            fprintf(stderr, "\r[warm-up] %s %s\033[K", stems[s], cols[c].name);
             fflush(stderr);
           } else if (tty) {
             fprintf(stderr, "\r[%zu/%zu] %s depth %d %s\033[K", ++done, total,
@@ -726,8 +725,7 @@ int bench_scenes(char **names, int nscenes, const int *depths, int ndepths,
             fflush(stderr);
           }
           glint_error err;
-          if (bench_renderers_render(&br, c, &rs, &stats[IDX(s, d, c)],
-                                     &err)) {
+          if (bench_renderers_render(&br, c, &rs, &stats[IDX(s, d, c)], &err)) {
             cli_error("%s: %s", stems[s], err.message);
             status = EXIT_USAGE;
             break;

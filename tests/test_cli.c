@@ -577,10 +577,12 @@ static void bench_reuses_a_renderer_per_column(void **state) {
     for (int field = 0; field < 4; field++)
       end = strchr(end, ',') + 1;
     assert_memory_equal(a, b, (size_t)(end - a));
-    assert_int_not_equal(strncmp(b, csv_rays(after, k ? "billiard,9,stream-sse,"
-                                                      : "billiard,9,scalar-float,"),
-                                 (size_t)(end - a)),
-                         0);
+    assert_int_not_equal(
+        strncmp(b,
+                csv_rays(after, k ? "billiard,9,stream-sse,"
+                                  : "billiard,9,scalar-float,"),
+                (size_t)(end - a)),
+        0);
   }
 }
 
