@@ -157,9 +157,12 @@ static ALWAYS_INLINE packet_inv packet_inverse(const packet_origin *po, vvec3 d,
  * more than that error. The far distance is widened by a few ulps of
  * itself, for the rounding of the distance and of the reciprocal. (Ize
  * 2013, "Robust BVH ray traversal", bounds the slab test's errors so.) */
-static ALWAYS_INLINE vmask packet_box(const gli_bvh_node *n,
-                                      const packet_inv *r, vfloat tmin,
-                                      vfloat tmax, vmask active) {
+#define BOX_WIDENING 1.0000005f /* the far distance's few ulps */
+
+static ALWAYS_INLINE vmask packet_box_near(const gli_bvh_node *n,
+                                           const packet_inv *r, vfloat tmin,
+                                           vfloat tmax, vmask active,
+                                           vfloat *near_out) {
   vfloat lx, ly, lz, hx, hy, hz, unused0, unused1;
   vf_splat4(&n->lo[0], &lx, &ly, &lz, &hx);
   vf_splat4(&n->hi[1], &hy, &hz, &unused0, &unused1);
@@ -175,7 +178,15 @@ static ALWAYS_INLINE vmask packet_box(const gli_bvh_node *n,
                        vf_max(vf_min(t0z, t1z), tmin));
   vfloat far = vf_min(vf_min(vf_max(t0x, t1x), vf_max(t0y, t1y)),
                       vf_min(vf_max(t0z, t1z), tmax));
-  return vm_and(active, vf_le(near, vf_mul(far, vf_set1(1.0000005f))));
+  *near_out = near;
+  return vm_and(active, vf_le(near, vf_mul(far, vf_set1(BOX_WIDENING))));
+}
+
+static ALWAYS_INLINE vmask packet_box(const gli_bvh_node *n,
+                                      const packet_inv *r, vfloat tmin,
+                                      vfloat tmax, vmask active) {
+  vfloat near;
+  return packet_box_near(n, r, tmin, tmax, active, &near);
 }
 
 /* Tests a leaf's primitive `ref` for the lanes of m (closest hit: narrowing
@@ -209,10 +220,15 @@ static ALWAYS_INLINE uint32_t hand_over(const gli_bvh *bvh,
   return bvh->packet_wide[node];
 }
 
-/* The closest-hit walk, depth first: the child the packet's direction meets
- * first is pushed last. A node's box is tested when it is popped, against
- * the lanes' nearest hits so far (*tmax, which the leaf function narrows),
- * so boxes behind a hit are skipped. */
+/* The closest-hit walk, depth first. An inner node's two children are
+ * tested together (two independent chains of arithmetic, where testing
+ * each as it was popped made one long chain per node), and the packet goes
+ * on into the child its direction meets first, while the other waits on
+ * the stack with its lanes' entry distances. Popped, it is culled by one
+ * comparison against the lanes' nearest hits so far (*tmax, which the leaf
+ * function narrows), so boxes behind a hit are skipped without their
+ * node being read again; a lane it passes is one the box test at that
+ * moment would pass, so the walk finds what testing on popping found. */
 static ALWAYS_INLINE void
 packet_bvh_closest(const gli_bvh *bvh, const packet_origin *po, vvec3 d,
                    vmask active, vfloat tmin, const vfloat *tmax, int newton,
@@ -221,33 +237,64 @@ packet_bvh_closest(const gli_bvh *bvh, const packet_origin *po, vvec3 d,
                    void *ctx) {
   int lanes = vm_count(active);
   packet_inv r = packet_inverse(po, d, active, newton);
+  const gli_bvh_node *nodes = bvh->packet_nodes;
   uint32_t stack[GLI_BVH_MAX_DEPTH];
+  vfloat entry[GLI_BVH_MAX_DEPTH]; /* NaN in the lanes that miss the box */
   int sp = 0;
-  stack[sp++] = 0;
-  uint64_t box_tests = 0; /* each of `lanes` lanes */
+  uint64_t box_tests = 1; /* each of `lanes` lanes */
   test_count prims = {0, 0};
-  while (sp > 0) {
-    uint32_t node = stack[--sp];
-    const gli_bvh_node *n = &bvh->packet_nodes[node];
-    if (n->count)
-      prefetch(ctx, bvh->refs + n->offset, n->count);
-    vmask m = packet_box(n, &r, tmin, *tmax, active);
-    box_tests++;
-    if (vm_none(m))
-      continue;
+  uint32_t node = 0;
+  const gli_bvh_node *n = nodes;
+  if (n->count)
+    prefetch(ctx, bvh->refs + n->offset, n->count);
+  vmask m = packet_box(n, &r, tmin, *tmax, active);
+  int more = vm_any(m);
+  while (more) {
     if (n->count == 0) {
       uint32_t wide = hand_over(bvh, n, node, m, alone);
-      if (__builtin_expect(wide != GLI_WIDE_NONE, 0)) {
+      if (__builtin_expect(wide == GLI_WIDE_NONE, 1)) {
+        const gli_bvh_node *c = &nodes[n->offset];
+        if (c[0].count)
+          prefetch(ctx, bvh->refs + c[0].offset, c[0].count);
+        if (c[1].count)
+          prefetch(ctx, bvh->refs + c[1].offset, c[1].count);
+        vfloat near0, near1;
+        vmask m0 = packet_box_near(&c[0], &r, tmin, *tmax, active, &near0);
+        vmask m1 = packet_box_near(&c[1], &r, tmin, *tmax, active, &near1);
+        box_tests += 2;
+        int hit0 = vm_any(m0), hit1 = vm_any(m1);
+        if (hit0 | hit1) {
+          /* the child the direction meets first: the upper one (1) where
+           * the packet runs towards the axis's lower end */
+          int first = hit0 & hit1 ? r.neg[n->axis] : hit1;
+          if (hit0 & hit1) {
+            stack[sp] = n->offset + (uint32_t)!first;
+            entry[sp++] = first ? vf_select(m0, near0, vf_set1(NAN))
+                                : vf_select(m1, near1, vf_set1(NAN));
+          }
+          node = n->offset + (uint32_t)first;
+          m = first ? m1 : m0;
+          n = &c[first];
+          continue;
+        }
+      } else {
         walk_alone(ctx, wide, m);
-        continue;
       }
-      int far = !r.neg[n->axis];
-      stack[sp++] = n->offset + (uint32_t)far;
-      stack[sp++] = n->offset + (uint32_t)!far;
     } else {
       add_tests(&prims, n->count, vm_count(m));
       for (uint32_t k = 0; k < n->count; k++)
         leaf(ctx, bvh->refs[n->offset + k], m);
+    }
+    /* the nearest waiting box that a lane may still find a nearer hit in */
+    more = 0;
+    while (sp > 0 && !more) {
+      sp--;
+      m = vf_le(entry[sp], vf_mul(*tmax, vf_set1(BOX_WIDENING)));
+      more = vm_any(m);
+    }
+    if (more) {
+      node = stack[sp];
+      n = &nodes[node];
     }
   }
   test_count boxes = {box_tests, box_tests * (uint64_t)lanes};
@@ -255,7 +302,9 @@ packet_bvh_closest(const gli_bvh *bvh, const packet_origin *po, vvec3 d,
 }
 
 /* The segment walk of shadow rays: every leaf the lanes' segments (tmin,
- * tmax) pass through, in any order, until no lane is *alive. While a leaf's
+ * tmax) pass through, in any order, until no lane is *alive. An inner
+ * node's children are tested together (see packet_bvh_closest), the second
+ * waiting on the stack with the lanes that entered it. While a leaf's
  * primitives are tested, *alive holds only the lanes inside its box; the
  * leaf function clears the lanes it blocks. */
 static ALWAYS_INLINE void
@@ -264,25 +313,37 @@ packet_bvh_segment(const gli_bvh *bvh, const packet_origin *po, vvec3 d,
                    glint_stats *st, packet_leaf_fn leaf, int alone,
                    packet_alone_fn walk_alone, void *ctx) {
   packet_inv r = packet_inverse(po, d, *alive, newton);
+  const gli_bvh_node *nodes = bvh->packet_nodes;
   uint32_t stack[GLI_BVH_MAX_DEPTH];
+  vmask entered[GLI_BVH_MAX_DEPTH];
   int sp = 0;
-  stack[sp++] = 0;
-  test_count boxes = {0, 0}, prims = {0, 0};
-  while (sp > 0 && vm_any(*alive)) {
-    uint32_t node = stack[--sp];
-    const gli_bvh_node *n = &bvh->packet_nodes[node];
-    vmask m = packet_box(n, &r, tmin, tmax, *alive);
-    add_tests(&boxes, 1, vm_count(*alive));
-    if (vm_none(m))
-      continue;
+  test_count boxes = {1, (uint64_t)vm_count(*alive)}, prims = {0, 0};
+  uint32_t node = 0;
+  const gli_bvh_node *n = nodes;
+  vmask m = packet_box(n, &r, tmin, tmax, *alive);
+  int more = vm_any(m);
+  while (more) {
     if (n->count == 0) {
       uint32_t wide = hand_over(bvh, n, node, m, alone);
-      if (__builtin_expect(wide != GLI_WIDE_NONE, 0)) {
+      if (__builtin_expect(wide == GLI_WIDE_NONE, 1)) {
+        const gli_bvh_node *c = &nodes[n->offset];
+        vmask m0 = packet_box(&c[0], &r, tmin, tmax, *alive);
+        vmask m1 = packet_box(&c[1], &r, tmin, tmax, *alive);
+        add_tests(&boxes, 2, vm_count(*alive));
+        int hit0 = vm_any(m0), hit1 = vm_any(m1);
+        if (hit0 | hit1) {
+          if (hit0 & hit1) {
+            stack[sp] = n->offset + 1;
+            entered[sp++] = m1;
+          }
+          node = n->offset + (uint32_t)!hit0;
+          m = hit0 ? m0 : m1;
+          n = &c[!hit0];
+          continue;
+        }
+      } else {
         walk_alone(ctx, wide, m); /* clears the lanes it finds blocked */
-        continue;
       }
-      stack[sp++] = n->offset + 1;
-      stack[sp++] = n->offset;
     } else {
       vmask outside = vm_andnot(*alive, m); /* lanes not in this box */
       *alive = m;
@@ -290,6 +351,17 @@ packet_bvh_segment(const gli_bvh *bvh, const packet_origin *po, vvec3 d,
       for (uint32_t k = 0; k < n->count && vm_any(*alive); k++)
         leaf(ctx, bvh->refs[n->offset + k], *alive);
       *alive = vm_or(*alive, outside);
+    }
+    /* the next waiting box that a lane still alive entered */
+    more = 0;
+    while (sp > 0 && !more && vm_any(*alive)) {
+      sp--;
+      m = vm_and(entered[sp], *alive);
+      more = vm_any(m);
+    }
+    if (more) {
+      node = stack[sp];
+      n = &nodes[node];
     }
   }
   flush_tests(st, boxes, prims);

@@ -37,6 +37,18 @@
 #define PACKET_WALKS_APART 0
 #endif
 
+/* Whether the closest-hit walk is a function of its own rather than inlined
+ * into packet_nearest: 1 for the stream backends (render/stream_tracer.c),
+ * where it is inlined into every shading of the tracer's one large loop.
+ * Inlined there, the walk that tests an inner node's children together ran
+ * the AVX-512 streams 4-8% slower than the walk before it on tree-s4,
+ * teapot-s4 and tetra-s6; apart, 2-6% faster on the SPD scenes (pinned,
+ * medians of 7-15). The beams, which lose up to 9% by the call on giza at
+ * depth 1, keep it inlined. */
+#ifndef PACKET_NEAREST_APART
+#define PACKET_NEAREST_APART 0
+#endif
+
 /* A packet's rays as scalars, for its lanes that walk alone (stored at
  * each hand-over, which is rare, rather than for every packet). */
 typedef struct lane_rays {
@@ -194,6 +206,19 @@ nearest_hybrid(nearest_query *q, const gli_bvh *bvh, vmask active) {
                        nearest_alone, q);
 }
 
+/* The closest-hit walk of packet_nearest (see PACKET_NEAREST_APART). */
+#if PACKET_NEAREST_APART
+#define NEAREST_WALK_INLINING __attribute__((noinline))
+#else
+#define NEAREST_WALK_INLINING ALWAYS_INLINE
+#endif
+static NEAREST_WALK_INLINING void
+nearest_walk(nearest_query *q, const gli_bvh *bvh, vmask active) {
+  packet_bvh_closest(bvh, q->po, q->d, active, q->eps, &q->h->t, q->newton,
+                     q->st, nearest_prefetch, nearest_leaf, 0, nearest_alone,
+                     q);
+}
+
 /* The lanes' nearest hits: the planes (unbounded, outside the BVH), then
  * the BVH's primitives, or every primitive when there is no BVH (the
  * thesis's brute force, §4.3). */
@@ -226,8 +251,7 @@ static ALWAYS_INLINE void packet_nearest(const packet_scene *ps, vvec3 o,
   if (PACKET_HAND_OVER && ps->alone_lanes)
     nearest_hybrid(&q, bvh, active);
   else
-    packet_bvh_closest(bvh, &po, d, active, eps, &h->t, newton, st,
-                       nearest_prefetch, nearest_leaf, 0, nearest_alone, &q);
+    nearest_walk(&q, bvh, active);
 }
 
 /* ---- shadow rays ------------------------------------------------------ */

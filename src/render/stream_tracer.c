@@ -39,6 +39,7 @@
 /* Stream packets walk the binary BVH and never hand rays to the wide one,
  * whatever --accel says (render/packet_rays.h says why). */
 #define PACKET_HAND_OVER 0
+#define PACKET_NEAREST_APART 1 /* see render/packet_rays.h */
 #ifdef GLINT_ISA_SSE
 #define PACKET_WALKS_APART 1 /* see render/packet_rays.h */
 #endif
