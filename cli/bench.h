@@ -54,22 +54,25 @@ void bench_child_args(const glint_render_settings *rs, char width[16],
 int bench_spd_scene_at(const char *dir, const char *path);
 int bench_run_capture(char *const argv[], char *buf, size_t size);
 void bench_csv_row(FILE *csv, const char *scene, int depth,
-                   const bench_column *col, const glint_stats *st,
-                   const double *seconds, int runs);
+                   const glint_stats *st, const double *seconds, int runs);
 
 /* One scene's world and a renderer per column of a benchmark table, each
  * kept across the table's runs and depths (cli/bench_renderers.c says
  * why). open prints its error; render returns glint's. */
 typedef struct bench_renderers {
+  const glint_scene *scene;
   glint_world *world;
-  glint_renderer **renderers; /* one per column, made at its first frame */
+  /* per column and backend (an auto column's choices), each made at its
+   * first frame */
+  glint_renderer **renderers;
   glint_film *film;
   int ncols, deepest;
 } bench_renderers;
 int bench_renderers_open(bench_renderers *renderers, const glint_scene *scene,
                          int ncols, int deepest);
 /* One frame of `settings` (backend, threads, size, depth and spp) with
- * column `col`'s renderer, made from the settings when it has none. */
+ * column `col`'s renderer for the backend that renders it, made from the
+ * settings when the column has none. */
 glint_status bench_renderers_render(bench_renderers *renderers, int col,
                                     const glint_render_settings *settings,
                                     glint_stats *stats, glint_error *error);

@@ -41,7 +41,9 @@ static void bench_usage(FILE *f) {
       "  --scenes LIST      built-in scenes or scene files, comma-separated\n"
       "                     (default: whitted,giza,billiard)\n"
       "  --depths LIST      depths, e.g. 1-15 or 1,5,10,15 (default: 1-15)\n"
-      "  --backends LIST    backends (default: every one this CPU supports)\n"
+      "  --backends LIST    backends (default: every one this CPU supports);\n"
+      "                     auto renders each scene and depth with what\n"
+      "                     glint render would choose for it\n"
       "  --runs N           repetitions; the median is reported (default: 3)\n"
       "  -W, --width N      (default: the scene's own; 640 for built-ins)\n"
       "  -H, --height N     (default: the scene's own; 480 for built-ins)\n"
@@ -382,8 +384,11 @@ int bench_parse(int argc, char **argv, bench_options *o) {
         cli_unsupported_backend(items[i]);
         return EXIT_USAGE;
       }
+      /* auto stays auto: each scene and depth renders with what glint
+       * render would choose for them (glint_backend_choose) */
       if (o->nbackends < GLINT_BACKEND_COUNT)
-        o->backends[o->nbackends++] = glint_backend_resolve(b);
+        o->backends[o->nbackends++] =
+            b == GLINT_BACKEND_AUTO ? b : glint_backend_resolve(b);
     }
     if (o->nbackends <= 0) {
       cli_error("--backends: the list is empty");
@@ -617,25 +622,25 @@ int cmd_bench(int argc, char **argv) {
 }
 
 void bench_csv_row(FILE *csv, const char *scene, int depth,
-                   const bench_column *col, const glint_stats *st,
-                   const double *seconds, int runs) {
+                   const glint_stats *st, const double *seconds, int runs) {
   double med = bench_median(seconds, runs), lo = seconds[0], hi = seconds[0];
   for (int r = 1; r < runs; r++) {
     lo = fmin(lo, seconds[r]);
     hi = fmax(hi, seconds[r]);
   }
-  int w = glint_backend_width(col->backend);
+  /* what rendered: an auto column's choice for this scene and depth */
+  int w = glint_backend_width(st->backend);
   fprintf(csv,
           "%s,%d,%s,%d,%d,%d,%d,%d,%.6f,%.6f,%.6f,%llu,%llu,%llu,%llu,"
           "%.3f,%.4f,%.3f,%.6f,%.6f,%.6f,%.6f,",
-          scene, depth, glint_backend_name(col->backend), st->width, st->height,
+          scene, depth, glint_backend_name(st->backend), st->width, st->height,
           st->spp, st->threads, runs, med, lo, hi,
           (unsigned long long)bench_rays(st),
           (unsigned long long)st->primary_rays,
           (unsigned long long)st->secondary_rays,
           (unsigned long long)st->shadow_rays,
           med > 0 ? (double)bench_rays(st) / med / 1e6 : 0.0,
-          bench_lane_use(st, col->backend),
+          bench_lane_use(st, st->backend),
           st->beams ? (double)st->sub_beams / (double)st->beams : 0.0,
           st->stage_seconds[0], st->stage_seconds[1], st->stage_seconds[2],
           st->stage_seconds[3]);
@@ -813,17 +818,20 @@ int bench_scenes(char **names, int nscenes, const int *depths, int ndepths,
         printf("%5d", depths[d]);
         for (int c = 0; c < ncols; c++)
           if (glint_backend_width(cols[c].backend) > 1)
-            printf(" %13.1f%%", 100.0 * bench_lane_use(&stats[IDX(s, d, c)],
-                                                       cols[c].backend));
+            printf(" %13.1f%%",
+                   100.0 * bench_lane_use(&stats[IDX(s, d, c)],
+                                          stats[IDX(s, d, c)].backend));
         printf("\n");
       }
     }
     /* Stream backends: where the time goes, and how full each generation's
      * packets are (issue 5). */
     for (int c = 0; c < ncols; c++) {
-      if (cols[c].backend < GLINT_BACKEND_STREAM_SSE)
+      int streams = 0;
+      for (int d = 0; d < ndepths; d++)
+        streams |= stats[IDX(s, d, c)].backend >= GLINT_BACKEND_STREAM_SSE;
+      if (!streams)
         continue;
-      int w = glint_backend_width(cols[c].backend);
       printf("Scene \"%s\", %s: seconds per stage (summed over threads) and "
              "lane use per generation\n%5s %9s %9s %9s %9s   generations 0, "
              "1, 2, ...\n",
@@ -831,6 +839,11 @@ int bench_scenes(char **names, int nscenes, const int *depths, int ndepths,
              "compact");
       for (int d = 0; d < ndepths; d++) {
         const glint_stats *st = &stats[IDX(s, d, c)];
+        if (st->backend < GLINT_BACKEND_STREAM_SSE) {
+          printf("%5d  (%s)\n", depths[d], glint_backend_name(st->backend));
+          continue;
+        }
+        int w = glint_backend_width(st->backend);
         printf("%5d %9.4f %9.4f %9.4f %9.4f  ", depths[d], st->stage_seconds[0],
                st->stage_seconds[1], st->stage_seconds[2],
                st->stage_seconds[3]);
@@ -860,7 +873,7 @@ int bench_scenes(char **names, int nscenes, const int *depths, int ndepths,
   for (int s = 0; csv && s < nscenes && !status; s++)
     for (int d = 0; d < ndepths; d++)
       for (int c = 0; c < ncols; c++)
-        bench_csv_row(csv, stems[s], depths[d], &cols[c], &stats[IDX(s, d, c)],
+        bench_csv_row(csv, stems[s], depths[d], &stats[IDX(s, d, c)],
                       SECONDS(s, d, c), runs);
   free(stats);
   free(times);

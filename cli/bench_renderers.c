@@ -12,7 +12,11 @@
  * between stream-avx512 frames and 0.0015 s alone, the stream renderer
  * faulting in about 1 000 pages a call. A one-shot render's whole cost
  * (loading, committing, writing the file) is what --time-to-image
- * measures. */
+ * measures.
+ *
+ * A column of auto renders each depth with the backend glint render would
+ * choose for it (glint_backend_choose weighs the depth), so it may keep a
+ * renderer for each backend it chose. */
 #include "args.h"
 #include "bench.h"
 
@@ -21,10 +25,12 @@
 int bench_renderers_open(bench_renderers *b, const glint_scene *scene,
                          int ncols, int deepest) {
   glint_error err;
+  b->scene = scene;
   b->ncols = ncols;
   b->deepest = deepest;
   b->film = NULL;
-  b->renderers = calloc((size_t)ncols, sizeof *b->renderers);
+  b->renderers =
+      calloc((size_t)ncols * GLINT_BACKEND_COUNT, sizeof *b->renderers);
   if (!b->renderers) {
     cli_error("out of memory");
     return -1;
@@ -41,12 +47,16 @@ glint_status bench_renderers_render(bench_renderers *b, int col,
                                     const glint_render_settings *rs,
                                     glint_stats *stats, glint_error *err) {
   glint_status st;
-  if (!b->renderers[col]) {
+  glint_backend backend = glint_backend_choose(rs->backend, b->scene, rs);
+  glint_renderer **renderer =
+      &b->renderers[(size_t)col * GLINT_BACKEND_COUNT + backend];
+  if (!*renderer) {
     /* Made for the deepest frame of the table, so that no later frame
      * grows the stream buffers inside its timed render. */
     glint_render_settings made = *rs;
+    made.backend = backend;
     made.max_depth = b->deepest;
-    if ((st = glint_renderer_create(b->world, &made, &b->renderers[col], err)))
+    if ((st = glint_renderer_create(b->world, &made, renderer, err)))
       return st;
   }
   glint_scene_info info;
@@ -66,12 +76,12 @@ glint_status bench_renderers_render(bench_renderers *b, int col,
   frame.height = h;
   frame.max_depth = rs->max_depth;
   frame.spp = rs->spp;
-  return glint_renderer_render(b->renderers[col], &frame, b->film, stats, err);
+  return glint_renderer_render(*renderer, &frame, b->film, stats, err);
 }
 
 void bench_renderers_close(bench_renderers *b) {
-  for (int c = 0; c < b->ncols; c++)
-    glint_renderer_destroy(b->renderers[c]);
+  for (size_t k = 0; k < (size_t)b->ncols * GLINT_BACKEND_COUNT; k++)
+    glint_renderer_destroy(b->renderers[k]);
   free(b->renderers);
   glint_film_destroy(b->film);
   glint_world_destroy(b->world);

@@ -218,8 +218,7 @@ int bench_spd(const char *dir, const glint_render_settings *base,
       double rays = (double)bench_rays(&ST(s, best_b));
       printf(" %10.2f\n", best > 0 ? rays / best / 1e6 : 0.0);
       for (int b = 0; csv && b < ncols; b++)
-        bench_csv_row(csv, spd_scenes[s], 5, &cols[b], &ST(s, b), &T(s, b, 0),
-                      runs);
+        bench_csv_row(csv, spd_scenes[s], 5, &ST(s, b), &T(s, b, 0), runs);
       for (int k = 0; csv && tachyon && k < ntt; k++)
         fprintf(csv, "%s,5,tachyon,512,512,1,%d,%d,%.6f,,,,,,,,,,,,,,\n",
                 spd_scenes[s], tthreads[k], runs,

@@ -586,6 +586,39 @@ static void bench_reuses_a_renderer_per_column(void **state) {
   }
 }
 
+/* An auto column renders each scene and depth with what glint render
+ * chooses for them (the streams for Billiard at depth 15 where the CPU has
+ * them, the beams at depth 1), and its CSV rows name that backend. It was
+ * resolved once, without a scene: the widest beams at every depth. */
+static void bench_auto_renders_what_render_chooses(void **state) {
+  (void)state;
+  char p[128], csv[4096];
+  snprintf(p, sizeof p, "%s/b.csv", dir);
+  assert_int_equal(run("bench", "--scenes", "billiard", "--depths", "1,15",
+                       "--runs", "1", "-W", "24", "-H", "16", "-s", "1",
+                       "--backends", "auto", "--csv", "b.csv", NULL),
+                   0);
+  assert_non_null(strstr(out, "           auto\n"));
+  slurp(p, csv, sizeof csv);
+  unlink(p);
+  const char *depths[] = {"1", "15"};
+  for (int k = 0; k < 2; k++) {
+    snprintf(p, sizeof p, "%s/a.ppm", dir);
+    assert_int_equal(run("render", "billiard", "-d", depths[k], "-W", "24",
+                         "-H", "16", "-s", "1", "-t", "1", "--stats", "-o",
+                         "a.ppm", NULL),
+                     0);
+    unlink(p);
+    const char *b = strstr(out, "backend            ");
+    assert_non_null(b);
+    b += strlen("backend            ");
+    char row[64];
+    int n = (int)strcspn(b, ",");
+    snprintf(row, sizeof row, "billiard,%s,%.*s,", depths[k], n, b);
+    assert_non_null(strstr(csv, row));
+  }
+}
+
 /* --time-to-image: glint render as a child process, PNG and PPM, against
  * the render; its images go to a folder of its own that it removes. */
 static void bench_time_to_image(void **state) {
@@ -1985,6 +2018,7 @@ int main(void) {
       cmocka_unit_test(a_far_object_is_noted),
       cmocka_unit_test(bench_runs_and_writes_csv),
       cmocka_unit_test(bench_reuses_a_renderer_per_column),
+      cmocka_unit_test(bench_auto_renders_what_render_chooses),
       cmocka_unit_test(bench_csv_keeps_files_on_error),
       cmocka_unit_test(output_linked_to_the_scene),
       cmocka_unit_test(default_output_is_named_after_the_scene),
