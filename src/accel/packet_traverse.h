@@ -194,11 +194,12 @@ static ALWAYS_INLINE vmask packet_box(const gli_bvh_node *n,
 typedef void (*packet_leaf_fn)(void *ctx, uint32_t ref, vmask m);
 
 /* Starts the loads of what the leaf functions will read of a leaf's `count`
- * primitives `refs`. The closest-hit walk calls it as it pops a leaf,
- * before the leaf's box test, so that the primitives' misses overlap the
- * test: on the 200k-triangle dragon's primary rays the first read of a
- * triangle was the walk's costliest instruction, and prefetched there the
- * rays ran 10% faster (AVX-512 beams and streams, one thread). The segment
+ * primitives `refs`. The closest-hit walk calls it for each leaf child of
+ * a node before the children's box tests, so that the primitives' misses
+ * overlap the tests: on the 200k-triangle dragon's primary rays the first
+ * read of a triangle was the walk's costliest instruction, and prefetched
+ * before the leaf's box test the rays ran 10% faster (AVX-512 beams and
+ * streams, one thread, when each box was tested as it was popped). The segment
  * walk has none: there its mere presence made the streams' shadow packets
  * 5-8% slower on the SPD scenes, whose primitives the caches hold. */
 typedef void (*packet_prefetch_fn)(void *ctx, const uint32_t *refs,
