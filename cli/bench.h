@@ -54,7 +54,8 @@ void bench_child_args(const glint_render_settings *rs, char width[16],
 int bench_spd_scene_at(const char *dir, const char *path);
 int bench_run_capture(char *const argv[], char *buf, size_t size);
 void bench_csv_row(FILE *csv, const char *scene, int depth,
-                   const glint_stats *st, const double *seconds, int runs);
+                   const bench_column *col, const glint_stats *st,
+                   const double *seconds, int runs);
 
 /* One scene's world and a renderer per column of a benchmark table, each
  * kept across the table's runs and depths (cli/bench_renderers.c says
@@ -68,8 +69,9 @@ typedef struct bench_renderers {
   glint_film *film;
   int ncols, deepest;
 } bench_renderers;
+/* Commits `scene` (named `name` in an error, which sets *status). */
 int bench_renderers_open(bench_renderers *renderers, const glint_scene *scene,
-                         int ncols, int deepest);
+                         const char *name, int ncols, int deepest, int *status);
 /* One frame of `settings` (backend, threads, size, depth and spp) with
  * column `col`'s renderer for the backend that renders it, made from the
  * settings when the column has none. */

@@ -32,10 +32,11 @@ static void bench_usage(FILE *f) {
       "thesis's tables A.1-A.3), rays per second, speed-ups over\n"
       "scalar-float, SIMD lane utilisation and the stream backends' stages.\n"
       "Each scene is committed once and each column keeps one renderer\n"
-      "for all its frames, as an application rendering many frames does\n"
-      "(--time-to-image measures a whole glint render process). Runs are\n"
-      "interleaved so that a scene's columns come from the same run, after\n"
-      "one untimed warm-up frame of each column.\n"
+      "(auto: one per backend it picks) for all its frames, as an\n"
+      "application rendering many frames does (--time-to-image measures a\n"
+      "whole glint render process). A scene's columns of one thread count\n"
+      "are run together, their runs interleaved, after one untimed\n"
+      "warm-up frame of each column.\n"
       "\n"
       "Options:\n"
       "  --scenes LIST      built-in scenes or scene files, comma-separated\n"
@@ -605,7 +606,7 @@ int cmd_bench(int argc, char **argv) {
                  "median_s,min_s,max_s,rays,primary,secondary,shadow,"
                  "mrays_per_s,lane_utilisation,sub_beams_per_beam,"
                  "generate_s,traverse_s,shade_s,compact_s,"
-                 "generation_lane_use\n");
+                 "generation_lane_use,column\n");
   if (o.spd_dir)
     status = bench_spd(o.spd_dir, &rs, o.cols, o.ncols, o.runs, csv);
   else
@@ -622,7 +623,8 @@ int cmd_bench(int argc, char **argv) {
 }
 
 void bench_csv_row(FILE *csv, const char *scene, int depth,
-                   const glint_stats *st, const double *seconds, int runs) {
+                   const bench_column *col, const glint_stats *st,
+                   const double *seconds, int runs) {
   double med = bench_median(seconds, runs), lo = seconds[0], hi = seconds[0];
   for (int r = 1; r < runs; r++) {
     lo = fmin(lo, seconds[r]);
@@ -649,7 +651,8 @@ void bench_csv_row(FILE *csv, const char *scene, int depth,
             st->gen_packets[g] ? (double)st->gen_active_lanes[g] /
                                      ((double)st->gen_packets[g] * w)
                                : 0.0);
-  fprintf(csv, "\n");
+  /* the column asked for: auto's rows name the backend that rendered */
+  fprintf(csv, ",%s\n", col->name);
 }
 
 /* Whether --plot's files for `stem` can be written: each is absent or a
@@ -704,42 +707,50 @@ int bench_scenes(char **names, int nscenes, const int *depths, int ndepths,
   int deepest = depths[0];
   for (int d = 1; d < ndepths; d++)
     deepest = depths[d] > deepest ? depths[d] : deepest;
-  /* Scene by scene, each column's renderer kept for all of the scene's
-   * runs and depths (cli/bench_renderers.c); within a scene the runs are
-   * interleaved. Run -1 warms up, untimed: each column once at the first
-   * depth (page faults in fresh scratch memory, cold caches, the clock
-   * ramping up would otherwise land on the first row). */
-  for (int s = 0; s < nscenes && !status; s++) {
-    bench_renderers br;
-    if (bench_renderers_open(&br, scenes[s], ncols, deepest)) {
-      status = 1;
-      break;
+  /* Scene by scene, and within a scene thread count by thread count (the
+   * columns come in that order), each column's renderer kept for all its
+   * runs and depths (cli/bench_renderers.c); a group's runs are
+   * interleaved. Only one group's renderers live at once: their threads and
+   * stream buffers grow with the columns. Run -1 warms up, untimed: each
+   * column once at the first depth (page faults in fresh scratch memory,
+   * cold caches, the clock ramping up would otherwise land on the first
+   * row). */
+  for (int s = 0; s < nscenes && !status; s++)
+    for (int c0 = 0, c1; c0 < ncols && !status; c0 = c1) {
+      for (c1 = c0 + 1; c1 < ncols && cols[c1].threads == cols[c0].threads;)
+        c1++;
+      bench_renderers br;
+      if (bench_renderers_open(&br, scenes[s], stems[s], ncols, deepest,
+                               &status))
+        break;
+      for (int r = -1; r < runs && !status; r++)
+        for (int d = 0; d < (r < 0 ? 1 : ndepths) && !status; d++)
+          for (int c = c0; c < c1 && !status; c++) {
+            rs.max_depth = depths[d];
+            rs.backend = cols[c].backend;
+            rs.threads = cols[c].threads;
+            if (tty && r < 0) {
+              fprintf(stderr, "\r[warm-up] %s %s\033[K", stems[s],
+                      cols[c].name);
+              fflush(stderr);
+            } else if (tty) {
+              fprintf(stderr, "\r[%zu/%zu] %s depth %d %s\033[K", ++done, total,
+                      stems[s], depths[d], cols[c].name);
+              fflush(stderr);
+            }
+            glint_error err;
+            glint_status st =
+                bench_renderers_render(&br, c, &rs, &stats[IDX(s, d, c)], &err);
+            if (st) {
+              cli_error("%s: %s", stems[s], err.message);
+              status = cli_exit_code(st);
+              break;
+            }
+            if (r >= 0)
+              SECONDS(s, d, c)[r] = stats[IDX(s, d, c)].render_seconds;
+          }
+      bench_renderers_close(&br);
     }
-    for (int r = -1; r < runs && !status; r++)
-      for (int d = 0; d < (r < 0 ? 1 : ndepths) && !status; d++)
-        for (int c = 0; c < ncols && !status; c++) {
-          rs.max_depth = depths[d];
-          rs.backend = cols[c].backend;
-          rs.threads = cols[c].threads;
-          if (tty && r < 0) {
-            fprintf(stderr, "\r[warm-up] %s %s\033[K", stems[s], cols[c].name);
-            fflush(stderr);
-          } else if (tty) {
-            fprintf(stderr, "\r[%zu/%zu] %s depth %d %s\033[K", ++done, total,
-                    stems[s], depths[d], cols[c].name);
-            fflush(stderr);
-          }
-          glint_error err;
-          if (bench_renderers_render(&br, c, &rs, &stats[IDX(s, d, c)], &err)) {
-            cli_error("%s: %s", stems[s], err.message);
-            status = EXIT_USAGE;
-            break;
-          }
-          if (r >= 0)
-            SECONDS(s, d, c)[r] = stats[IDX(s, d, c)].render_seconds;
-        }
-    bench_renderers_close(&br);
-  }
   if (tty)
     fputs("\r\033[K", stderr);
 
@@ -873,7 +884,7 @@ int bench_scenes(char **names, int nscenes, const int *depths, int ndepths,
   for (int s = 0; csv && s < nscenes && !status; s++)
     for (int d = 0; d < ndepths; d++)
       for (int c = 0; c < ncols; c++)
-        bench_csv_row(csv, stems[s], depths[d], &stats[IDX(s, d, c)],
+        bench_csv_row(csv, stems[s], depths[d], &cols[c], &stats[IDX(s, d, c)],
                       SECONDS(s, d, c), runs);
   free(stats);
   free(times);

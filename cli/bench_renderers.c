@@ -16,15 +16,19 @@
  *
  * A column of auto renders each depth with the backend glint render would
  * choose for it (glint_backend_choose weighs the depth), so it may keep a
- * renderer for each backend it chose. */
+ * renderer for each backend it chose. The tables open one set of renderers
+ * per scene and thread count, so that their threads and stream buffers
+ * stay what one thread count's columns need. */
 #include "args.h"
 #include "bench.h"
 
 #include <stdlib.h>
 
 int bench_renderers_open(bench_renderers *b, const glint_scene *scene,
-                         int ncols, int deepest) {
+                         const char *name, int ncols, int deepest,
+                         int *status) {
   glint_error err;
+  glint_status st;
   b->scene = scene;
   b->ncols = ncols;
   b->deepest = deepest;
@@ -33,14 +37,23 @@ int bench_renderers_open(bench_renderers *b, const glint_scene *scene,
       calloc((size_t)ncols * GLINT_BACKEND_COUNT, sizeof *b->renderers);
   if (!b->renderers) {
     cli_error("out of memory");
+    *status = EXIT_MEMORY;
     return -1;
   }
-  if (glint_world_commit(scene, &b->world, NULL, &err)) {
-    cli_error("%s", err.message);
+  if ((st = glint_world_commit(scene, &b->world, NULL, &err))) {
+    cli_error("%s: %s", name, err.message);
     free(b->renderers);
+    *status = cli_exit_code(st);
     return -1;
   }
   return 0;
+}
+
+static void bench_renderers_drop(bench_renderers *b) {
+  for (size_t k = 0; k < (size_t)b->ncols * GLINT_BACKEND_COUNT; k++) {
+    glint_renderer_destroy(b->renderers[k]);
+    b->renderers[k] = NULL;
+  }
 }
 
 glint_status bench_renderers_render(bench_renderers *b, int col,
@@ -56,7 +69,15 @@ glint_status bench_renderers_render(bench_renderers *b, int col,
     glint_render_settings made = *rs;
     made.backend = backend;
     made.max_depth = b->deepest;
-    if ((st = glint_renderer_create(b->world, &made, renderer, err)))
+    st = glint_renderer_create(b->world, &made, renderer, err);
+    if (st == GLINT_E_MEMORY) {
+      /* Too little memory for every column's renderer at once (an
+       * address-space limit, many threads): the others go, each made again
+       * when its column comes round, as one glint_render a frame was. */
+      bench_renderers_drop(b);
+      st = glint_renderer_create(b->world, &made, renderer, err);
+    }
+    if (st)
       return st;
   }
   glint_scene_info info;
@@ -80,8 +101,7 @@ glint_status bench_renderers_render(bench_renderers *b, int col,
 }
 
 void bench_renderers_close(bench_renderers *b) {
-  for (size_t k = 0; k < (size_t)b->ncols * GLINT_BACKEND_COUNT; k++)
-    glint_renderer_destroy(b->renderers[k]);
+  bench_renderers_drop(b);
   free(b->renderers);
   glint_film_destroy(b->film);
   glint_world_destroy(b->world);

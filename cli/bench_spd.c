@@ -138,40 +138,53 @@ int bench_spd(const char *dir, const glint_render_settings *base,
   rs.spp = 1;
   rs.max_depth = 5;
   int status = 0, tty = isatty(STDERR_FILENO);
-  /* Scene by scene, each column's renderer kept for all its runs; run -1
-   * warms up, untimed (see bench_cmd.c). */
-  for (size_t s = 0; s < SPD_COUNT && !status; s++) {
-    bench_renderers br;
-    if (bench_renderers_open(&br, scenes[s], ncols, rs.max_depth)) {
-      status = 1;
-      break;
-    }
-    for (int r = -1; r < runs && !status; r++) {
-      for (int b = 0; b < ncols; b++) {
-        if (tty)
-          fprintf(stderr, "\r[run %d/%d] %s %s\033[K", r + 1, runs,
-                  spd_scenes[s], cols[b].name);
-        rs.backend = cols[b].backend;
-        rs.threads = cols[b].threads;
-        glint_error err;
-        if (bench_renderers_render(&br, b, &rs, &ST(s, b), &err)) {
-          cli_error("%s: %s", spd_scenes[s], err.message);
-          status = EXIT_USAGE;
-          break;
+  /* Scene by scene and thread count by thread count, each column's
+   * renderer kept for all its runs, Tachyon at the same thread count
+   * interleaved with them; run -1 warms up, untimed (see bench_cmd.c). */
+  for (size_t s = 0; s < SPD_COUNT && !status; s++)
+    for (int c0 = 0, c1; c0 < ncols && !status; c0 = c1) {
+      for (c1 = c0 + 1; c1 < ncols && cols[c1].threads == cols[c0].threads;)
+        c1++;
+      /* Tachyon's column of this thread count, unless a group before took
+       * it (-t 0 and -t 2 are one count on two CPUs) */
+      int t = cols[c0].threads ? cols[c0].threads : glint_cpu_count(), k = -1;
+      for (int j = 0; tachyon && j < ntt; j++)
+        if (tthreads[j] == t)
+          k = j;
+      for (int c = 0; k >= 0 && c < c0; c++)
+        if ((cols[c].threads ? cols[c].threads : glint_cpu_count()) == t)
+          k = -1;
+      bench_renderers br;
+      if (bench_renderers_open(&br, scenes[s], spd_scenes[s], ncols,
+                               rs.max_depth, &status))
+        break;
+      for (int r = -1; r < runs && !status; r++) {
+        for (int b = c0; b < c1; b++) {
+          if (tty)
+            fprintf(stderr, "\r[run %d/%d] %s %s\033[K", r + 1, runs,
+                    spd_scenes[s], cols[b].name);
+          rs.backend = cols[b].backend;
+          rs.threads = cols[b].threads;
+          glint_error err;
+          glint_status st =
+              bench_renderers_render(&br, b, &rs, &ST(s, b), &err);
+          if (st) {
+            cli_error("%s: %s", spd_scenes[s], err.message);
+            status = cli_exit_code(st);
+            break;
+          }
+          if (r >= 0)
+            T(s, b, r) = ST(s, b).render_seconds;
         }
-        if (r >= 0)
-          T(s, b, r) = ST(s, b).render_seconds;
+        if (k >= 0 && r >= 0 && !status) {
+          if (tty)
+            fprintf(stderr, "\r[run %d/%d] %s tachyon %d thread%s\033[K", r + 1,
+                    runs, spd_scenes[s], t, t == 1 ? "" : "s");
+          T(s, ncols + k, r) = tachyon_seconds(paths[s], t, out);
+        }
       }
-      for (int k = 0; tachyon && r >= 0 && !status && k < ntt; k++) {
-        if (tty)
-          fprintf(stderr, "\r[run %d/%d] %s tachyon %d thread%s\033[K", r + 1,
-                  runs, spd_scenes[s], tthreads[k],
-                  tthreads[k] == 1 ? "" : "s");
-        T(s, ncols + k, r) = tachyon_seconds(paths[s], tthreads[k], out);
-      }
+      bench_renderers_close(&br);
     }
-    bench_renderers_close(&br);
-  }
   if (tty)
     fputs("\r\033[K", stderr);
   if (tachyon)
@@ -218,11 +231,13 @@ int bench_spd(const char *dir, const glint_render_settings *base,
       double rays = (double)bench_rays(&ST(s, best_b));
       printf(" %10.2f\n", best > 0 ? rays / best / 1e6 : 0.0);
       for (int b = 0; csv && b < ncols; b++)
-        bench_csv_row(csv, spd_scenes[s], 5, &ST(s, b), &T(s, b, 0), runs);
+        bench_csv_row(csv, spd_scenes[s], 5, &cols[b], &ST(s, b), &T(s, b, 0),
+                      runs);
       for (int k = 0; csv && tachyon && k < ntt; k++)
-        fprintf(csv, "%s,5,tachyon,512,512,1,%d,%d,%.6f,,,,,,,,,,,,,,\n",
+        fprintf(csv,
+                "%s,5,tachyon,512,512,1,%d,%d,%.6f,,,,,,,,,,,,,,,tachyon/%dt\n",
                 spd_scenes[s], tthreads[k], runs,
-                bench_median(&T(s, ncols + k, 0), runs));
+                bench_median(&T(s, ncols + k, 0), runs), tthreads[k]);
     }
   }
   free(times);

@@ -601,6 +601,8 @@ static void bench_auto_renders_what_render_chooses(void **state) {
   assert_non_null(strstr(out, "           auto\n"));
   slurp(p, csv, sizeof csv);
   unlink(p);
+  /* the header names a last field, the column asked for */
+  assert_non_null(strstr(csv, ",generation_lane_use,column\n"));
   const char *depths[] = {"1", "15"};
   for (int k = 0; k < 2; k++) {
     snprintf(p, sizeof p, "%s/a.ppm", dir);
@@ -615,7 +617,11 @@ static void bench_auto_renders_what_render_chooses(void **state) {
     char row[64];
     int n = (int)strcspn(b, ",");
     snprintf(row, sizeof row, "billiard,%s,%.*s,", depths[k], n, b);
-    assert_non_null(strstr(csv, row));
+    const char *line = strstr(csv, row);
+    assert_non_null(line);
+    const char *end = strchr(line, '\n');
+    assert_non_null(end);
+    assert_true(end - line > 5 && strncmp(end - 5, ",auto", 5) == 0);
   }
 }
 

@@ -18,6 +18,9 @@
 #include "accel/bvh.h"
 #include "simd/vvec3.h"
 
+#include <float.h>
+#include <math.h>
+
 /* The lanes at or below which a packet hands a subtree to its lanes, one
  * at a time: chosen by measurement on balls-s4, rings-s4 and teapot-s4, one
  * thread, thresholds 0-4 (README, "Performance"): SSE 2 of 4, AVX2 3 of 8,
@@ -229,7 +232,8 @@ static ALWAYS_INLINE uint32_t hand_over(const gli_bvh *bvh,
  * comparison against the lanes' nearest hits so far (*tmax, which the leaf
  * function narrows), so boxes behind a hit are skipped without their
  * node being read again; a lane it passes is one the box test at that
- * moment would pass, so the walk finds what testing on popping found. */
+ * moment would pass, so the walk finds what testing on popping found, and
+ * counts the same tests. */
 static ALWAYS_INLINE void
 packet_bvh_closest(const gli_bvh *bvh, const packet_origin *po, vvec3 d,
                    vmask active, vfloat tmin, const vfloat *tmax, int newton,
@@ -240,7 +244,11 @@ packet_bvh_closest(const gli_bvh *bvh, const packet_origin *po, vvec3 d,
   packet_inv r = packet_inverse(po, d, active, newton);
   const gli_bvh_node *nodes = bvh->packet_nodes;
   uint32_t stack[GLI_BVH_MAX_DEPTH];
-  vfloat entry[GLI_BVH_MAX_DEPTH]; /* NaN in the lanes that miss the box */
+  /* +inf in the lanes that miss the box: popped, it is compared with the
+   * nearest hits widened and held to FLT_MAX (a lane without a hit has
+   * FLT_MAX, widened to +inf), which no lane's entry passes but one it
+   * entered; no NaN, whose comparison SSE's cmpleps signals. */
+  vfloat entry[GLI_BVH_MAX_DEPTH];
   int sp = 0;
   uint64_t box_tests = 1; /* each of `lanes` lanes */
   test_count prims = {0, 0};
@@ -270,8 +278,8 @@ packet_bvh_closest(const gli_bvh *bvh, const packet_origin *po, vvec3 d,
           int first = hit0 & hit1 ? r.neg[n->axis] : hit1;
           if (hit0 & hit1) {
             stack[sp] = n->offset + (uint32_t)!first;
-            entry[sp++] = first ? vf_select(m0, near0, vf_set1(NAN))
-                                : vf_select(m1, near1, vf_set1(NAN));
+            entry[sp++] = first ? vf_select(m0, near0, vf_set1(INFINITY))
+                                : vf_select(m1, near1, vf_set1(INFINITY));
           }
           node = n->offset + (uint32_t)first;
           m = first ? m1 : m0;
@@ -290,7 +298,8 @@ packet_bvh_closest(const gli_bvh *bvh, const packet_origin *po, vvec3 d,
     more = 0;
     while (sp > 0 && !more) {
       sp--;
-      m = vf_le(entry[sp], vf_mul(*tmax, vf_set1(BOX_WIDENING)));
+      m = vf_le(entry[sp],
+                vf_min(vf_mul(*tmax, vf_set1(BOX_WIDENING)), vf_set1(FLT_MAX)));
       more = vm_any(m);
     }
     if (more) {
@@ -305,7 +314,9 @@ packet_bvh_closest(const gli_bvh *bvh, const packet_origin *po, vvec3 d,
 /* The segment walk of shadow rays: every leaf the lanes' segments (tmin,
  * tmax) pass through, in any order, until no lane is *alive. An inner
  * node's children are tested together (see packet_bvh_closest), the second
- * waiting on the stack with the lanes that entered it. While a leaf's
+ * waiting on the stack with the lanes that entered it; both tests count the
+ * lanes alive at the node (testing on popping counted the second's at its
+ * pop, and none where every lane was blocked first). While a leaf's
  * primitives are tested, *alive holds only the lanes inside its box; the
  * leaf function clears the lanes it blocks. */
 static ALWAYS_INLINE void
@@ -313,6 +324,8 @@ packet_bvh_segment(const gli_bvh *bvh, const packet_origin *po, vvec3 d,
                    vfloat tmin, vfloat tmax, vmask *alive, int newton,
                    glint_stats *st, packet_leaf_fn leaf, int alone,
                    packet_alone_fn walk_alone, void *ctx) {
+  if (vm_none(*alive))
+    return;
   packet_inv r = packet_inverse(po, d, *alive, newton);
   const gli_bvh_node *nodes = bvh->packet_nodes;
   uint32_t stack[GLI_BVH_MAX_DEPTH];
