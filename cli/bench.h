@@ -79,6 +79,10 @@ glint_status bench_renderers_render(bench_renderers *renderers, int col,
                                     const glint_render_settings *settings,
                                     glint_stats *stats, glint_error *error);
 void bench_renderers_close(bench_renderers *renderers);
+/* The end of the run of columns from `first` on that share its thread count
+ * (the columns come thread count by thread count): the columns whose
+ * renderers a table keeps at once. */
+int bench_thread_group_end(const bench_column *cols, int ncols, int first);
 
 /* The thesis-style tables over scenes x depths x columns. */
 int bench_scenes(char **names, int nscenes, const int *depths, int ndepths,

@@ -717,8 +717,7 @@ int bench_scenes(char **names, int nscenes, const int *depths, int ndepths,
    * row). */
   for (int s = 0; s < nscenes && !status; s++)
     for (int c0 = 0, c1; c0 < ncols && !status; c0 = c1) {
-      for (c1 = c0 + 1; c1 < ncols && cols[c1].threads == cols[c0].threads;)
-        c1++;
+      c1 = bench_thread_group_end(cols, ncols, c0);
       bench_renderers br;
       if (bench_renderers_open(&br, scenes[s], stems[s], ncols, deepest,
                                &status))

@@ -106,3 +106,10 @@ void bench_renderers_close(bench_renderers *b) {
   glint_film_destroy(b->film);
   glint_world_destroy(b->world);
 }
+
+int bench_thread_group_end(const bench_column *cols, int ncols, int first) {
+  int end = first + 1;
+  while (end < ncols && cols[end].threads == cols[first].threads)
+    end++;
+  return end;
+}

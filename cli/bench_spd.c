@@ -115,14 +115,18 @@ int bench_spd(const char *dir, const glint_render_settings *base,
   else
     tachyon = 0;
 
-  /* Tachyon once per distinct thread count, as an extra column each. */
-  int tthreads[16], ntt = 0;
+  /* Tachyon once per distinct thread count, as an extra column each, run
+   * beside the first column of that count (-t 0 and -t 2 are one count on
+   * two CPUs). */
+  int tthreads[16], tfirst[16], ntt = 0;
   for (int c = 0; c < ncols; c++) {
     int t = cols[c].threads ? cols[c].threads : glint_cpu_count(), seen = 0;
     for (int k = 0; k < ntt; k++)
       seen |= tthreads[k] == t;
-    if (!seen && ntt < 16)
-      tthreads[ntt++] = t;
+    if (!seen && ntt < 16) {
+      tthreads[ntt] = t;
+      tfirst[ntt++] = c;
+    }
   }
   size_t cells = SPD_COUNT * (size_t)(ncols + ntt);
   double *times = calloc(cells * (size_t)runs, sizeof *times);
@@ -143,17 +147,11 @@ int bench_spd(const char *dir, const glint_render_settings *base,
    * interleaved with them; run -1 warms up, untimed (see bench_cmd.c). */
   for (size_t s = 0; s < SPD_COUNT && !status; s++)
     for (int c0 = 0, c1; c0 < ncols && !status; c0 = c1) {
-      for (c1 = c0 + 1; c1 < ncols && cols[c1].threads == cols[c0].threads;)
-        c1++;
-      /* Tachyon's column of this thread count, unless a group before took
-       * it (-t 0 and -t 2 are one count on two CPUs) */
-      int t = cols[c0].threads ? cols[c0].threads : glint_cpu_count(), k = -1;
+      c1 = bench_thread_group_end(cols, ncols, c0);
+      int k = -1; /* Tachyon's column run with this group, if any */
       for (int j = 0; tachyon && j < ntt; j++)
-        if (tthreads[j] == t)
+        if (tfirst[j] >= c0 && tfirst[j] < c1)
           k = j;
-      for (int c = 0; k >= 0 && c < c0; c++)
-        if ((cols[c].threads ? cols[c].threads : glint_cpu_count()) == t)
-          k = -1;
       bench_renderers br;
       if (bench_renderers_open(&br, scenes[s], spd_scenes[s], ncols,
                                rs.max_depth, &status))
@@ -177,6 +175,7 @@ int bench_spd(const char *dir, const glint_render_settings *base,
             T(s, b, r) = ST(s, b).render_seconds;
         }
         if (k >= 0 && r >= 0 && !status) {
+          int t = tthreads[k];
           if (tty)
             fprintf(stderr, "\r[run %d/%d] %s tachyon %d thread%s\033[K", r + 1,
                     runs, spd_scenes[s], t, t == 1 ? "" : "s");

@@ -148,6 +148,8 @@ static ALWAYS_INLINE packet_inv packet_inverse(const packet_origin *po, vvec3 d,
   return r;
 }
 
+#define BOX_WIDENING 1.0000005f /* the far distance's few ulps */
+
 /* The slab test for all lanes of `active` against a node's box within
  * (tmin, tmax), conservative: a ray that touches the box is never culled.
  * Each distance is plane_distance's: B/D - O/D in one fma where the ISA
@@ -159,9 +161,8 @@ static ALWAYS_INLINE packet_inv packet_inverse(const packet_origin *po, vvec3 d,
  * outwards (packet_origin) moves each plane at least 7u|O/D| farther out,
  * more than that error. The far distance is widened by a few ulps of
  * itself, for the rounding of the distance and of the reciprocal. (Ize
- * 2013, "Robust BVH ray traversal", bounds the slab test's errors so.) */
-#define BOX_WIDENING 1.0000005f /* the far distance's few ulps */
-
+ * 2013, "Robust BVH ray traversal", bounds the slab test's errors so.)
+ * *near_out receives the lanes' entry distances. */
 static ALWAYS_INLINE vmask packet_box_near(const gli_bvh_node *n,
                                            const packet_inv *r, vfloat tmin,
                                            vfloat tmax, vmask active,
@@ -185,6 +186,7 @@ static ALWAYS_INLINE vmask packet_box_near(const gli_bvh_node *n,
   return vm_and(active, vf_le(near, vf_mul(far, vf_set1(BOX_WIDENING))));
 }
 
+/* The test alone, where the entry distances are not wanted. */
 static ALWAYS_INLINE vmask packet_box(const gli_bvh_node *n,
                                       const packet_inv *r, vfloat tmin,
                                       vfloat tmax, vmask active) {
