@@ -357,12 +357,45 @@ static ALWAYS_INLINE vmask packet_toward_light(const plight *li, vvec3 p,
   return vm_and(m, vf_gt(*nl, vf_zero()));
 }
 
-/* Eq. 2.9/2.10's local part for the lanes of m, whose coefficients may
- * differ lane by lane (a beam's sub-beams, a stream's mixed packet) or not:
+/* Light li's unshadowed terms in eq. 2.9/2.10 for the lanes of m, whose
+ * coefficients may differ lane by lane (a beam's sub-beams, a stream's
+ * mixed packet) or not: the lanes it lights, the direction and distance to
+ * it, and the weights of its intensity S IL, kd N·L on the surface colour
+ * and ks (V·R)^h beside it (zero where `highlights` = 0, which says no lane
+ * has ks > 0). */
+typedef struct light_terms {
+  vmask lit;
+  vvec3 l;
+  vfloat dist, diffuse, highlight;
+} light_terms;
+
+static ALWAYS_INLINE light_terms packet_light_terms(
+    const plight *li, const packet_surface *f, vvec3 d, vmask m, vfloat kd,
+    vfloat ks, vfloat h, int highlights, glint_math math, int newton) {
+  light_terms r;
+  vfloat nl;
+  r.lit = packet_toward_light(li, f->p, f->n, m, newton, &r.l, &r.dist, &nl);
+  r.diffuse = vf_keep(r.lit, vf_mul(kd, nl));
+  r.highlight = vf_zero();
+  if (highlights) {
+    /* R = 2(L·N)N - L, and V = -D: V·R = 2(L·N)(-D·N) + D·L */
+    vfloat vr =
+        vf_fmadd(vf_add(nl, nl), vf_neg(vv_dot(d, f->n)), vv_dot(d, r.l));
+    vmask hl =
+        vm_and(vm_and(r.lit, vf_gt(ks, vf_zero())), vf_gt(vr, vf_zero()));
+    if (vm_any(hl)) {
+      vfloat p = vm_pow(vf_max(vr, vf_set1(FLT_MIN)), h, math);
+      r.highlight = vf_keep(hl, vf_mul(ks, p));
+    }
+  }
+  return r;
+}
+
+/* Eq. 2.9/2.10's local part for the lanes of m,
  *   C (ka Ia + sum S kd N·L IL) + sum S ks (V·R)^h IL,
- * one shadow packet per light. `highlights` = 0 says no lane has ks > 0.
- * When `shadow_ticks` is given, the time-stamp cycles spent tracing shadow
- * rays are added to it (the stream tracer's stage timing). */
+ * one shadow packet per light (packet_light_terms says what the arguments
+ * are). When `shadow_ticks` is given, the time-stamp cycles spent tracing
+ * shadow rays are added to it (the stream tracer's stage timing). */
 static ALWAYS_INLINE vvec3 packet_lights(
     const packet_scene *ps, const packet_surface *f, vvec3 d, vmask m, vvec3 c,
     vvec3 ambient, vfloat kd, vfloat ks, vfloat h, int highlights,
@@ -376,30 +409,20 @@ static ALWAYS_INLINE vvec3 packet_lights(
     po = packet_origin_of(f->p);
   for (size_t j = 0; j < s->light_count; j++) {
     const plight *li = &ps->lights[j];
-    vvec3 l;
-    vfloat dist, nl;
-    vmask lit = packet_toward_light(li, f->p, f->n, m, newton, &l, &dist, &nl);
-    if (vm_none(lit))
+    light_terms lt =
+        packet_light_terms(li, f, d, m, kd, ks, h, highlights, math, newton);
+    if (vm_none(lt.lit))
       continue;
-    st->shadow_rays += (uint64_t)vm_count(lit);
+    st->shadow_rays += (uint64_t)vm_count(lt.lit);
     uint64_t t0 = shadow_ticks ? __rdtsc() : 0;
-    vvec3 sj =
-        packet_transmission(ps, f->p, &po, l, dist, lit, math, newton, st);
+    vvec3 sj = packet_transmission(ps, f->p, &po, lt.l, lt.dist, lt.lit, math,
+                                   newton, st);
     if (shadow_ticks)
       *shadow_ticks += __rdtsc() - t0;
     vvec3 il = vv_mul(sj, vv_get(li->color));
-    diffuse = vv_madd(diffuse, vf_keep(lit, vf_mul(kd, nl)), il);
-    if (highlights) {
-      /* R = 2(L·N)N - L, and V = -D: V·R = 2(L·N)(-D·N) + D·L */
-      vfloat vr =
-          vf_fmadd(vf_add(nl, nl), vf_neg(vv_dot(d, f->n)), vv_dot(d, l));
-      vmask hl =
-          vm_and(vm_and(lit, vf_gt(ks, vf_zero())), vf_gt(vr, vf_zero()));
-      if (vm_any(hl)) {
-        vfloat p = vm_pow(vf_max(vr, vf_set1(FLT_MIN)), h, math);
-        highlight = vv_madd(highlight, vf_keep(hl, vf_mul(ks, p)), il);
-      }
-    }
+    diffuse = vv_madd(diffuse, lt.diffuse, il);
+    if (highlights)
+      highlight = vv_madd(highlight, lt.highlight, il);
   }
   return vv_add(vv_mul(c, diffuse), highlight);
 }

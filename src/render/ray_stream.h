@@ -23,6 +23,18 @@ typedef struct ray_stream {
   int count, cursor;
 } ray_stream;
 
+/* Shadow rays whose tracing waits (render/stream_tracer.c, shadow rays of
+ * the deeper generations): from the shading point o towards a light, d
+ * unit, the light at distance dist; what the ray brings to its pixel if
+ * nothing blocks it (c, scaled by the transmission found); and its sort
+ * key (shadow_key). */
+typedef struct shadow_stream {
+  float *ox, *oy, *oz, *dx, *dy, *dz, *dist, *cr, *cg, *cb;
+  int32_t *pixel, *key;
+  uint16_t *order, *sorted; /* the rays' order by key, and the sort's spare */
+  int count;
+} shadow_stream;
+
 typedef struct stream_scratch {
   /* Two streams per generation level: the transmitted (refracted) rays and
    * the reflected ones. Kept apart, each is coherent: a packet of rays
@@ -34,6 +46,7 @@ typedef struct stream_scratch {
   float *accum; /* tile pixels x (r, g, b, unused), summed over samples */
   float *log;   /* (r, g, b, pixel) waiting to be added (see fold_log) */
   int log_count;
+  shadow_stream shadows;
 } stream_scratch;
 
 enum { TRANSMITTED = 0, REFLECTED = 1 };
@@ -42,7 +55,9 @@ enum { TRANSMITTED = 0, REFLECTED = 1 };
 /* ---- memory ------------------------------------------------------------ */
 
 #define RAY_FLOATS 9
-#define LOG_CAPACITY 512 /* a multiple of every W; 8 KiB stays in L1 */
+#define LOG_CAPACITY 512     /* a multiple of every W; 8 KiB stays in L1 */
+#define SHADOW_CAPACITY 4096 /* waiting shadow rays (at most 65 536) */
+#define SHADOW_FLOATS 12     /* ten floats, the pixel and the key */
 
 /* Each array has room for W floats past its capacity: compress-stores
  * write whole vectors. */
@@ -58,10 +73,16 @@ static inline size_t accum_bytes(void) {
          (size_t)LOG_CAPACITY * 4 * sizeof(float) + 2 * 64;
 }
 
+static inline size_t shadow_bytes(void) {
+  return (size_t)(SHADOW_CAPACITY + GLI_SIMD_WIDTH) *
+             (SHADOW_FLOATS * sizeof(float) + 2 * sizeof(uint16_t)) +
+         (SHADOW_FLOATS + 2) * 64;
+}
+
 static inline size_t scratch_bytes(int levels) {
   return sizeof(stream_scratch) + 64 +
          (size_t)levels * 2 * (sizeof(ray_stream) + level_bytes()) +
-         accum_bytes() + 64 * 32;
+         accum_bytes() + shadow_bytes() + 64 * 32;
 }
 
 /* Carves the scratch block (allocated by the driver, 64-byte aligned) into
@@ -92,6 +113,24 @@ static inline stream_scratch *carve(void *scratch, int levels) {
   p = align64(p + (size_t)GLI_TILE_SIZE * GLI_TILE_SIZE * 4 * sizeof(float));
   sc->log = (float *)p;
   sc->log_count = 0;
+  p = align64(p + (size_t)LOG_CAPACITY * 4 * sizeof(float));
+  shadow_stream *sh = &sc->shadows;
+  float **f[10] = {&sh->ox, &sh->oy,   &sh->oz, &sh->dx, &sh->dy,
+                   &sh->dz, &sh->dist, &sh->cr, &sh->cg, &sh->cb};
+  int32_t **i[2] = {&sh->pixel, &sh->key};
+  const size_t slots = SHADOW_CAPACITY + GLI_SIMD_WIDTH;
+  for (int k = 0; k < 10; k++) {
+    *f[k] = (float *)p;
+    p = align64(p + slots * sizeof(float));
+  }
+  for (int k = 0; k < 2; k++) {
+    *i[k] = (int32_t *)p;
+    p = align64(p + slots * sizeof(int32_t));
+  }
+  sh->order = (uint16_t *)p;
+  p = align64(p + slots * sizeof(uint16_t));
+  sh->sorted = (uint16_t *)p;
+  sh->count = 0;
   return sc;
 }
 

@@ -136,6 +136,191 @@ static ALWAYS_INLINE void emit_child(tracer *t, int level, int kind, vmask m,
   append_ray(t, STREAM(t->sc, level + 1, kind), m, o, d, w, pixel);
 }
 
+/* ---- shadow rays that wait ---------------------------------------------- */
+
+/* The shadow rays of the deeper generations wait in a buffer, and are
+ * traced in packets of rays that leave one light in nearly one direction.
+ * A packet of a deeper generation holds scattered hits, and its shadow
+ * rays, one packet per light, were the costliest rays of the SPD scenes:
+ * gears-s4's took about 77 ns each against 20 ns for those of the primary
+ * hits, their segments from scattered points crossing different parts of
+ * the tree. Rays that leave the light side by side share their walk from
+ * it (Pharr, Kolb, Gershbein and Hanrahan 1997, "Rendering complex scenes
+ * with memory-coherent ray tracing", reorder rays so; here the order is
+ * a sort on the direction from the light). A shadow ray only scales what
+ * it brings to its pixel, so it can be traced whenever the buffer fills.
+ * The primary generation's shadow rays, from a block of the screen, are
+ * coherent already and are traced at once, as are all of a scene's
+ * without a BVH. */
+#define SHADOWS_WAIT_FROM 1 /* the generation from which shadow rays wait */
+/* Trees of fewer nodes keep every shadow ray at once: there a walk costs
+ * less than waiting does (its copies and sort, about 70 instructions a
+ * ray): Giza (9 nodes) and glass-in-glass (23) rendered 5-11% slower with
+ * waiting rays, glass-rods (53) 27% faster. */
+#define SHADOWS_WAIT_NODES 32
+/* A packet's shadow rays towards one light that all leave within about
+ * 2.6 degrees of its first lane's direction (cosines above this) are
+ * coherent already, and traced at once: mount-s6's rays refracted by its
+ * glass spheres rendered 4-14% slower when they waited. */
+#define SHADOWS_COHERENT_COS 0.999f
+
+/* The key that groups waiting shadow rays: the light's number (its low
+ * four bits) over a Morton code of the ray's direction d from the light,
+ * -d, in octahedral coordinates on a 64 x 64 grid (Meyer, Sander,
+ * Kosinka and Hansen 2010, "On floating-point normal vectors"). */
+static ALWAYS_INLINE vint shadow_key(vvec3 d, int light) {
+  vfloat one = vf_set1(1);
+  vfloat x = vf_neg(d.x), y = vf_neg(d.y), z = vf_neg(d.z);
+  vfloat inv = vf_div(one, vf_add(vf_add(vf_abs(x), vf_abs(y)), vf_abs(z)));
+  vfloat u = vf_mul(x, inv), v = vf_mul(y, inv);
+  vmask below = vf_lt(z, vf_zero());
+  vfloat fu = vf_signed_as(vf_sub(one, vf_abs(v)), u);
+  vfloat fv = vf_signed_as(vf_sub(one, vf_abs(u)), v);
+  u = vf_select(below, fu, u);
+  v = vf_select(below, fv, v);
+  vfloat scale = vf_set1(31.99f);
+  vint qu = vf_to_vi(vf_max(vf_fmadd(u, scale, scale), vf_zero()));
+  vint qv = vf_to_vi(vf_max(vf_fmadd(v, scale, scale), vf_zero()));
+  vint key = vi_set1((light & 15) << 12);
+  for (int k = 0; k < 2; k++) {
+    vint q = k ? qv : qu;
+    q = vi_and(vi_or(q, vi_shl(q, 4)), vi_set1(0x0f0f));
+    q = vi_and(vi_or(q, vi_shl(q, 2)), vi_set1(0x3333));
+    q = vi_and(vi_or(q, vi_shl(q, 1)), vi_set1(0x5555));
+    key = vi_or(key, vi_shl(q, k));
+  }
+  return key;
+}
+
+/* One byte of the keys: a stable counting sort of the n rays in `from`
+ * into `to` (a radix sort's pass, LSD first). */
+static void shadow_sort_pass(const int32_t *key, int shift,
+                             const uint16_t *from, uint16_t *to, int n) {
+  uint32_t start[256] = {0};
+  for (int i = 0; i < n; i++)
+    start[key[i] >> shift & 255]++;
+  uint32_t sum = 0;
+  for (int b = 0; b < 256; b++) {
+    uint32_t c = start[b];
+    start[b] = sum;
+    sum += c;
+  }
+  for (int i = 0; i < n; i++) {
+    uint16_t r = from ? from[i] : (uint16_t)i;
+    to[start[key[r] >> shift & 255]++] = r;
+  }
+}
+
+/* Traces the waiting shadow rays, sorted by key, W at a time, and logs
+ * what they bring to their pixels. Returns the time-stamp cycles taken. */
+static __attribute__((noinline)) uint64_t trace_shadows(tracer *t) {
+  shadow_stream *sh = &t->sc->shadows;
+  int n = sh->count;
+  if (n == 0)
+    return 0;
+  uint64_t t0 = __rdtsc();
+  shadow_sort_pass(sh->key, 0, NULL, sh->sorted, n);
+  shadow_sort_pass(sh->key, 8, sh->sorted, sh->order, n);
+  const float *const field[10] = {sh->ox, sh->oy,   sh->oz, sh->dx, sh->dy,
+                                  sh->dz, sh->dist, sh->cr, sh->cg, sh->cb};
+  for (int i = 0; i < n; i += LANES) {
+    int c = n - i < LANES ? n - i : LANES;
+    SIMD_ALIGN float lane[10][LANES];
+    SIMD_ALIGN int32_t pixel[LANES];
+    for (int k = 0; k < LANES; k++) {
+      int r = sh->order[i + (k < c ? k : c - 1)];
+      for (int f = 0; f < 10; f++)
+        lane[f][k] = field[f][r];
+      pixel[k] = sh->pixel[r];
+    }
+    vmask m = vm_from_bits((1 << c) - 1); /* c <= LANES <= 16 */
+    vvec3 o = {vf_load(lane[0]), vf_load(lane[1]), vf_load(lane[2])};
+    vvec3 d = {vf_load(lane[3]), vf_load(lane[4]), vf_load(lane[5])};
+    vvec3 brings = {vf_load(lane[7]), vf_load(lane[8]), vf_load(lane[9])};
+    packet_origin po;
+    if (t->s->bvh->node_count)
+      po = packet_origin_of(o);
+    vvec3 sj = packet_transmission(t->ps, o, &po, d, vf_load(lane[6]), m,
+                                   t->math, t->newton, t->st);
+    accumulate(t->sc, m, vi_load(pixel), vv_mul(sj, brings));
+  }
+  sh->count = 0;
+  uint64_t ticks = __rdtsc() - t0;
+  /* the stage times are sampled every TIMED_EVERY-th packet */
+  t->stage_ticks[STAGE_TRAVERSE] += ticks / TIMED_EVERY;
+  return ticks;
+}
+
+/* packet_lights for a deeper generation's packet of weights w: the
+ * ambient part at once, and each light's shadow rays left waiting with
+ * what they bring unshadowed, unless they leave together already. The
+ * packet's pixels get the rest. *waited receives the time-stamp cycles
+ * spent tracing shadow rays, which are not the shading's. Apart from the
+ * shading that calls it: inlined there, with the tracing of waiting rays,
+ * it made the streams 8-12% slower on tree-s4 and Giza even where no ray
+ * waited. */
+static __attribute__((noinline)) vvec3
+wait_lights(tracer *t, const packet_surface *f, vvec3 d, vmask m, vvec3 c,
+            vvec3 w, vint pixel, const lane_material *lm, int highlights,
+            glint_math math, int newton, uint64_t *waited) {
+  const packet_scene *ps = t->ps;
+  shadow_stream *sh = &t->sc->shadows;
+  vvec3 local = vv_mul(w, vv_mul(c, LANE_VEC3(lm, ambient)));
+  packet_origin po;
+  int po_made = 0;
+  for (size_t j = 0; j < t->s->light_count; j++) {
+    const plight *li = &ps->lights[j];
+    light_terms lt = packet_light_terms(li, f, d, m, LANE_SCALAR(lm, kd),
+                                        LANE_SCALAR(lm, ks), LANE_SCALAR(lm, h),
+                                        highlights, math, newton);
+    if (vm_none(lt.lit))
+      continue;
+    t->st->shadow_rays += (uint64_t)vm_count(lt.lit);
+    /* what the light brings where nothing blocks it */
+    vvec3 intensity = vv_mul(w, vv_get(li->color));
+    vvec3 hl = {lt.highlight, lt.highlight, lt.highlight};
+    vvec3 brings = vv_mul(intensity, vv_madd(hl, lt.diffuse, c));
+    /* rays that leave together already: traced at once */
+    SIMD_ALIGN float lx[LANES], ly[LANES], lz[LANES];
+    vf_store(lx, lt.l.x), vf_store(ly, lt.l.y), vf_store(lz, lt.l.z);
+    int k0 = vm_first(lt.lit);
+    vvec3 l0 = {vf_set1(lx[k0]), vf_set1(ly[k0]), vf_set1(lz[k0])};
+    vfloat cosk = vv_dot(lt.l, l0);
+    if (vm_none(
+            vm_andnot(lt.lit, vf_gt(cosk, vf_set1(SHADOWS_COHERENT_COS))))) {
+      if (!po_made)
+        po = packet_origin_of(f->p), po_made = 1;
+      uint64_t t0 = t->timing ? __rdtsc() : 0;
+      vvec3 sj = packet_transmission(ps, f->p, &po, lt.l, lt.dist, lt.lit, math,
+                                     newton, t->st);
+      if (t->timing) {
+        uint64_t dt = __rdtsc() - t0;
+        t->stage_ticks[STAGE_TRAVERSE] += dt;
+        *waited += dt;
+      }
+      local = vv_add(local, vv_mul(sj, brings));
+      continue;
+    }
+    if (sh->count > SHADOW_CAPACITY - LANES)
+      *waited += trace_shadows(t);
+    int n = sh->count;
+    vf_compress_store(sh->ox + n, lt.lit, f->p.x);
+    vf_compress_store(sh->oy + n, lt.lit, f->p.y);
+    vf_compress_store(sh->oz + n, lt.lit, f->p.z);
+    vf_compress_store(sh->dx + n, lt.lit, lt.l.x);
+    vf_compress_store(sh->dy + n, lt.lit, lt.l.y);
+    vf_compress_store(sh->dz + n, lt.lit, lt.l.z);
+    vf_compress_store(sh->dist + n, lt.lit, lt.dist);
+    vf_compress_store(sh->cr + n, lt.lit, brings.x);
+    vf_compress_store(sh->cg + n, lt.lit, brings.y);
+    vf_compress_store(sh->cb + n, lt.lit, brings.z);
+    vf_compress_store((float *)sh->pixel + n, lt.lit, vi_as_vf(pixel));
+    sh->count += vf_compress_store((float *)sh->key + n, lt.lit,
+                                   vi_as_vf(shadow_key(lt.l, (int)j)));
+  }
+  return local;
+}
+
 /* The shading of a packet's hits, once its surface and materials are
  * known (a uniform packet's or a mixed one's: shade_packet inlines this
  * twice, so each form is compiled for what it is). Everything a hit brings
@@ -157,13 +342,21 @@ static ALWAYS_INLINE vvec3 shade_hits(
   uint64_t shadow = 0; /* shadow rays: traversal, not shading */
   int highlights =
       lm.uniform ? lm.m->ks > 0 : vm_any(vm_and(hits, vf_gt(lm.ks, vf_zero())));
-  vvec3 local =
-      vv_mul(w, packet_lights(ps, &f, d, hits, c, LANE_VEC3(&lm, ambient),
-                              LANE_SCALAR(&lm, kd), LANE_SCALAR(&lm, ks),
-                              LANE_SCALAR(&lm, h), highlights, math, newton,
-                              t->st, t->timing ? &shadow : NULL));
-  t->stage_ticks[STAGE_TRAVERSE] += shadow;
-  t1 += shadow;
+  vvec3 local;
+  if (level >= SHADOWS_WAIT_FROM &&
+      t->s->bvh->node_count >= SHADOWS_WAIT_NODES) {
+    uint64_t waited = 0; /* trace_shadows timed itself */
+    local = wait_lights(t, &f, d, hits, c, w, pixel, &lm, highlights, math,
+                        newton, &waited);
+    t1 += t->timing ? waited : 0;
+  } else {
+    local = vv_mul(w, packet_lights(ps, &f, d, hits, c, LANE_VEC3(&lm, ambient),
+                                    LANE_SCALAR(&lm, kd), LANE_SCALAR(&lm, ks),
+                                    LANE_SCALAR(&lm, h), highlights, math,
+                                    newton, t->st, t->timing ? &shadow : NULL));
+    t->stage_ticks[STAGE_TRAVERSE] += shadow;
+    t1 += shadow;
+  }
   vvec3 zero = {vf_zero(), vf_zero(), vf_zero()};
   vvec3 brings = vv_select(hits, local, vv_select(misses, bg, zero));
 
@@ -373,6 +566,7 @@ static ALWAYS_INLINE void render_tile_body(const packet_scene *ps,
   t.sc->log_count = 0;
   for (int l = 0; l < 2 * levels; l++)
     t.sc->levels[l].count = t.sc->levels[l].cursor = 0;
+  t.sc->shadows.count = 0;
 
   camera cam;
   camera_from_basis(&cam, &frame->camera);
@@ -410,6 +604,7 @@ static ALWAYS_INLINE void render_tile_body(const packet_scene *ps,
     st->generations = 1;
   if (levels > 1)
     drain(&t, 1);
+  trace_shadows(&t);
 
   fold_log(t.sc);
   float inv_spp = 1.0f / (float)frame->spp;
