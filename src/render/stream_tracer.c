@@ -21,9 +21,11 @@
  * batches; when the next level's buffer cannot take a batch's children, the
  * tracer descends and drains it first (depth-first at the granularity of
  * whole buffers, with an explicit level cursor, no recursion), so the
- * footprint is capacity x levels whatever the ray tree does. Shadow rays
- * need no buffer: a packet's are traced at once, and since the packet is
- * full, so are they.
+ * footprint is capacity x levels whatever the ray tree does. The primary
+ * generation's shadow rays need no buffer: a packet's are traced at once,
+ * and since the packet is full, so are they. The deeper generations' wait
+ * in one buffer, sorted before they are traced (see "shadow rays that
+ * wait" below).
  *
  * Coherent rays stay coherent: a child packet with every lane alive (a
  * packet that hit one glass sphere refracts all its rays) skips the stream
@@ -392,9 +394,8 @@ static ALWAYS_INLINE vvec3 shade_hits(
 }
 
 /* One packet of a generation: intersect, shade (its shadow rays traced at
- * once: the packet is full, so they are a full packet too) and append its
- * child rays. Returns what the packet brings to its pixels (0 in inactive
- * lanes). */
+ * once, or left waiting: see wait_lights) and append its child rays. Returns
+ * what the packet brings to its pixels (0 in inactive lanes). */
 static ALWAYS_INLINE vvec3 shade_packet(tracer *t, int level, vmask active,
                                         vvec3 o, vvec3 d, vvec3 w, vint pixel,
                                         packet_child *next, glint_math math,
