@@ -80,6 +80,10 @@ typedef struct tracer {
   int newton;
   uint64_t packets, timed;
   uint64_t stage_ticks[4];
+  /* the time-stamp cycles of every trace of waiting shadow rays, timed
+   * whole (each trace serves many packets): scaled at the tile's end by
+   * the share of the packets that were timed */
+  uint64_t waiting_ticks;
 } tracer;
 
 static ALWAYS_INLINE uint64_t tick(const tracer *t) {
@@ -248,8 +252,7 @@ static __attribute__((noinline)) uint64_t trace_shadows(tracer *t) {
   }
   sh->count = 0;
   uint64_t ticks = __rdtsc() - t0;
-  /* the stage times are sampled every TIMED_EVERY-th packet */
-  t->stage_ticks[STAGE_TRAVERSE] += ticks / TIMED_EVERY;
+  t->waiting_ticks += ticks;
   return ticks;
 }
 
@@ -559,7 +562,8 @@ static ALWAYS_INLINE void render_tile_body(const packet_scene *ps,
   tracer t = {ps, s,      carve(scratch, levels),
               st, levels, tile->x1 - tile->x0,
               0,  math,   newton,
-              0,  0,      {0, 0, 0, 0}};
+              0,  0,      {0, 0, 0, 0},
+              0};
   int tw = tile->x1 - tile->x0;
   int npix = tw * (tile->y1 - tile->y0);
   double tile_start = gli_now();
@@ -616,6 +620,10 @@ static ALWAYS_INLINE void render_tile_body(const packet_scene *ps,
    * packets show (their own timer reads make them slower than the rest):
    * the time-stamp counter gives the proportions, the clock the seconds. */
   double tile_seconds = gli_now() - tile_start;
+  if (t.packets)
+    t.stage_ticks[STAGE_TRAVERSE] +=
+        (uint64_t)((double)t.waiting_ticks * (double)t.timed /
+                   (double)t.packets);
   uint64_t sampled =
       t.stage_ticks[0] + t.stage_ticks[1] + t.stage_ticks[2] + t.stage_ticks[3];
   for (int k = 0; k < 4 && sampled; k++)
