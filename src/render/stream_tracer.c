@@ -84,6 +84,7 @@ typedef struct tracer {
    * whole (each trace serves many packets): scaled at the tile's end by
    * the share of the packets that were timed */
   uint64_t waiting_ticks;
+  int waits; /* the deeper generations' shadow rays wait (wait_lights) */
 } tracer;
 
 static ALWAYS_INLINE uint64_t tick(const tracer *t) {
@@ -159,7 +160,6 @@ static ALWAYS_INLINE void emit_child(tracer *t, int level, int kind, vmask m,
  * can be traced whenever the buffer fills. The primary generation's shadow
  * rays, from a block of the screen, are coherent already and are traced
  * at once, as are all of a scene's without a BVH or with a small one. */
-#define SHADOWS_WAIT_FROM 1 /* the generation from which shadow rays wait */
 /* Trees of fewer nodes keep every shadow ray at once: there a walk costs
  * less than waiting does (its copies and sort, about 70 instructions a
  * ray): Giza (9 nodes) and glass-in-glass (23) rendered 5-11% slower with
@@ -332,7 +332,7 @@ wait_lights(tracer *t, const packet_surface *f, vvec3 d, vmask m, vvec3 c,
  * twice, so each form is compiled for what it is). Everything a hit brings
  * is linear in the rays' weights w. */
 static ALWAYS_INLINE vvec3 shade_hits(
-    tracer *t, int level, vmask hits, vmask misses, vvec3 bg,
+    tracer *t, int level, int waits, vmask hits, vmask misses, vvec3 bg,
     const packet_hit *hp, vvec3 d, vvec3 w, vint pixel, packet_child *next,
     const packet_surface *fp, const lane_material *lmp, const lane_object *lop,
     uint64_t t1, glint_math math, int newton) {
@@ -349,8 +349,7 @@ static ALWAYS_INLINE vvec3 shade_hits(
   int highlights =
       lm.uniform ? lm.m->ks > 0 : vm_any(vm_and(hits, vf_gt(lm.ks, vf_zero())));
   vvec3 local;
-  if (level >= SHADOWS_WAIT_FROM &&
-      t->s->bvh->node_count >= SHADOWS_WAIT_NODES) {
+  if (waits && level > 0) {
     uint64_t waited = 0; /* trace_shadows timed itself */
     local = wait_lights(t, &f, d, hits, c, w, pixel, &lm, highlights, math,
                         newton, &waited);
@@ -400,10 +399,10 @@ static ALWAYS_INLINE vvec3 shade_hits(
 /* One packet of a generation: intersect, shade (its shadow rays traced at
  * once, or left waiting: see wait_lights) and append its child rays. Returns
  * what the packet brings to its pixels (0 in inactive lanes). */
-static ALWAYS_INLINE vvec3 shade_packet(tracer *t, int level, vmask active,
-                                        vvec3 o, vvec3 d, vvec3 w, vint pixel,
-                                        packet_child *next, glint_math math,
-                                        int newton) {
+static ALWAYS_INLINE vvec3 shade_packet(tracer *t, int level, int waits,
+                                        vmask active, vvec3 o, vvec3 d, vvec3 w,
+                                        vint pixel, packet_child *next,
+                                        glint_math math, int newton) {
   const packet_scene *ps = t->ps;
   const scene_r *s = t->s;
   uint64_t t0 = tick(t);
@@ -433,26 +432,27 @@ static ALWAYS_INLINE vvec3 shade_packet(tracer *t, int level, vmask active,
     packet_surface f = packet_surface_object(ps, ob, &h, o, d, newton);
     lane_material lm = lane_material_uniform(ps, ob->material);
     lane_object lo = lane_object_uniform(ob);
-    return shade_hits(t, level, hits, misses, bg, &h, d, w, pixel, next, &f,
-                      &lm, &lo, t1, math, newton);
+    return shade_hits(t, level, waits, hits, misses, bg, &h, d, w, pixel, next,
+                      &f, &lm, &lo, t1, math, newton);
   }
   vint mi;
   lane_object lo;
   packet_surface f = packet_surface_lanes(ps, &h, hits, o, d, newton, &mi, &lo);
   lane_material lm =
       lane_material_gather(ps, vi_select(hits, mi, vi_set1(0)), hits);
-  return shade_hits(t, level, hits, misses, bg, &h, d, w, pixel, next, &f, &lm,
-                    &lo, t1, math, newton);
+  return shade_hits(t, level, waits, hits, misses, bg, &h, d, w, pixel, next,
+                    &f, &lm, &lo, t1, math, newton);
 }
 
 /* Shades a packet at `level` and the chain of full children that follows
  * it in registers; returns what they all bring to the packet's pixels. */
-static ALWAYS_INLINE vvec3 shade_chain(tracer *t, int level, vmask active,
-                                       vvec3 o, vvec3 d, vvec3 w, vint pixel,
-                                       glint_math math, int newton) {
+static ALWAYS_INLINE vvec3 shade_chain(tracer *t, int level, int waits,
+                                       vmask active, vvec3 o, vvec3 d, vvec3 w,
+                                       vint pixel, glint_math math,
+                                       int newton) {
   packet_child next;
-  vvec3 sum =
-      shade_packet(t, level, active, o, d, w, pixel, &next, math, newton);
+  vvec3 sum = shade_packet(t, level, waits, active, o, d, w, pixel, &next, math,
+                           newton);
   while (next.taken) {
     level++;
     int g = level < GLINT_STATS_MAX_GENERATIONS
@@ -463,8 +463,8 @@ static ALWAYS_INLINE vvec3 shade_chain(tracer *t, int level, vmask active,
     t->st->gen_active_lanes[g] += LANES;
     if (level + 1 > t->st->generations)
       t->st->generations = level + 1;
-    sum = vv_add(sum, shade_packet(t, level, vm_true(), next.o, next.d, next.w,
-                                   pixel, &next, math, newton));
+    sum = vv_add(sum, shade_packet(t, level, waits, vm_true(), next.o, next.d,
+                                   next.w, pixel, &next, math, newton));
   }
   return sum;
 }
@@ -476,15 +476,31 @@ static ALWAYS_INLINE vvec3 shade_chain(tracer *t, int level, vmask active,
  * by value, the packet's rays went through the stack, three vectors of three
  * at every call, and Giza at depth 15 rendered 2-3% slower (streams, AVX-512
  * and AVX2). */
-static __attribute__((noinline)) void
-shade_chain_deeper(tracer *t, int level, const ray_stream *r, int i, int n) {
+static ALWAYS_INLINE void shade_chain_from(tracer *t, int level, int waits,
+                                           const ray_stream *r, int i, int n) {
   vmask m = vm_from_bits(n == 32 ? -1 : (int)((1u << n) - 1));
   vvec3 o = {vf_load(r->ox + i), vf_load(r->oy + i), vf_load(r->oz + i)};
   vvec3 d = {vf_load(r->dx + i), vf_load(r->dy + i), vf_load(r->dz + i)};
   vvec3 w = {vf_load(r->wr + i), vf_load(r->wg + i), vf_load(r->wb + i)};
   vint pixel = vi_load(r->pixel + i);
-  accumulate(t->sc, m, pixel,
-             shade_chain(t, level, m, o, d, w, pixel, t->math, t->newton));
+  accumulate(
+      t->sc, m, pixel,
+      shade_chain(t, level, waits, m, o, d, w, pixel, t->math, t->newton));
+}
+
+/* Its two forms: shadow rays traced at once, and left waiting (where the
+ * tree is large enough, tracer.waits). Each is compiled for what it does:
+ * with the choice made inside, packet by packet, the call to wait_lights
+ * alone cost the shading 5% more instructions on Giza at depth 15, where
+ * no ray waits. */
+static __attribute__((noinline)) void
+shade_chain_deeper(tracer *t, int level, const ray_stream *r, int i, int n) {
+  shade_chain_from(t, level, 0, r, i, n);
+}
+
+static __attribute__((noinline)) void
+shade_chain_waiting(tracer *t, int level, const ray_stream *r, int i, int n) {
+  shade_chain_from(t, level, 1, r, i, n);
 }
 
 /* ---- a tile ------------------------------------------------------------ */
@@ -529,7 +545,10 @@ static ALWAYS_INLINE void drain(tracer *t, int floor) {
         st->gen_rays[g] += (uint64_t)n;
         st->gen_packets[g]++;
         st->gen_active_lanes[g] += (uint64_t)n;
-        shade_chain_deeper(t, level, r, i, n);
+        if (t->waits)
+          shade_chain_waiting(t, level, r, i, n);
+        else
+          shade_chain_deeper(t, level, r, i, n);
       }
       if (level + 1 > st->generations)
         st->generations = level + 1;
@@ -560,11 +579,20 @@ static ALWAYS_INLINE void render_tile_body(const packet_scene *ps,
                                            glint_math math, int newton) {
   const scene_r *s = ps->s;
   int levels = frame->max_depth;
-  tracer t = {ps, s,      carve(scratch, levels),
-              st, levels, tile->x1 - tile->x0,
-              0,  math,   newton,
-              0,  0,      {0, 0, 0, 0},
-              0};
+  tracer t = {ps,
+              s,
+              carve(scratch, levels),
+              st,
+              levels,
+              tile->x1 - tile->x0,
+              0,
+              math,
+              newton,
+              0,
+              0,
+              {0, 0, 0, 0},
+              0,
+              s->bvh->node_count >= SHADOWS_WAIT_NODES};
   int tw = tile->x1 - tile->x0;
   int npix = tw * (tile->y1 - tile->y0);
   double tile_start = gli_now();
@@ -601,8 +629,8 @@ static ALWAYS_INLINE void render_tile_body(const packet_scene *ps,
         st->gen_rays[0] += (uint64_t)n;
         st->gen_packets[0]++;
         st->gen_active_lanes[0] += (uint64_t)n;
-        sum = vv_add(sum, shade_chain(&t, 0, valid, pb.from, dir, one, pix,
-                                      math, newton));
+        sum = vv_add(sum, shade_chain(&t, 0, t.waits, valid, pb.from, dir, one,
+                                      pix, math, newton));
       }
       accumulate(t.sc, valid, pix, sum);
     }
