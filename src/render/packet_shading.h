@@ -391,6 +391,22 @@ static ALWAYS_INLINE light_terms packet_light_terms(
   return r;
 }
 
+/* The transmission S of a light's shadow rays (the lanes lt->lit of
+ * packet_light_terms), traced at once from the surface's points, with
+ * their origins' slab terms po. When `ticks` is given, the time-stamp
+ * cycles the trace took are added to it. */
+static ALWAYS_INLINE vvec3 light_transmission(
+    const packet_scene *ps, const packet_surface *f, const packet_origin *po,
+    const light_terms *lt, glint_math math, int newton, glint_stats *st,
+    uint64_t *ticks) {
+  uint64_t t0 = ticks ? __rdtsc() : 0;
+  vvec3 sj = packet_transmission(ps, f->p, po, lt->l, lt->dist, lt->lit, math,
+                                 newton, st);
+  if (ticks)
+    *ticks += __rdtsc() - t0;
+  return sj;
+}
+
 /* Eq. 2.9/2.10's local part for the lanes of m,
  *   C (ka Ia + sum S kd N·L IL) + sum S ks (V·R)^h IL,
  * one shadow packet per light (packet_light_terms says what the arguments
@@ -414,11 +430,8 @@ static ALWAYS_INLINE vvec3 packet_lights(
     if (vm_none(lt.lit))
       continue;
     st->shadow_rays += (uint64_t)vm_count(lt.lit);
-    uint64_t t0 = shadow_ticks ? __rdtsc() : 0;
-    vvec3 sj = packet_transmission(ps, f->p, &po, lt.l, lt.dist, lt.lit, math,
-                                   newton, st);
-    if (shadow_ticks)
-      *shadow_ticks += __rdtsc() - t0;
+    vvec3 sj =
+        light_transmission(ps, f, &po, &lt, math, newton, st, shadow_ticks);
     vvec3 il = vv_mul(sj, vv_get(li->color));
     diffuse = vv_madd(diffuse, lt.diffuse, il);
     if (highlights)

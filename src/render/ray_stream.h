@@ -150,6 +150,28 @@ static ALWAYS_INLINE void ray_stream_append(ray_stream *r, vmask m, vvec3 o,
   r->count += vf_compress_store((float *)r->pixel + n, m, vi_as_vf(pixel));
 }
 
+/* The same for shadow rays that wait: from o along d to a light at
+ * distance dist, bringing `brings` to `pixel` where nothing blocks them,
+ * sorted later by `key`. */
+static ALWAYS_INLINE void shadow_stream_append(shadow_stream *sh, vmask m,
+                                               vvec3 o, vvec3 d, vfloat dist,
+                                               vvec3 brings, vint pixel,
+                                               vint key) {
+  int n = sh->count;
+  vf_compress_store(sh->ox + n, m, o.x);
+  vf_compress_store(sh->oy + n, m, o.y);
+  vf_compress_store(sh->oz + n, m, o.z);
+  vf_compress_store(sh->dx + n, m, d.x);
+  vf_compress_store(sh->dy + n, m, d.y);
+  vf_compress_store(sh->dz + n, m, d.z);
+  vf_compress_store(sh->dist + n, m, dist);
+  vf_compress_store(sh->cr + n, m, brings.x);
+  vf_compress_store(sh->cg + n, m, brings.y);
+  vf_compress_store(sh->cb + n, m, brings.z);
+  vf_compress_store((float *)sh->pixel + n, m, vi_as_vf(pixel));
+  sh->count += vf_compress_store((float *)sh->key + n, m, vi_as_vf(key));
+}
+
 /* What secondary rays bring to pixels is logged, a packet at a time with
  * four vector stores, and folded into the pixels when the log fills and at
  * the end of the tile: a packet's rays can share a pixel (rays from one

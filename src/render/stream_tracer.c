@@ -244,9 +244,7 @@ static __attribute__((noinline)) uint64_t trace_shadows(tracer *t) {
     vvec3 o = {vf_load(lane[0]), vf_load(lane[1]), vf_load(lane[2])};
     vvec3 d = {vf_load(lane[3]), vf_load(lane[4]), vf_load(lane[5])};
     vvec3 brings = {vf_load(lane[7]), vf_load(lane[8]), vf_load(lane[9])};
-    packet_origin po;
-    if (t->s->bvh->node_count)
-      po = packet_origin_of(o);
+    packet_origin po = packet_origin_of(o); /* rays wait only in a BVH */
     vvec3 sj = packet_transmission(t->ps, o, &po, d, vf_load(lane[6]), m,
                                    t->math, t->newton, t->st);
     accumulate(t->sc, m, vi_load(pixel), vv_mul(sj, brings));
@@ -296,33 +294,18 @@ wait_lights(tracer *t, const packet_surface *f, vvec3 d, vmask m, vvec3 c,
             vm_andnot(lt.lit, vf_gt(cosk, vf_set1(SHADOWS_COHERENT_COS))))) {
       if (!po_made)
         po = packet_origin_of(f->p), po_made = 1;
-      uint64_t t0 = t->timing ? __rdtsc() : 0;
-      vvec3 sj = packet_transmission(ps, f->p, &po, lt.l, lt.dist, lt.lit, math,
-                                     newton, t->st);
-      if (t->timing) {
-        uint64_t dt = __rdtsc() - t0;
-        t->stage_ticks[STAGE_TRAVERSE] += dt;
-        *waited += dt;
-      }
+      uint64_t dt = 0;
+      vvec3 sj = light_transmission(ps, f, &po, &lt, math, newton, t->st,
+                                    t->timing ? &dt : NULL);
+      t->stage_ticks[STAGE_TRAVERSE] += dt;
+      *waited += dt;
       local = vv_add(local, vv_mul(sj, brings));
       continue;
     }
     if (sh->count > SHADOW_CAPACITY - LANES)
       *waited += trace_shadows(t);
-    int n = sh->count;
-    vf_compress_store(sh->ox + n, lt.lit, f->p.x);
-    vf_compress_store(sh->oy + n, lt.lit, f->p.y);
-    vf_compress_store(sh->oz + n, lt.lit, f->p.z);
-    vf_compress_store(sh->dx + n, lt.lit, lt.l.x);
-    vf_compress_store(sh->dy + n, lt.lit, lt.l.y);
-    vf_compress_store(sh->dz + n, lt.lit, lt.l.z);
-    vf_compress_store(sh->dist + n, lt.lit, lt.dist);
-    vf_compress_store(sh->cr + n, lt.lit, brings.x);
-    vf_compress_store(sh->cg + n, lt.lit, brings.y);
-    vf_compress_store(sh->cb + n, lt.lit, brings.z);
-    vf_compress_store((float *)sh->pixel + n, lt.lit, vi_as_vf(pixel));
-    sh->count += vf_compress_store((float *)sh->key + n, lt.lit,
-                                   vi_as_vf(shadow_key(lt.l, (int)j)));
+    shadow_stream_append(sh, lt.lit, f->p, lt.l, lt.dist, brings, pixel,
+                         shadow_key(lt.l, (int)j));
   }
   return local;
 }
