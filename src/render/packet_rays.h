@@ -495,11 +495,11 @@ static ALWAYS_INLINE vvec3 packet_transmission(const packet_scene *ps, vvec3 o,
     sh.exponent.z = vf_fnmadd(vf_max(sh.open.z, zero), light, sh.exponent.z);
   }
   if (sh.absorbed & 1)
-    r.x = vf_mul(r.x, vm_exp(vf_min(sh.exponent.x, vf_zero()), math));
+    r.x = vf_mul(r.x, vm_beer(vf_min(sh.exponent.x, vf_zero()), math));
   if (sh.absorbed & 2)
-    r.y = vf_mul(r.y, vm_exp(vf_min(sh.exponent.y, vf_zero()), math));
+    r.y = vf_mul(r.y, vm_beer(vf_min(sh.exponent.y, vf_zero()), math));
   if (sh.absorbed & 4)
-    r.z = vf_mul(r.z, vm_exp(vf_min(sh.exponent.z, vf_zero()), math));
+    r.z = vf_mul(r.z, vm_beer(vf_min(sh.exponent.z, vf_zero()), math));
   return vv_select(sh.alive, r, z);
 }
 

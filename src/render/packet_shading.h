@@ -494,13 +494,13 @@ static ALWAYS_INLINE vvec3 packet_beer(const lane_material *lm,
    * alone. */
   if (!lm->uniform || lm->m->absorb.x != 0)
     color.x = vf_select(
-        inside, vf_mul(color.x, vm_exp(vf_mul(absorb.x, nt), math)), color.x);
+        inside, vf_mul(color.x, vm_beer(vf_mul(absorb.x, nt), math)), color.x);
   if (!lm->uniform || lm->m->absorb.y != 0)
     color.y = vf_select(
-        inside, vf_mul(color.y, vm_exp(vf_mul(absorb.y, nt), math)), color.y);
+        inside, vf_mul(color.y, vm_beer(vf_mul(absorb.y, nt), math)), color.y);
   if (!lm->uniform || lm->m->absorb.z != 0)
     color.z = vf_select(
-        inside, vf_mul(color.z, vm_exp(vf_mul(absorb.z, nt), math)), color.z);
+        inside, vf_mul(color.z, vm_beer(vf_mul(absorb.z, nt), math)), color.z);
   return color;
 }
 
