@@ -634,6 +634,13 @@ static void bad_input_is_named(void **state) {
       {"tab.json", "{\"materials\": {\"a\tb\": {}}}",
        "tab.json:1:18: JSON syntax error: a control character"},
       {"empty.json", "", "empty.json:1:1: JSON syntax error"},
+      /* control characters between tokens, which cJSON took for blanks */
+      {"ctl.json", "{\x01\"background\": [0, 0, 0]}",
+       "ctl.json:1:2: JSON syntax error: a control character between tokens"},
+      {"vt.json", "{\"background\":\v[0, 0, 0]}",
+       "vt.json:1:15: JSON syntax error: a control character between"},
+      {"after.json", "{\"background\": [0, 0, 0]}\n\x1f",
+       "after.json:2:1: JSON syntax error: a control character between"},
   };
   for (size_t i = 0; i < sizeof cases / sizeof *cases; i++) {
     glint_scene *s = NULL;

@@ -1222,7 +1222,8 @@ static const char *too_deep(const char *p, const char *end) {
  * that glint is exactly as strict as the format: an escape other than \"
  * \\ \/ \b \f \n \r \t and \uXXXX (cJSON ends the string at a bad one,
  * silently cutting a name), \u0000 (no name can hold a NUL), a control
- * character inside a string, text that is not UTF-8 inside a string, and
+ * character inside a string or between tokens (where cJSON skips any byte
+ * up to the space), text that is not UTF-8 inside a string, and
  * a number outside JSON's grammar (01, 1., .5, -.5, 1e). NULL when the text is
  * clean, else where the problem is and *what it is. */
 static const char *grammar_problem(const char *data, size_t size,
@@ -1269,6 +1270,11 @@ static const char *grammar_problem(const char *data, size_t size,
       }
     } else if (c == '"') {
       in_string = 1;
+    } else if (c < 0x20 && c != '\t' && c != '\n' && c != '\r') {
+      /* cJSON skips every byte up to the space between tokens */
+      *what = "a control character between tokens (JSON allows only "
+              "spaces, tabs and line breaks there)";
+      return p;
     } else if (c == '.') {
       *what = "a number without a digit before its decimal point";
       return p;
