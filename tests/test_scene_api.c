@@ -230,6 +230,35 @@ static glint_render_settings settings_for(glint_backend backend, int width,
   return rs;
 }
 
+/* A plane's normal need not be unit length (glint.h), however short or
+ * long: a normal of 1e-200, whose squared length underflows, draws the
+ * plane a unit normal draws (it was refused as zero). */
+static void plane_normals_of_any_length(void **state) {
+  (void)state;
+  const double scale[] = {1, 1e-200, 1e15};
+  uint8_t first[24 * 16 * 3];
+  for (int k = 0; k < 3; k++) {
+    uint32_t m;
+    glint_scene *s = scene_with_default_material(&m);
+    V n = {0, scale[k], scale[k] * 0.25};
+    ASSERT_OK(glint_scene_add_plane(s, n, (V){0, -1, 0}, m, &e_));
+    ASSERT_OK(glint_scene_add_light(s, (V){0, 10, 0}, (V){1, 1, 1}, &e_));
+    glint_render_settings rs =
+        settings_for(GLINT_BACKEND_SCALAR_DOUBLE, 24, 16);
+    glint_image *img;
+    ASSERT_OK(glint_render(s, &rs, &img, NULL, &e_));
+    const uint8_t *px = glint_image_pixels_const(img);
+    if (k == 0) {
+      memcpy(first, px, sizeof first);
+      /* the plane is in view: the image is not one colour */
+      assert_true(memcmp(px, px + sizeof first - 3, 3) != 0);
+    } else
+      assert_memory_equal(px, first, sizeof first);
+    glint_image_destroy(img);
+    glint_scene_destroy(s);
+  }
+}
+
 /* GLINT_MAX_COORDINATE: 1e15 and -1e15 are accepted everywhere a scene
  * takes a coordinate or a size, anything beyond is refused with the
  * limit named; and at the limit every backend still draws the image double
@@ -600,6 +629,7 @@ int main(void) {
       cmocka_unit_test(builtin_scenes_match_the_spec),
       cmocka_unit_test(mesh_indices_checked),
       cmocka_unit_test(region_is_a_window_of_the_frame),
+      cmocka_unit_test(plane_normals_of_any_length),
       cmocka_unit_test(scenes_load_from_memory),
   };
   return cmocka_run_group_tests(tests, NULL, NULL);

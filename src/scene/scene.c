@@ -294,14 +294,18 @@ glint_status glint_scene_add_plane(glint_scene *s, glint_vec3 n, glint_vec3 p,
   if (!gli_vec3_in_range(n) || !gli_vec3_in_range(p))
     return gli_fail(error, GLINT_E_ARGUMENT,
                     "plane: coordinates must be " GLI_RANGE_TEXT);
-  double len = vlen(n);
-  if (!(len > 0) || !isfinite(len))
+  /* scaled by its largest component first: a normal of any length, even
+   * one whose squared length underflows (1e-200), has a direction */
+  double big = fmax(fabs(n.x), fmax(fabs(n.y), fabs(n.z)));
+  if (!(big > 0))
     return gli_fail(error, GLINT_E_ARGUMENT,
                     "plane: the normal must not be zero");
+  glint_vec3 ns = {n.x / big, n.y / big, n.z / big};
+  double len = vlen(ns);
   glint_status st = gli_scene_begin_object(s, GLI_SHAPE_PLANE, material, error);
   if (st)
     return st;
-  glint_vec3 u = {n.x / len, n.y / len, n.z / len};
+  glint_vec3 u = {ns.x / len, ns.y / len, ns.z / len};
   gli_plane_prim pl = {u, -(u.x * p.x + u.y * p.y + u.z * p.z),
                        (uint32_t)(s->object_count - 1)};
   if (GLI_PUSH(s->planes, s->plane_count, s->plane_cap, pl)) {
