@@ -115,6 +115,13 @@ static void orbit(void **state) {
       glint_scene_set_camera_orbit(s, (glint_vec3){0, 0, 0}, 6, 0, 360, &e_));
   at(s, (GLINT_MAX_FRAME + 1.0) / 2, &c); /* half-way round: the -z side */
   assert_true(fabs(c.from.z + 6) < 1e-6);
+  /* a finite time too far for a finite angle: said so (it blamed the
+   * camera's coordinates) */
+  ASSERT_OK(
+      glint_scene_set_camera_orbit(s, (glint_vec3){0, 0, 0}, 6, 0, 1e15, &e_));
+  glint_error e;
+  assert_int_equal(glint_scene_camera_at(s, 1e300, &c, &e), GLINT_E_ARGUMENT);
+  assert_non_null(strstr(e.message, "time 1e+300 is too far"));
   glint_scene_destroy(s);
 }
 

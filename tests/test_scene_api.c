@@ -53,6 +53,8 @@ static void primitives_refuse_bad_numbers(void **state) {
              "too close for a direction");
   EXPECT_ERR(glint_scene_set_camera_orbit(s, (V){1e300, 0, 0}, 1, 0, 360, &e_),
              GLINT_E_ARGUMENT, "magnitude at most 1e15");
+  EXPECT_ERR(glint_scene_set_camera_orbit(s, ok, 1, 0, 1e308, &e_),
+             GLINT_E_ARGUMENT, "degrees must be finite numbers of magnitude");
   EXPECT_ERR(glint_scene_add_light(s, nan3, (V){1, 1, 1}, &e_),
              GLINT_E_ARGUMENT, "finite");
   EXPECT_ERR(glint_scene_add_light(s, ok, (V){-1, 1, 1}, &e_), GLINT_E_ARGUMENT,

@@ -217,12 +217,13 @@ glint_status glint_scene_set_camera_orbit(glint_scene *s, glint_vec3 center,
                                           double radius, double height,
                                           double degrees, glint_error *error) {
   GLI_NOT_NULL(s, "scene", error);
+  /* degrees as any coordinate: 1e308 made every frame's angle infinite,
+   * and its camera failed for coordinates the caller never gave */
   if (!gli_vec3_in_range(center) || !gli_in_range(height) ||
-      !isfinite(degrees) || !(radius > 0) || !gli_in_range(radius))
-    return gli_fail(
-        error, GLINT_E_ARGUMENT,
-        "camera orbit: center, radius and height must be " GLI_RANGE_TEXT
-        ", the radius positive, and degrees finite");
+      !gli_in_range(degrees) || !(radius > 0) || !gli_in_range(radius))
+    return gli_fail(error, GLINT_E_ARGUMENT,
+                    "camera orbit: center, radius, height and degrees must "
+                    "be " GLI_RANGE_TEXT ", the radius positive");
   /* the orbit's angle is spread over the frames: none, no orbit (it was
    * taken, and every frame's camera failed later) */
   if (!s->animation.present)
@@ -259,6 +260,11 @@ glint_status glint_scene_camera_at(const glint_scene *s, double time,
     const glint_animation *f = &a->frames;
     double span = ((double)f->last_frame - f->first_frame + 1) / f->fps;
     double angle = a->orbit_degrees * pi / 180 * time / span;
+    if (!isfinite(angle))
+      return gli_fail(error, GLINT_E_ARGUMENT,
+                      "camera orbit: time %g is too far from the animation "
+                      "for an angle",
+                      time);
     glint_vec3 m = a->orbit_center;
     c.from =
         (glint_vec3){m.x + a->orbit_radius * sin(angle), m.y + a->orbit_height,
