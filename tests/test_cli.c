@@ -755,6 +755,10 @@ static void missing_instruction_sets(void **state) {
   EXPECT_USAGE_ERROR("GLINT_ISA='bogus' is not none, sse, avx2 or avx512",
                      "render", "-W", "8", "-H", "8", "-o", "a.png");
   EXPECT_USAGE_ERROR("GLINT_ISA='bogus'", "bench", "--runs", "1");
+  extra_env = "GLINT_ISA=scalar"; /* an alias once taken, never said */
+  EXPECT_USAGE_ERROR("GLINT_ISA='scalar' is not none, sse, avx2 or avx512",
+                     "render", "-W", "8", "-H", "8", "-o", "a.png");
+  extra_env = "GLINT_ISA=bogus";
   /* ...but the help still shows (it was refused too) */
   assert_int_equal(run("render", "--help", NULL), 0);
   assert_non_null(strstr(out, "Usage: glint render"));

@@ -18,7 +18,7 @@ static void apply_cap(gli_cpu_features *f) {
   const char *cap = getenv("GLINT_ISA");
   if (!cap || !*cap)
     return; /* an unknown value caps nothing; glint_isa_cap_check says so */
-  if (strcmp(cap, "none") == 0 || strcmp(cap, "scalar") == 0)
+  if (strcmp(cap, "none") == 0)
     f->sse41 = f->avx2 = f->avx512 = 0;
   else if (strcmp(cap, "sse") == 0)
     f->avx2 = f->avx512 = 0;
@@ -27,8 +27,7 @@ static void apply_cap(gli_cpu_features *f) {
 }
 
 glint_status glint_isa_cap_check(glint_error *error) {
-  static const char *const known[] = {"none", "scalar", "sse", "avx2",
-                                      "avx512"};
+  static const char *const known[] = {"none", "sse", "avx2", "avx512"};
   const char *cap = getenv("GLINT_ISA");
   if (!cap || !*cap)
     return GLINT_OK;
