@@ -356,6 +356,12 @@ int bench_parse(int argc, char **argv, bench_options *o) {
     cli_error("--scenes: give at least one scene");
     return EXIT_USAGE;
   }
+  for (int i = 0; i < o->nscenes; i++)
+    if (!*o->scenes[i]) { /* "whitted,,giza" or "," */
+      cli_error("--scenes: an empty name in the list (a comma at either end, "
+                "or two together)");
+      return EXIT_USAGE;
+    }
   /* A scene's name labels its rows, lines and plot files: two of one name
    * could not be told apart (the second's plot replaced the first's). */
   for (int i = 1; i < o->nscenes; i++)
