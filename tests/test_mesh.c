@@ -655,6 +655,17 @@ static void ply_tristrips(void **state) {
               "stripnone.ply:8: the triangle strip's 'vertex_indices' must be "
               "a list of integers",
               NULL);
+  /* strips of restarts alone: no triangle, and no empty face element to
+   * blame (it said "the face element is empty") */
+  expect_fail(f, "restarts.ply",
+              "ply\nformat ascii 1.0\nelement vertex 3\n"
+              "property float x\nproperty float y\nproperty float z\n"
+              "element tristrips 1\nproperty list int int vertex_indices\n"
+              "end_header\n0 0 0\n1 0 0\n0 1 0\n4 -1 -1 -1 -1\n",
+              GLINT_E_PARSE,
+              "restarts.ply: no faces (its face and tristrips elements make no "
+              "triangle)",
+              NULL);
 }
 
 /* A binary PLY body under construction, in either byte order. */
