@@ -127,6 +127,12 @@ static void malformed_files(void **state) {
               "bright.nff:8: light colour must not exceed 1e+06");
   EXPECT_FAIL("inf.nff", VIEW "b 1 inf 0\n", GLINT_E_PARSE,
               "inf.nff:8: the background colour is 'inf', not a finite number");
+  /* one view and one background a file (a second replaced the first) */
+  EXPECT_FAIL("twoviews.nff", VIEW VIEW, GLINT_E_PARSE,
+              "twoviews.nff:8: a second view (the first is on line 1)");
+  EXPECT_FAIL("twob.nff", VIEW "b 0 0 0\nb 1 1 1\n", GLINT_E_PARSE,
+              "twob.nff:9: a second background colour (the first is on line "
+              "8)");
   EXPECT_FAIL("unknown.nff", VIEW "torus 0 0 0 1 2\n", GLINT_E_PARSE,
               "unknown.nff:8: unknown entity 'torus'");
   /* A line a number short: said at that line, not at the next entity's

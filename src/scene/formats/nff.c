@@ -55,7 +55,19 @@ typedef struct nff_reader {
     int too_many, patch;
     long vertex, count;
   } odd;
+  /* The lines of the view and the background colour (0: none yet): a file
+   * has one of each, and a second would silently replace the first. */
+  long view_line, background_line;
 } nff_reader;
+
+/* A second view or background colour, at `line`. */
+static glint_status second(const nff_reader *r, const char *what, long line,
+                           long first, glint_error *e) {
+  return gli_fail(e, GLINT_E_PARSE,
+                  "%s:%ld: a second %s (the first is on line %ld): a file "
+                  "has one",
+                  r->t.path, line, what, first);
+}
 
 /* The error about the last polygon's odd line (see nff_reader.odd). */
 static glint_status odd_vertex_line(const nff_reader *r, glint_error *e) {
@@ -365,12 +377,20 @@ static glint_status read_nff(nff_reader *r, glint_error *e) {
     entities++;
     long odd = r->odd.line; /* the polygon just read's, if any */
     r->odd.line = 0;
-    if (strcmp(tok, "v") == 0)
-      st = read_view(r, e);
-    else if (strcmp(tok, "b") == 0) {
+    if (strcmp(tok, "v") == 0) {
+      long line = r->t.token_line;
+      if (r->view_line)
+        st = second(r, "view", line, r->view_line, e);
+      else
+        st = read_view(r, e);
+      r->view_line = line;
+    } else if (strcmp(tok, "b") == 0) {
       glint_vec3 c;
       long line = r->t.token_line;
-      if (!(st = gli_text_vec3(&r->t, "the background colour", &c, e)))
+      if (r->background_line)
+        st = second(r, "background colour", line, r->background_line, e);
+      r->background_line = line;
+      if (!st && !(st = gli_text_vec3(&r->t, "the background colour", &c, e)))
         st = at_line(r, line, glint_scene_set_background(r->scene, c, e), e);
     } else if (strcmp(tok, "l") == 0)
       st = read_light(r, e);
