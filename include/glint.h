@@ -283,7 +283,8 @@ glint_status glint_scene_set_camera_keys(glint_scene *scene,
  * `height` above, starting on the +z side and turning `degrees` (positive:
  * counter-clockwise seen from above) over the animation's frames, evenly,
  * so that a 360-degree orbit loops; up is +y and the fov the scene camera's.
- * Needs the scene's animation (glint_scene_set_animation, called first:
+ * degrees, like the coordinates, within +-GLINT_MAX_COORDINATE. Needs the
+ * scene's animation (glint_scene_set_animation, called first:
  * without one the orbit is refused). */
 glint_status glint_scene_set_camera_orbit(glint_scene *scene, glint_vec3 center,
                                           double radius, double height,

@@ -634,6 +634,14 @@ static void bad_input_is_named(void **state) {
       {"tab.json", "{\"materials\": {\"a\tb\": {}}}",
        "tab.json:1:18: JSON syntax error: a control character"},
       {"empty.json", "", "empty.json:1:1: JSON syntax error"},
+      /* a line break inside a string, which cJSON takes into a name (and
+       * which stopped these checks for the rest of the file) */
+      {"lf.json", "{\"materials\": {\"a\nb\": {}}, \"background\": [01, 0, 0]}",
+       "lf.json:1:18: JSON syntax error: a control character inside a "
+       "string"},
+      {"cr.json", "{\"materials\": {\"a\rb\": {}}}",
+       "cr.json:1:18: JSON syntax error: a control character inside a "
+       "string"},
       /* control characters between tokens, which cJSON took for blanks */
       {"ctl.json", "{\x01\"background\": [0, 0, 0]}",
        "ctl.json:1:2: JSON syntax error: a control character between tokens"},

@@ -1235,9 +1235,9 @@ static const char *grammar_problem(const char *data, size_t size,
     if (in_string) {
       if (c == '"') {
         in_string = 0;
-      } else if (c == '\n' || c == '\r') {
-        return NULL; /* a string never closed: cJSON's report says so */
       } else if (c < 0x20) {
+        /* a line break too: cJSON reads "a<LF>b" as a name, and a string
+         * never closed is cJSON's to report, at the text's end, later */
         *what = "a control character inside a string (write it as an "
                 "escape such as \\n)";
         return p;

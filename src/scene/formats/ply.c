@@ -906,9 +906,7 @@ glint_status gli_ply_parse(const char *path, const char *data, size_t size,
   }
   if (!st && m->ntri == 0)
     st = gli_fail(e, GLINT_E_PARSE,
-                  "%s: no faces (its face and tristrips elements make no "
-                  "triangle)",
-                  path);
+                  "%s: no faces (its faces and strips make no triangle)", path);
   free(r.elements);
   free(r.props);
   free(r.late);
