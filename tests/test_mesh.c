@@ -609,6 +609,36 @@ static void ply_faces_before_vertices(void **state) {
   }
 }
 
+/* A face too concave to cut (a comb of 20 000 teeth: the ear clipping's
+ * budget runs out), listed before the vertices, is named as such (a face
+ * read after them is named by its line, as any other error there; each
+ * comb costs the budget's two seconds, so one is tested). */
+static void ply_face_too_concave(void **state) {
+  fixture *f = *state;
+  enum { TEETH = 20000, N = 2 * TEETH + 3 };
+  size_t cap = (size_t)N * 48 + 4096;
+  char *text = malloc(cap), *p = text;
+  assert_non_null(text);
+  p += sprintf(p, "ply\nformat ascii 1.0\nelement face 1\n"
+                  "property list int int vertex_indices\n"
+                  "element vertex %d\nproperty float x\nproperty float y\n"
+                  "property float z\nend_header\n%d",
+               N, N);
+  for (int i = 0; i < N; i++)
+    p += sprintf(p, " %d", i);
+  /* the comb: a bar along x at y in [-1, 0], spikes to y = 10 */
+  p += sprintf(p, "\n0 -1 0\n%d -1 0\n", 2 * TEETH);
+  for (int i = TEETH; i > 0; i--)
+    p += sprintf(p, "%d 0 0\n%d 10 0\n", 2 * i, 2 * i - 1);
+  p += sprintf(p, "0 0 0\n");
+  assert_true((size_t)(p - text) < cap);
+  expect_fail(f, "comb.ply", text, GLINT_E_PARSE,
+              "comb.ply: a face listed before the vertices: the face of "
+              "40003 vertices has too many inward corners to triangulate",
+              NULL);
+  free(text);
+}
+
 /* Triangle strips (a 'tristrips' element): each index after a strip's
  * first two makes a triangle with the two before it, every other one
  * turned so that all face one way; -1 starts a new strip; a triangle that
@@ -1630,6 +1660,7 @@ int main(int argc, char **argv) {
       cmocka_unit_test(a_binary_file_for_a_text_one_is_refused_unread),
       cmocka_unit_test(nonfinite_vertices_no_face_uses),
       cmocka_unit_test(ply_faces_before_vertices),
+      cmocka_unit_test(ply_face_too_concave),
       cmocka_unit_test(ply_tristrips),
       cmocka_unit_test(packed_scene_needs_no_files),
       cmocka_unit_test(bad_arguments),

@@ -314,7 +314,7 @@ static glint_status ply_skip(ply_reader *r, const ply_property *p, long long n,
 
 /* --- elements ------------------------------------------------------------ */
 
-static glint_status ply_emit(ply_reader *r, const char *where, glint_error *e);
+static glint_status ply_emit(ply_reader *r, int late, glint_error *e);
 
 /* Whether v is the index of a declared vertex; `what` refers to it. */
 static glint_status ply_vertex_index(const ply_reader *r, const char *what,
@@ -372,14 +372,23 @@ static glint_status ply_face(ply_reader *r, const ply_property *p, long long n,
       r->late[r->nlate++] = m->corners[k].v;
     return GLINT_OK;
   }
-  return ply_emit(r, ply_where(r, w, sizeof w), e);
+  return ply_emit(r, 0, e);
 }
 
-/* The triangles of the face in m->corners; `where` names it in errors. */
-static glint_status ply_emit(ply_reader *r, const char *where, glint_error *e) {
+/* The triangles of the face in m->corners: the one being read, or (late)
+ * one read before the vertices, which the error names so. The location is
+ * written only for an error: once a face, snprintf was a third of the
+ * dragon's parse. */
+static glint_status ply_emit(ply_reader *r, int late, glint_error *e) {
+  char where[1100];
   switch (gli_mesh_emit_face(r->m, 0, 0)) {
   case 0: return GLINT_OK;
   case GLI_TRIANGULATE_TOO_COMPLEX:
+    if (late)
+      snprintf(where, sizeof where, "%s: a face listed before the vertices",
+               r->path);
+    else
+      ply_where(r, where, sizeof where);
     return gli_fail(e, GLINT_E_PARSE,
                     "%s: the face of %zu vertices has too many inward "
                     "corners to triangulate (" GLI_EAR_LIMIT_TEXT ")",
@@ -423,7 +432,7 @@ static glint_status ply_strip(ply_reader *r, const ply_property *p, long long n,
       m->corners[0] = (corner){(uint32_t)(odd ? b : a), MESH_NO_INDEX};
       m->corners[1] = (corner){(uint32_t)(odd ? a : b), MESH_NO_INDEX};
       m->corners[2] = (corner){(uint32_t)v, MESH_NO_INDEX};
-      if ((st = ply_emit(r, ply_where(r, w, sizeof w), e)))
+      if ((st = ply_emit(r, 0, e)))
         return st;
     }
     if (a >= 0)
@@ -437,14 +446,11 @@ static glint_status ply_strip(ply_reader *r, const ply_property *p, long long n,
 /* The faces read before their vertices (ply_reader.late), now. */
 static glint_status ply_late_faces(ply_reader *r, glint_error *e) {
   mesh_data *m = r->m;
-  char where[1100];
-  snprintf(where, sizeof where, "%s: a face listed before the vertices",
-           r->path);
   for (size_t i = 0; i < r->nlate; i += 1 + r->late[i]) {
     m->ncorners = r->late[i];
     for (size_t k = 0; k < m->ncorners; k++)
       m->corners[k] = (corner){r->late[i + 1 + k], MESH_NO_INDEX};
-    glint_status st = ply_emit(r, where, e);
+    glint_status st = ply_emit(r, 1, e);
     if (st)
       return st;
   }
