@@ -100,10 +100,6 @@ const char *gli_text_quote(char *buf, size_t cap, const char *s, size_t len) {
   return buf;
 }
 
-int gli_text_is_blank(char c) {
-  return c == ' ' || c == '\t' || c == '\r' || c == '\f' || c == '\v';
-}
-
 /* A whole number: optional sign and 1..18 digits (enough for any index,
  * and no overflow). Advances *s; -1 when there is none. */
 int gli_text_parse_whole(const char **s, const char *end, long long *out) {
