@@ -37,6 +37,22 @@ static int check_pattern(const char *p) {
       return -1;
     }
     conversions++;
+    /* x%d/../f.png would put every frame in one file: the folders after
+     * the number's may not climb out of it */
+    int depth = 0;
+    for (const char *part = strchr(d, '/'); part; part = strchr(part, '/')) {
+      size_t len = strcspn(++part, "/");
+      if (len == 2 && part[0] == '.' && part[1] == '.')
+        depth--;
+      else if (len > 0 && !(len == 1 && part[0] == '.'))
+        depth++;
+      if (depth < 0) {
+        cli_error("-o %s: the '..' after the number's folder would put every "
+                  "frame in one file",
+                  p);
+        return -1;
+      }
+    }
     c = d;
   }
   if (conversions > 1) {
@@ -256,7 +272,14 @@ int frame_files_init(frame_files *files, const glint_scene *scene,
     return -1;
   files->name = o->output;
   if (!files->name) {
-    snprintf(files->default_name, sizeof files->default_name, "%s.png", stem);
+    /* SCENE.png, read as a pattern: a % of the scene's name as %% */
+    size_t n = 0;
+    for (const char *c = stem; *c && n + 6 < sizeof files->default_name; c++) {
+      if (*c == '%')
+        files->default_name[n++] = '%';
+      files->default_name[n++] = *c;
+    }
+    snprintf(files->default_name + n, sizeof files->default_name - n, ".png");
     files->name = files->default_name;
   }
   files->pattern = check_pattern(files->name);
@@ -289,9 +312,12 @@ int frame_files_init(frame_files *files, const glint_scene *scene,
     struct stat sb;
     glint_error err, why;
     refused = frame_file(files, f, path, sizeof path, &made);
-    if (!refused && glint_image_check_writable(path, &err) &&
-        !(o->resume && stat(path, &sb) == 0 &&
-          finished_frame(path, &sb, width, height, &why))) {
+    if (!refused && cli_check_output_format(path, scene_name, &err)) {
+      cli_error("frame %d: %s; no frame was written", f, err.message);
+      refused = 1;
+    } else if (!refused && glint_image_check_writable(path, &err) &&
+               !(o->resume && stat(path, &sb) == 0 &&
+                 finished_frame(path, &sb, width, height, &why))) {
       cli_error("frame %d: %s; no frame was written", f, err.message);
       refused = 1;
     }

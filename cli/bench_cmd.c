@@ -432,24 +432,6 @@ int bench_parse(int argc, char **argv, bench_options *o) {
  * over it: a bad scene, a failed render or Ctrl-C leaves an existing file
  * as it was, and no half-written one. */
 
-/* Whether `path` is named as a file glint reads: a scene or a mesh (.nff,
- * .json, .obj, .ply, each optionally .gz), compared without case as the
- * readers compare them. */
-static int named_as_input(const char *path) {
-  static const char *const kinds[] = {".nff", ".json", ".obj", ".ply"};
-  const char *slash = strrchr(path, '/');
-  const char *base = slash ? slash + 1 : path;
-  size_t n = strlen(base);
-  if (n > 3 && strcasecmp(base + n - 3, ".gz") == 0)
-    n -= 3;
-  for (size_t i = 0; i < sizeof kinds / sizeof *kinds; i++) {
-    size_t e = strlen(kinds[i]);
-    if (n > e && strncasecmp(base + n - e, kinds[i], e) == 0)
-      return 1;
-  }
-  return 0;
-}
-
 /* Whether the CSV can be written (checked before anything is measured) and
  * is none of the files the benchmark reads: its scenes (`scenes`, or the
  * SPD scenes of spd_dir), and the meshes they name, whose names the check

@@ -122,8 +122,10 @@ int cli_tile_to_writer(void *user, const glint_tile *tile);
  * image. */
 int cli_is_film_path(const char *path);
 /* Whether `path`'s extension names something glint render writes (an
- * 8-bit image or a film) and it is not the file `scene` (NULL: none).
- * Otherwise fills `err` with the choices or the problem. */
+ * 8-bit image or a film) and it is neither the file `scene` (NULL: none)
+ * nor a link to a scene or mesh file (files.h, links_to_input), which the
+ * image would replace. Otherwise fills `err` with the choices or the
+ * problem. */
 glint_status cli_check_output_format(const char *path, const char *scene,
                                      glint_error *err);
 

@@ -6,6 +6,7 @@
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
+#include <strings.h>
 #include <sys/stat.h>
 #include <unistd.h>
 
@@ -13,6 +14,27 @@ int same_file(const char *a, const char *b) {
   struct stat sa, sb;
   return stat(a, &sa) == 0 && stat(b, &sb) == 0 && sa.st_dev == sb.st_dev &&
          sa.st_ino == sb.st_ino;
+}
+
+int named_as_input(const char *path) {
+  static const char *const kinds[] = {".nff", ".json", ".obj", ".ply"};
+  const char *slash = strrchr(path, '/');
+  const char *base = slash ? slash + 1 : path;
+  size_t n = strlen(base);
+  if (n > 3 && strcasecmp(base + n - 3, ".gz") == 0)
+    n -= 3;
+  for (size_t i = 0; i < sizeof kinds / sizeof *kinds; i++) {
+    size_t e = strlen(kinds[i]);
+    if (n > e && strncasecmp(base + n - e, kinds[i], e) == 0)
+      return 1;
+  }
+  return 0;
+}
+
+int links_to_input(const char *path, char *target) {
+  struct stat sb;
+  return lstat(path, &sb) == 0 && S_ISLNK(sb.st_mode) &&
+         realpath(path, target) && named_as_input(target);
 }
 
 int create_beside(const char *path, char *temp, size_t size) {

@@ -13,6 +13,16 @@
 /* Whether paths a and b name one existing file (through links or not). */
 int same_file(const char *a, const char *b);
 
+/* Whether `path` is named as glint's inputs are: a scene or a mesh (.nff,
+ * .json, .obj, .ply, each optionally .gz), compared without case as the
+ * readers compare them. */
+int named_as_input(const char *path);
+
+/* Whether `path` is a symbolic link (or a chain of them) to an existing
+ * file named as an input, which a file written through the link would
+ * replace; its name then in target (PATH_MAX bytes). */
+int links_to_input(const char *path, char *target);
+
 /* A new file beside `path` (its name in `temp`), mode 0666 less the umask;
  * returns its descriptor, or -1 with errno set. */
 int create_beside(const char *path, char *temp, size_t size);

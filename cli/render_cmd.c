@@ -399,13 +399,20 @@ glint_status cli_check_output_format(const char *path, const char *scene,
                                      glint_error *err) {
   if (cli_is_film_path(path) ||
       glint_image_format_from_path(path) != GLINT_FORMAT_UNKNOWN) {
-    /* Images are written through links: one to the scene would replace
-     * it. */
-    if (!scene || !same_file(scene, path))
+    /* Images are written through links: one to the scene, or to a mesh
+     * it names, would replace it. */
+    char target[PATH_MAX];
+    if (scene && same_file(scene, path))
+      snprintf(err->message, sizeof err->message,
+               "%s: that is the scene file %s", path, scene);
+    else if (links_to_input(path, target))
+      snprintf(err->message, sizeof err->message,
+               "%.400s: a link to %.400s, a scene or mesh file (.nff, "
+               ".json, .obj, .ply): the image would replace it",
+               path, target);
+    else
       return GLINT_OK;
     err->status = GLINT_E_ARGUMENT;
-    snprintf(err->message, sizeof err->message, "%s: that is the scene file %s",
-             path, scene);
     return GLINT_E_ARGUMENT;
   }
   err->status = GLINT_E_ARGUMENT;

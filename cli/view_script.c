@@ -407,7 +407,10 @@ int view_script_step(view_script *s, viewer *v) {
         cli_error("%s:%d: nothing on the window yet", s->path, c->line);
         return -1;
       }
-      glint_status st = glint_image_write(image, c->to, &err);
+      /* (checked now, not when the script was read: a link may appear) */
+      glint_status st = cli_check_output_format(c->to, NULL, &err);
+      if (!st)
+        st = glint_image_write(image, c->to, &err);
       glint_image_destroy(image);
       if (st) {
         cli_error("%s:%d: %s", s->path, c->line, err.message);

@@ -1262,7 +1262,7 @@ static void bench_csv_keeps_files_on_error(void **state) {
 }
 
 /* An output linked to the scene would replace it (images are written
- * through links): refused, the scene kept. */
+ * through links): refused, the scene kept; the same for a mesh. */
 static void output_linked_to_the_scene(void **state) {
   (void)state;
   put_text("linked.nff", small_nff);
@@ -1278,6 +1278,26 @@ static void output_linked_to_the_scene(void **state) {
   free(kept_scene);
   assert_int_equal(remove_in_folder("linked.png"), 0);
   assert_int_equal(remove_in_folder("linked.nff"), 0);
+  /* So would one linked to a mesh of the scene, or any scene or mesh file
+   * (it replaced tri.obj). */
+  put_text("tri.obj", "v -1 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 3\n");
+  put_text("m.json", "{\"materials\": {\"a\": {}}, \"objects\": [{\"type\": "
+                     "\"mesh\", \"material\": \"a\", \"file\": \"tri.obj\"}]}");
+  char mesh_file[600], link_to_mesh[600];
+  snprintf(mesh_file, sizeof mesh_file, "%s/tri.obj", dir);
+  snprintf(link_to_mesh, sizeof link_to_mesh, "%s/out.png", dir);
+  assert_int_equal(symlink(mesh_file, link_to_mesh), 0);
+  EXPECT_USAGE_ERROR_KEEPING("out.png: a link to ", "render", "m.json", "-o",
+                             "out.png");
+  assert_non_null(strstr(err, "tri.obj, a scene or mesh file (.nff, .json, "
+                              ".obj, .ply): the image would replace it"));
+  long n_mesh;
+  char *kept_mesh = file_bytes("tri.obj", &n_mesh);
+  assert_true(n_mesh > 8 && memcmp(kept_mesh, "v -1 0 0", 8) == 0);
+  free(kept_mesh);
+  assert_int_equal(remove_in_folder("out.png"), 0);
+  assert_int_equal(remove_in_folder("m.json"), 0);
+  assert_int_equal(remove_in_folder("tri.obj"), 0);
   assert_true(folder_is_empty());
 }
 
@@ -1465,6 +1485,45 @@ static void frames_of_an_animation(void **state) {
                        "p%%%d.png", "-q", NULL),
                    0);
   assert_true(exists("p%3.png"));
+  /* A % in the scene's name is a % of the default name (we%d.json made
+   * we1.png; 100%.json was refused as a bad pattern). */
+  put_text("we%d.json", orbit_scene);
+  assert_int_equal(run("render", "we%d.json", "--frames", "2", "-q", NULL), 0);
+  assert_true(exists("we%d0002.png"));
+  assert_int_equal(remove_in_folder("we%d0002.png"), 0);
+  assert_int_equal(remove_in_folder("we%d.json"), 0);
+  /* A frame linked to the scene would replace it: refused, the scene
+   * kept. */
+  char scene_file[600], link_file[600];
+  snprintf(scene_file, sizeof scene_file, "%s/anim.json", dir);
+  snprintf(link_file, sizeof link_file, "%s/g2.png", dir);
+  assert_int_equal(symlink(scene_file, link_file), 0);
+  EXPECT_USAGE_ERROR_KEEPING("frame 2: g2.png: that is the scene file "
+                             "anim.json; no frame was written",
+                             "render", "anim.json", "--frames", "1-3", "-o",
+                             "g%d.png");
+  assert_false(exists("g1.png"));
+  assert_int_equal(remove_in_folder("g2.png"), 0);
+  long n_anim;
+  char *anim = file_bytes("anim.json", &n_anim);
+  assert_true(n_anim == (long)strlen(orbit_scene) &&
+              memcmp(anim, orbit_scene, (size_t)n_anim) == 0);
+  free(anim);
+  /* Folders after the number's that climb out of it would put every frame
+   * in one file (x%d/y/.. does not). */
+  EXPECT_USAGE_ERROR_KEEPING("-o x%d/y/../../f.png: the '..' after the "
+                             "number's folder would put every frame in one "
+                             "file",
+                             "render", "anim.json", "--frames", "1-2", "-o",
+                             "x%d/y/../../f.png");
+  assert_false(exists("x1"));
+  assert_int_equal(run("render", "anim.json", "--frames", "1-2", "-o",
+                       "x%d/y/../f.png", "-q", NULL),
+                   0);
+  assert_true(exists("x1/f.png") && exists("x2/f.png"));
+  char rm_x[700];
+  snprintf(rm_x, sizeof rm_x, "rm -r '%s/x1' '%s/x2'", dir, dir);
+  assert_int_equal(system(rm_x), 0);
 
   /* --resume keeps the frames there (here f02.png a stand-in: the still
    * image, of the frame's size) and renders the rest, and again what is

@@ -619,10 +619,11 @@ static void ply_face_too_concave(void **state) {
   size_t cap = (size_t)N * 48 + 4096;
   char *text = malloc(cap), *p = text;
   assert_non_null(text);
-  p += sprintf(p, "ply\nformat ascii 1.0\nelement face 1\n"
-                  "property list int int vertex_indices\n"
-                  "element vertex %d\nproperty float x\nproperty float y\n"
-                  "property float z\nend_header\n%d",
+  p += sprintf(p,
+               "ply\nformat ascii 1.0\nelement face 1\n"
+               "property list int int vertex_indices\n"
+               "element vertex %d\nproperty float x\nproperty float y\n"
+               "property float z\nend_header\n%d",
                N, N);
   for (int i = 0; i < N; i++)
     p += sprintf(p, " %d", i);

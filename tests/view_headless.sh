@@ -242,6 +242,17 @@ timeout 20 "$glint" view scene.json --script copy.txt >out.txt 2>err.txt ||
 [ "$(stat -c %a moded.json)" = 600 ] || fail "copy over a file changed its mode"
 cmp -s moded.json scene.json || fail "copy over a file: not copied"
 ls -a | grep -q '\.tmp$' && fail "a copy left a temporary file: $(ls -a | grep '\.tmp$')"
+# A capture through a link to a scene or mesh file would replace it (it
+# wrote a PNG over the scene being viewed): refused, the file kept.
+cp good.json linked.json
+ln -s linked.json linked.png
+printf 'wait\ncapture linked.png\nquit\n' >capture.txt
+timeout 20 "$glint" view scene.json -s 1 --script capture.txt >out.txt 2>err.txt
+rc=$?
+[ $rc -eq 2 ] || fail "a capture onto a link to a scene: exit status $rc, want 2"
+grep -qF "capture.txt:2: linked.png: a link to " err.txt ||
+  fail "a capture onto a link to a scene: no message"
+cmp -s linked.json good.json || fail "a capture replaced the scene it links to"
 # Ctrl-C during a pass that takes seconds cancels the pass: exit 130 at once
 # (it rendered the pass to its end first: 12 s here, 87 s for Whitted at
 # 16384x16384). Three glass spheres in each other, where the rays double
