@@ -30,10 +30,14 @@ static int check_pattern(const char *p) {
     int width = 0;
     while (*d >= '0' && *d <= '9' && width < 100)
       width = width * 10 + (*d++ - '0');
-    if (*d != 'd' || width > 9) {
+    if (*d != 'd') {
       cli_error("-o %s: a frame pattern takes one %%d, %%04d or the like "
                 "(and %%%% for a %%)",
                 p);
+      return -1;
+    }
+    if (width > 9) {
+      cli_error("-o %s: a frame number's width is at most 9 (%%09d)", p);
       return -1;
     }
     conversions++;

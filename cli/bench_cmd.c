@@ -59,7 +59,9 @@ static void bench_usage(FILE *f) {
       "                     existing FILE stays as it was); this table and\n"
       "                     --spd's only\n"
       "      --plot DIR     also plot seconds against depth per scene into\n"
-      "                     DIR/SCENE.png (needs gnuplot); this table only\n"
+      "                     DIR/SCENE.png, with its data and gnuplot script\n"
+      "                     (DIR/SCENE.dat, DIR/SCENE.gp; needs gnuplot);\n"
+      "                     this table only\n"
       "      --spd DIR      instead: the SPD scenes in DIR (balls-s4, "
       "gears-s4,\n"
       "                     mount-s6, rings-s4, teapot-s4, tetra-s6, tree-s4)\n"
@@ -135,19 +137,25 @@ double bench_lane_use(const glint_stats *s, glint_backend b) {
              : 1.0;
 }
 
-/* "1-15" or "1,5,10,15" (or a mix), each in [lo, hi]. */
-static int parse_range_list(const char *option, char *text, long lo, long hi,
-                            int *out) {
+/* "1-15" or "1,5,10,15" (or a mix), each in [lo, hi] and once (a value
+ * twice made two columns or rows alike, and a speed-up table against the
+ * wrong one); `example` is such a list for the option. */
+static int parse_range_list(const char *option, const char *example, char *text,
+                            long lo, long hi, int *out) {
   char *items[MAX_ITEMS];
   int n = split_list(text, items, MAX_ITEMS), count = 0;
   if (n <= 0) {
-    cli_error("%s: give a list such as 1-15 or 1,5,10,15", option);
+    cli_error("%s: give a list such as %s", option, example);
     return -1;
   }
   for (int i = 0; i < n; i++) {
     int a, b;
     /* not a leading minus sign (nor past an empty item's end) */
     char *dash = items[i][0] ? strchr(items[i] + 1, '-') : NULL;
+    if (dash && strchr(dash + 1, '-')) {
+      cli_error("%s: '%s' is not a value or a range A-B", option, items[i]);
+      return -1;
+    }
     if (dash) {
       *dash = '\0';
       if (parse_int(option, items[i], lo, hi, &a) ||
@@ -168,6 +176,11 @@ static int parse_range_list(const char *option, char *text, long lo, long hi,
         cli_error("%s: at most %d values", option, MAX_ITEMS);
         return -1;
       }
+      for (int k = 0; k < count; k++)
+        if (out[k] == d) {
+          cli_error("%s: %d is in the list twice", option, d);
+          return -1;
+        }
       out[count++] = d;
     }
   }
@@ -341,14 +354,14 @@ int bench_parse(int argc, char **argv, bench_options *o) {
       return EXIT_USAGE;
     }
   o->depths_given = depth_list != NULL;
-  o->ndepths =
-      parse_range_list("--depths", depth_list ? depth_list : depth_list_default,
-                       1, GLINT_MAX_DEPTH, o->depths);
+  o->ndepths = parse_range_list("--depths", "1-15 or 1,5,10,15",
+                                depth_list ? depth_list : depth_list_default, 1,
+                                GLINT_MAX_DEPTH, o->depths);
   if (o->ndepths < 0)
     return EXIT_USAGE;
-  o->nthreads =
-      parse_range_list("--threads", thread_list ? thread_list : threads_default,
-                       0, GLINT_MAX_THREADS, o->threads);
+  o->nthreads = parse_range_list("--threads", "1 or 1,2",
+                                 thread_list ? thread_list : threads_default, 0,
+                                 GLINT_MAX_THREADS, o->threads);
   if (o->nthreads < 0)
     return EXIT_USAGE;
   o->nscenes = split_list(scene_list, o->scenes, MAX_ITEMS);
@@ -380,6 +393,7 @@ int bench_parse(int argc, char **argv, bench_options *o) {
   o->backends_given = backend_list != NULL;
   if (backend_list) {
     char *items[MAX_ITEMS];
+    const char *given[GLINT_BACKEND_COUNT]; /* as named, by o->backends */
     int n = split_list(backend_list, items, MAX_ITEMS);
     for (int i = 0; i < n; i++) {
       glint_backend b;
@@ -393,9 +407,19 @@ int bench_parse(int argc, char **argv, bench_options *o) {
       }
       /* auto stays auto: each scene and depth renders with what glint
        * render would choose for them (glint_backend_choose) */
-      if (o->nbackends < GLINT_BACKEND_COUNT)
-        o->backends[o->nbackends++] =
-            b == GLINT_BACKEND_AUTO ? b : glint_backend_resolve(b);
+      glint_backend run =
+          b == GLINT_BACKEND_AUTO ? b : glint_backend_resolve(b);
+      for (int k = 0; k < o->nbackends; k++)
+        if (o->backends[k] == run) {
+          if (strcmp(given[k], items[i]) == 0)
+            cli_error("--backends: %s is in the list twice", items[i]);
+          else
+            cli_error("--backends: %s and %s are one backend here (%s)",
+                      given[k], items[i], glint_backend_name(run));
+          return EXIT_USAGE;
+        }
+      given[o->nbackends] = items[i];
+      o->backends[o->nbackends++] = run;
     }
     if (o->nbackends <= 0) {
       cli_error("--backends: the list is empty");

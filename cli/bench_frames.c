@@ -98,10 +98,11 @@ int bench_frames(const char *scene_name, const glint_render_settings *base,
     }
   }
   static const char *const names[2] = {"one renderer", "glint_render"};
-  printf("%d frames of %s at %dx%d, %d spp, depth %d, %s, %d threads, the "
+  printf("%d frames of %s at %dx%d, %d spp, depth %d, %s, %d thread%s, the "
          "camera orbiting (medians)\n",
          frames, stem, width, height, rs.spp, rs.max_depth,
-         glint_backend_name(st.backend), st.threads);
+         glint_backend_name(st.backend), st.threads,
+         st.threads == 1 ? "" : "s");
   printf("%-14s %12s %12s %12s %9s\n", "path", "frame ms", "render ms",
          "overhead ms", "overhead");
   for (int p = 0; p < 2; p++) {

@@ -163,19 +163,23 @@ static int parse_line(view_script *s, char *text, int line, command *c) {
     if (*end || end == word[i] || isnan(x))
       return script_error(s, line, "not a number:", word[i]);
     /* an underflow (ERANGE) reads as 0, as the options read it */
+    /* (a script that waits hours is a typo, not a test) */
+    int time = c->kind == CMD_HOLD || c->kind == CMD_SLEEP;
+    if (time && !(x >= 0 && x <= 3600))
+      return script_error(
+          s, line,
+          x < 0 ? "a negative time:" : "a time past 3600 seconds:", word[i]);
     if (!(x >= -1e6 && x <= 1e6))
       return script_error(s, line, "a number outside -1e6..1e6:", word[i]);
+    /* pixels and the wheel's notches are whole (wheel 0.5 did nothing,
+     * resize 1.5 2.7 made a 1x2 window) */
+    if (!time && x != floor(x))
+      return script_error(s, line, "not a whole number:", word[i]);
     if (i == first_number)
       c->a = x;
     else
       c->b = x;
   }
-  if ((c->kind == CMD_HOLD || c->kind == CMD_SLEEP) && c->a < 0)
-    return script_error(s, line, "a negative time:", word[first_number]);
-  /* (a script that waits hours is a typo, not a test) */
-  if ((c->kind == CMD_HOLD || c->kind == CMD_SLEEP) && c->a > 3600)
-    return script_error(s, line,
-                        "a time past 3600 seconds:", word[first_number]);
   if (c->kind == CMD_RESIZE &&
       (c->a < 1 || c->b < 1 || c->a > GLINT_MAX_DIMENSION ||
        c->b > GLINT_MAX_DIMENSION))

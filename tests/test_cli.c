@@ -675,6 +675,18 @@ static void bench_errors(void **state) {
                      "--plot", "/proc/glint");
   EXPECT_USAGE_ERROR("--depths: '' is not a whole number", "bench", "--depths",
                      "1,,2");
+  /* A value twice made two columns alike (and -t 1,1's speed-ups were
+   * against the second); "1-2-3" said "'2-3' is not a whole number"; -t
+   * with nothing suggested the depths' example. */
+  EXPECT_USAGE_ERROR("--depths: 3 is in the list twice", "bench", "--depths",
+                     "1-5,3");
+  EXPECT_USAGE_ERROR("--threads: 1 is in the list twice", "bench", "-t", "1,1");
+  EXPECT_USAGE_ERROR("--backends: sse is in the list twice", "bench",
+                     "--backends", "sse,sse");
+  EXPECT_USAGE_ERROR("--depths: '1-2-3' is not a value or a range A-B", "bench",
+                     "--depths", "1-2-3");
+  EXPECT_USAGE_ERROR("--threads: give a list such as 1 or 1,2", "bench", "-t",
+                     "");
   /* (it wrote a file named '-') */
   EXPECT_USAGE_ERROR("--csv: '-' would be a file of that name", "bench",
                      "--csv", "-");
@@ -1578,6 +1590,8 @@ static void frames_of_an_animation(void **state) {
                      scene_path, "--frames", "1", "-o", "x%d%d.png");
   EXPECT_USAGE_ERROR("a frame pattern takes one %d", "render", scene_path,
                      "--frames", "1", "-o", "x%s.png");
+  EXPECT_USAGE_ERROR("a frame number's width is at most 9 (%09d)", "render",
+                     scene_path, "--frames", "1", "-o", "x%10d.png");
   EXPECT_USAGE_ERROR("--frames writes .png, .bmp or .ppm", "render", scene_path,
                      "--frames", "1", "-o", "x.exr");
   EXPECT_USAGE_ERROR("--frames: '3-1' runs backwards", "render", scene_path,

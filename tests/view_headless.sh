@@ -183,6 +183,14 @@ printf 'drag left x 5\n' >notnum.txt
 script_refused bignum.txt "bignum.txt:1: a number outside -1e6..1e6: '1e9'"
 script_refused longsleep.txt "longsleep.txt:1: a time past 3600 seconds: '100000'"
 script_refused notnum.txt "notnum.txt:1: not a number: 'x'"
+# Pixels and notches are whole (wheel 0.5 did nothing, resize 1.5 2.7 made
+# a 1x2 window); a time out of range says so (it said -1e6..1e6).
+printf 'wheel 0.5\n' >halfwheel.txt
+printf 'resize 64 2.7\n' >halfsize.txt
+printf 'hold w 1e400\n' >inftime.txt
+script_refused halfwheel.txt "halfwheel.txt:1: not a whole number: '0.5'"
+script_refused halfsize.txt "halfsize.txt:1: not a whole number: '2.7'"
+script_refused inftime.txt "inftime.txt:1: a time past 3600 seconds: '1e400'"
 # ...and a number too small for a double is 0, as the options read it (it
 # was "outside -1e6..1e6").
 printf 'sleep 1e-400\nquit\n' >tiny.txt
