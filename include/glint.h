@@ -541,7 +541,9 @@ typedef struct glint_stats {
   uint64_t primary_rays, secondary_rays, shadow_rays;
   uint64_t reflected_rays, refracted_rays, total_internal_reflections;
   /* Acceleration structure: the binary BVH, and the 8-wide one collapsed
-   * from it for single rays (its nodes, bytes and collapse time). */
+   * from it for single rays (its nodes, bytes and collapse time; 0 where
+   * none was: it is collapsed where packets may hand their last rays to
+   * it, 64 or more spheres and cones, or for GLINT_ACCEL_BVH8). */
   uint64_t bvh_nodes, bvh_bytes;
   double bvh_build_seconds;
   uint64_t wide_nodes, wide_bytes;

@@ -24,7 +24,7 @@ static void *test_view_open(const glint_scene *scene, data_kind kind,
   ASSERT_OK(gli_world_data(tv->world, kind, &data, &e_));
   const gli_bvh *bvh = &test_no_bvh;
   if (accel != GLINT_ACCEL_NONE)
-    ASSERT_OK(gli_world_bvh(tv->world, &bvh, &e_));
+    ASSERT_OK(gli_world_bvh(tv->world, 1, &bvh, &e_));
   tv->layout = gli_data_ops_of(kind);
   ASSERT_OK(tv->layout->bind(data, bvh, accel, &tv->view, &e_));
   return tv->view;

@@ -436,7 +436,8 @@ static void cut_copy(gli_bvh *bvh, const uint16_t *cut, const uint32_t *first,
   const gli_bvh_node *n = &bvh->nodes[from];
   gli_bvh_node *p = &bvh->packet_nodes[to];
   *p = *n;
-  bvh->packet_wide[to] = bvh->wide.of_binary[from];
+  bvh->packet_wide[to] =
+      bvh->wide.of_binary ? bvh->wide.of_binary[from] : GLI_WIDE_NONE;
   if (n->count)
     return;
   if (cut[from]) {
@@ -490,16 +491,30 @@ static glint_status cut_for_packets(gli_bvh *bvh, glint_error *error) {
   return GLINT_OK;
 }
 
-/* The trees derived from a finished binary BVH: the wide one and the
+/* The trees derived from a finished binary BVH: the wide one, where
+ * packets may hand subtrees over to it (else only --accel bvh8 walks it,
+ * and gli_bvh_add_wide collapses it then: on the 200k-triangle dragon the
+ * collapse was 70 ms of a 660 ms glint render, every animation frame
+ * collapsed its refitted tree again, and no walk read it), and the
  * packets'; on failure, none. */
 static glint_status derive_trees(gli_bvh *bvh, const glint_scene *scene,
                                  glint_error *error) {
-  glint_status st = gli_wide_build(bvh, scene, &bvh->wide, error);
+  glint_status st = gli_wide_may_hand_over(bvh->spheres, bvh->cones)
+                        ? gli_wide_build(bvh, scene, 1, &bvh->wide, error)
+                        : GLINT_OK;
   if (st) {
     gli_bvh_free(bvh);
     return st;
   }
   return cut_for_packets(bvh, error);
+}
+
+glint_status gli_bvh_add_wide(gli_bvh *bvh, const glint_scene *scene,
+                              glint_error *error) {
+  if (bvh->node_count == 0 || bvh->wide.nodes)
+    return GLINT_OK;
+  /* (no hand-over points to mark: derive_trees would have collapsed it) */
+  return gli_wide_build(bvh, scene, 0, &bvh->wide, error);
 }
 
 glint_status gli_bvh_build(const glint_scene *scene, gli_bvh *bvh,

@@ -40,7 +40,9 @@ typedef struct gli_bvh_node {
 
 typedef struct gli_bvh {
   /* The same tree collapsed for single rays (accel/wide_bvh.h); built with
-   * it, and refitted by collapsing the refitted tree again. */
+   * it where packets may hand subtrees over (gli_wide_may_hand_over), else
+   * on demand (gli_bvh_add_wide), and refitted by collapsing the refitted
+   * tree again. */
   gli_wide_bvh wide;
   gli_bvh_node *nodes;
   uint32_t node_count;
@@ -69,6 +71,11 @@ typedef struct gli_bvh {
 glint_status gli_bvh_build(const glint_scene *scene, gli_bvh *bvh,
                            glint_error *error);
 void gli_bvh_free(gli_bvh *bvh);
+
+/* Collapses the wide tree of a built BVH where it has none yet (for
+ * --accel bvh8, whose rays all walk it). */
+glint_status gli_bvh_add_wide(gli_bvh *bvh, const glint_scene *scene,
+                              glint_error *error);
 
 /* The BVH of `scene` with `from`'s tree, every box recomputed bottom-up for
  * the primitives where they are now: for an animation's next frame, whose

@@ -206,8 +206,8 @@ static uint32_t collapse(collapser *c, const slot *from, int depth) {
 
 /* Marks the binary nodes where a packet may hand its few remaining lanes a
  * subtree: the roots of wide nodes (the others have no wide counterpart)
- * whose subtrees hold at least HAND_OVER_REFS references, at least half of
- * them spheres or cones. Where triangles lie, single rays do not pay: a
+ * whose subtrees hold at least GLI_HAND_OVER_REFS references, at least
+ * half of them spheres or cones. Where triangles lie, single rays do not pay: a
  * packet's triangle test is cheap, a few products per lane, while its
  * sphere and cone tests take square roots and divisions for every lane
  * (gears-s4, all triangles, was 8% slower with hand-overs; balls-s4 and
@@ -217,8 +217,6 @@ static uint32_t collapse(collapser *c, const slot *from, int depth) {
  * lanes' set-up (the stress scenes mirror-room and glass-in-glass, 52 and
  * 108 primitives, were 11-16% slower with hand-overs everywhere; from 128
  * references none lost and sticks gained most: README, "Performance"). */
-#define HAND_OVER_REFS 128
-
 static void mark_hand_overs(gli_bvh *binary, gli_wide_bvh *wide) {
   /* children come after their parents: one backward pass, counting each
    * subtree's references and its spheres and cones among them */
@@ -238,7 +236,7 @@ static void mark_hand_overs(gli_bvh *binary, gli_wide_bvh *wide) {
       b->refs = below[n->offset].refs + below[n->offset + 1].refs;
       b->round = below[n->offset].round + below[n->offset + 1].round;
     }
-    n->flags = (uint8_t)(n->count == 0 && b->refs >= HAND_OVER_REFS &&
+    n->flags = (uint8_t)(n->count == 0 && b->refs >= GLI_HAND_OVER_REFS &&
                                  2 * (uint64_t)b->round >= b->refs &&
                                  wide->of_binary[i] != GLI_WIDE_NONE
                              ? GLI_NODE_HAND_OVER
@@ -248,7 +246,7 @@ static void mark_hand_overs(gli_bvh *binary, gli_wide_bvh *wide) {
   free(below); /* (out of memory: no hand-overs, still correct) */
 }
 
-glint_status gli_wide_build(gli_bvh *binary, const glint_scene *scene,
+glint_status gli_wide_build(gli_bvh *binary, const glint_scene *scene, int mark,
                             gli_wide_bvh *wide, glint_error *error) {
   double t0 = gli_now();
   memset(wide, 0, sizeof *wide);
@@ -269,7 +267,8 @@ glint_status gli_wide_build(gli_bvh *binary, const glint_scene *scene,
   collapser c = {binary, scene, wide->refs, wide, 0, 0};
   slot root = binary_slot(&c, 0);
   collapse(&c, &root, 1);
-  mark_hand_overs(binary, wide);
+  if (mark)
+    mark_hand_overs(binary, wide);
   if (c.failed) {
     gli_wide_free(wide);
     return gli_fail(error, GLINT_E_MEMORY,

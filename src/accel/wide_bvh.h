@@ -54,14 +54,28 @@ typedef struct gli_wide_bvh {
 
 struct gli_bvh;
 
+/* Packets hand subtrees to their last lanes only where at least this many
+ * references lie, at least half of them spheres or cones (wide_bvh.c,
+ * mark_hand_overs, says why). */
+#define GLI_HAND_OVER_REFS 128
+
+/* Whether a tree over these primitives may have hand-over points: where
+ * it cannot (fewer than GLI_HAND_OVER_REFS / 2 spheres and cones), only
+ * --accel bvh8 walks the wide tree, and it is collapsed on demand
+ * (gli_bvh_add_wide). */
+static inline int gli_wide_may_hand_over(size_t spheres, size_t cones) {
+  return spheres + cones >= GLI_HAND_OVER_REFS / 2;
+}
+
 /* Collapses a built (or refitted) binary BVH over `scene`: from the root
  * down, a wide node starts with its binary node's two children and opens
  * the child of largest surface area until it has GLI_WIDE children or only
- * leaves of at most GLI_WIDE_LEAF references, and marks the binary nodes
- * where packets hand subtrees over (GLI_NODE_HAND_OVER). A BVH without
- * hierarchy gives none. */
+ * leaves of at most GLI_WIDE_LEAF references, and, when `mark`, marks the
+ * binary nodes where packets hand subtrees over (GLI_NODE_HAND_OVER; not
+ * marking, it writes nothing of the binary tree, which others may be
+ * walking). A BVH without hierarchy gives none. */
 glint_status gli_wide_build(struct gli_bvh *binary, const glint_scene *scene,
-                            gli_wide_bvh *wide, glint_error *error);
+                            int mark, gli_wide_bvh *wide, glint_error *error);
 void gli_wide_free(gli_wide_bvh *wide);
 uint64_t gli_wide_bytes(const gli_wide_bvh *wide);
 

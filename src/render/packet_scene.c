@@ -161,11 +161,15 @@ static glint_status bind(const void *data, const gli_bvh *bvh,
       (bvh->node_count
            ? 0
            : v->s.sphere_count + v->s.triangle_count + v->s.cone_count);
-  v->ps.alone_lanes = !bvh->wide.nodes ? 0
-                      : accel == GLINT_ACCEL_BVH
-                          ? (bvh->wide.hand_overs ? GLI_HYBRID_LANES : 0)
-                      : accel == GLINT_ACCEL_BVH8 ? LANES
-                                                  : 0;
+  /* The wide tree is read only where it was built with the BVH, or for
+   * bvh8, by this renderer's gli_world_bvh: another renderer's may be
+   * collapsing it now (render/world.h). */
+  int hand_over = accel == GLINT_ACCEL_BVH &&
+                  gli_wide_may_hand_over(bvh->spheres, bvh->cones) &&
+                  bvh->wide.nodes && bvh->wide.hand_overs;
+  v->ps.alone_lanes = hand_over ? GLI_HYBRID_LANES
+                      : accel == GLINT_ACCEL_BVH8 && bvh->wide.nodes ? LANES
+                                                                     : 0;
   v->ps.prefetch =
       bvh->node_count &&
       v->s.triangle_count * sizeof *ps->triangles >= GLI_PREFETCH_BYTES;

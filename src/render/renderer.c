@@ -231,7 +231,8 @@ glint_status glint_renderer_create(glint_world *world,
   const gli_bvh *bvh = &r->no_bvh;
   if ((st = gli_world_data(world, r->ops->data, &data, error)) ||
       (settings->accel != GLINT_ACCEL_NONE &&
-       (st = gli_world_bvh(world, &bvh, error))) ||
+       (st = gli_world_bvh(world, walk_of(r) == GLINT_ACCEL_BVH8, &bvh,
+                           error))) ||
       (st = r->layout->bind(data, bvh, walk_of(r), &r->view, error))) {
     glint_renderer_destroy(r);
     return st;
@@ -272,7 +273,8 @@ static glint_status set_world(glint_renderer *r, glint_world *world,
   glint_status st;
   if ((st = gli_world_data(world, r->ops->data, &data, error)) ||
       (r->settings.accel != GLINT_ACCEL_NONE &&
-       (st = gli_world_bvh(world, &bvh, error))) ||
+       (st = gli_world_bvh(world, walk_of(r) == GLINT_ACCEL_BVH8, &bvh,
+                           error))) ||
       (st = r->layout->bind(data, bvh, walk_of(r), &view, error)))
     return st;
   if (r->view)

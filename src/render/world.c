@@ -45,16 +45,19 @@ void gli_world_release(glint_world *w) {
   free(w);
 }
 
-glint_status gli_world_bvh(glint_world *w, const gli_bvh **bvh,
+glint_status gli_world_bvh(glint_world *w, int wide, const gli_bvh **bvh,
                            glint_error *error) {
   glint_status st = GLINT_OK;
   pthread_mutex_lock(&w->lock);
+  double t0 = gli_now();
   if (!w->bvh_built) {
-    double t0 = gli_now();
     st = gli_bvh_build(w->scene, &w->bvh, error);
     w->bvh_built = st == GLINT_OK;
-    w->prepare_seconds += gli_now() - t0;
   }
+  /* (renderers walking the tree meanwhile read nothing this writes) */
+  if (!st && wide)
+    st = gli_bvh_add_wide(&w->bvh, w->scene, error);
+  w->prepare_seconds += gli_now() - t0;
   pthread_mutex_unlock(&w->lock);
   *bvh = &w->bvh;
   return st;
@@ -102,7 +105,7 @@ void gli_world_stats(glint_world *w, glint_stats *stats) {
 static glint_status finish_commit(glint_world *w, glint_world **out,
                                   glint_stats *stats, glint_error *error) {
   const gli_bvh *bvh;
-  glint_status st = gli_world_bvh(w, &bvh, error);
+  glint_status st = gli_world_bvh(w, 0, &bvh, error);
   const gli_backend_ops *ops =
       gli_backend_ops_of(glint_backend_resolve(GLINT_BACKEND_AUTO));
   const void *data;

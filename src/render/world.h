@@ -34,8 +34,10 @@ glint_status gli_world_create(const glint_scene *scene, int borrow,
 void gli_world_retain(glint_world *world);
 void gli_world_release(glint_world *world);
 
-/* The BVH, built on first use. */
-glint_status gli_world_bvh(glint_world *world, const gli_bvh **bvh,
+/* The BVH, built on first use; with its wide tree when `wide` (a walk of
+ * every ray alone, --accel bvh8), collapsed on first such use where the
+ * build did not (accel/bvh.h). */
+glint_status gli_world_bvh(glint_world *world, int wide, const gli_bvh **bvh,
                            glint_error *error);
 /* The scene converted for one family of backends, on first use. */
 glint_status gli_world_data(glint_world *world, data_kind kind,
