@@ -1341,6 +1341,13 @@ static void gzip_damage_is_an_error(void **state) {
   expect_fail_path(
       write_bytes(f, "tail.obj.gz", twice, size + 10), GLINT_E_PARSE,
       "tail.obj.gz: data after the end of the compressed stream", NULL);
+  /* ...even when the file's last four bytes are the unpacked length, as
+   * a single member's are (such a file was trusted unchecked: what
+   * followed the garbage was lost) */
+  memcpy(twice + size + 10, gz + size - 4, 4);
+  expect_fail_path(
+      write_bytes(f, "tail3.obj.gz", twice, size + 14), GLINT_E_PARSE,
+      "tail3.obj.gz: data after the end of the compressed stream", NULL);
   memcpy(twice + size, gz, size);
   twice[2 * size] = 0x1f; /* half a member's magic */
   expect_fail_path(write_bytes(f, "tail2.obj.gz", twice, 2 * size + 1),

@@ -40,61 +40,152 @@ static glint_status too_large(glint_error *e, const char *path,
 /* A text file's first read, which a binary file fails. */
 #define FIRST_TEXT_BYTES ((size_t)64 << 10)
 
-/* Whether the gzip file at `path` has bytes after its last member, which
- * gzread ignores without a word: -1 when it cannot tell (reading failed).
- * Members may follow each other (gzip concatenates them); anything else
- * is garbage. Each member is inflated into a scratch buffer to find its
- * end. */
-static int gzip_trailing_garbage(const char *path) {
-  enum { CHUNK = 1 << 16 };
-  FILE *raw = fopen(path, "rb");
-  unsigned char *in = malloc(2 * CHUNK), *scratch = in + CHUNK;
+/* The bytes read so far, growing by doubling, with room for a NUL. */
+typedef struct file_buffer {
+  char *data;
+  size_t size, cap; /* cap: at most max_bytes + 1, to see a file is more */
+} file_buffer;
+
+/* Room for at least one more byte, the capacity doubled or made `want`
+ * (the size a file says it has); 0, or -1 out of memory. */
+static int buffer_grow(file_buffer *b, size_t want, size_t max_bytes) {
+  if (b->size < b->cap)
+    return 0;
+  size_t cap = b->cap * 2 > want ? b->cap * 2 : want;
+  cap = cap < max_bytes + 1 ? cap : max_bytes + 1;
+  char *bigger = realloc(b->data, cap + 1);
+  if (!bigger)
+    return -1;
+  b->data = bigger;
+  b->cap = cap;
+  return 0;
+}
+
+/* Takes the `n` bytes just read at b->size: a text file's NUL, or a file
+ * past max_bytes, is an error. */
+static glint_status buffer_take(file_buffer *b, size_t n, const char *path,
+                                size_t max_bytes, int text, glint_error *e) {
+  if (text && memchr(b->data + b->size, '\0', n))
+    return gli_file_check_text(path, b->data, b->size + n, 1, e);
+  b->size += n;
+  return b->size > max_bytes ? too_large(e, path, max_bytes) : GLINT_OK;
+}
+
+/* A plain file: past the limit refused unread (a sparse file of gigabytes
+ * was read whole first, up to the limit: seconds and as many gigabytes of
+ * memory); it fits exactly, a text one once its first part is read and
+ * has no NUL. */
+static glint_status read_plain(FILE *raw, const char *path, off_t file_size,
+                               size_t max_bytes, int text, file_buffer *b,
+                               glint_error *e) {
+  if ((uintmax_t)file_size > max_bytes)
+    return too_large(e, path, max_bytes);
+  size_t full = (size_t)file_size + 1;
+  if (full < FIRST_TEXT_BYTES)
+    full = FIRST_TEXT_BYTES;
+  if (full > max_bytes + 1)
+    full = max_bytes + 1;
+  b->cap = text && full > FIRST_TEXT_BYTES ? FIRST_TEXT_BYTES : full;
+  b->data = malloc(b->cap + 1);
+  for (;;) {
+    if (!b->data || buffer_grow(b, full, max_bytes))
+      return gli_fail(e, GLINT_E_MEMORY, "%s: out of memory", path);
+    size_t n = fread(b->data + b->size, 1, b->cap - b->size, raw);
+    if (n == 0)
+      return ferror(raw) ? io_fail(e, path, "cannot read: ", EIO) : GLINT_OK;
+    glint_status st = buffer_take(b, n, path, max_bytes, text, e);
+    if (st)
+      return st;
+  }
+}
+
+/* A gzip file, inflated in one pass: members may follow each other (gzip
+ * concatenates them), and anything else after the last is an error (zlib's
+ * gzread ignores it without a word; a check that trusted a file whose last
+ * four bytes were its unpacked length let a crafted file lose what
+ * followed its first member). */
+static glint_status read_gzip(FILE *raw, const char *path, off_t file_size,
+                              size_t max_bytes, int text, file_buffer *b,
+                              glint_error *e) {
+  enum { CHUNK = 1 << 17 };
+  unsigned char *in = malloc(CHUNK);
+  b->cap = FIRST_TEXT_BYTES < max_bytes + 1 ? FIRST_TEXT_BYTES : max_bytes + 1;
+  b->data = malloc(b->cap + 1);
   z_stream z;
   memset(&z, 0, sizeof z);
-  if (!raw || !in || inflateInit2(&z, 15 + 16) != Z_OK) {
-    if (raw)
-      fclose(raw);
+  if (!in || !b->data || inflateInit2(&z, 15 + 16) != Z_OK) {
     free(in);
-    return -1;
+    return gli_fail(e, GLINT_E_MEMORY, "%s: out of memory", path);
   }
-  int verdict = -1, ended = 0;
-  for (;;) {
-    if (z.avail_in == 0) {
-      size_t n = fread(in, 1, CHUNK, raw);
-      if (n == 0) {
-        verdict = ended ? 0 : -1;
-        break;
-      }
-      z.next_in = in;
-      z.avail_in = (uInt)n;
-    }
-    if (ended) { /* what follows a member: another, or garbage */
-      if (z.avail_in < 2 && !feof(raw)) {
+  glint_status st = GLINT_OK;
+  int in_member = 1, at_end = 0;
+  while (!st) {
+    /* input: at least the two bytes of a member's magic after a member */
+    if (z.avail_in < (in_member ? 1u : 2u) && !at_end) {
+      if (z.avail_in)
         memmove(in, z.next_in, z.avail_in);
-        size_t n = fread(in + z.avail_in, 1, CHUNK - z.avail_in, raw);
-        z.next_in = in;
-        z.avail_in += (uInt)n;
-      }
-      if (z.avail_in < 2 || z.next_in[0] != 0x1f || z.next_in[1] != 0x8b) {
-        verdict = 1;
+      size_t n = fread(in + z.avail_in, 1, CHUNK - z.avail_in, raw);
+      if (n == 0 && ferror(raw)) {
+        st = io_fail(e, path, "cannot read: ", EIO);
         break;
       }
-      if (inflateReset(&z) != Z_OK)
-        break;
-      ended = 0;
+      at_end = n == 0;
+      z.next_in = in;
+      z.avail_in += (uInt)n;
+      continue;
     }
-    z.next_out = scratch;
-    z.avail_out = CHUNK;
-    int zr = inflate(&z, Z_NO_FLUSH);
-    if (zr == Z_STREAM_END)
-      ended = 1;
-    else if (zr != Z_OK && zr != Z_BUF_ERROR)
+    if (!in_member) {
+      if (z.avail_in == 0)
+        break; /* the end, after a whole member */
+      if (z.avail_in < 2 || z.next_in[0] != 0x1f || z.next_in[1] != 0x8b) {
+        st = gli_fail(e, GLINT_E_PARSE,
+                      "%s: data after the end of the compressed stream "
+                      "(a damaged or appended-to file)",
+                      path);
+        break;
+      }
+      if (inflateReset(&z) != Z_OK) {
+        st = gli_fail(e, GLINT_E_MEMORY, "%s: out of memory", path);
+        break;
+      }
+      in_member = 1;
+    }
+    if (z.avail_in == 0 && at_end) {
+      st = gli_fail(e, GLINT_E_PARSE, "%s: the compressed file is truncated",
+                    path);
       break;
+    }
+    if (buffer_grow(b, 0, max_bytes)) {
+      st = gli_fail(e, GLINT_E_MEMORY, "%s: out of memory", path);
+      break;
+    }
+    size_t room = b->cap - b->size;
+    z.next_out = (Bytef *)b->data + b->size;
+    z.avail_out = (uInt)(room < (1u << 30) ? room : 1u << 30);
+    uInt before = z.avail_out;
+    int zr = inflate(&z, Z_NO_FLUSH);
+    if (zr == Z_DATA_ERROR || zr == Z_NEED_DICT) {
+      st = gli_fail(e, GLINT_E_PARSE, "%s: damaged compressed file: %s", path,
+                    z.msg ? z.msg : "bad data");
+      break;
+    }
+    if (zr == Z_MEM_ERROR) {
+      st = gli_fail(e, GLINT_E_MEMORY, "%s: out of memory", path);
+      break;
+    }
+    st = buffer_take(b, before - z.avail_out, path, max_bytes, text, e);
+    if (!st && b->size > UNPACK_FREE &&
+        b->size / UNPACK_RATIO > (size_t)file_size)
+      st = gli_fail(e, GLINT_E_PARSE,
+                    "%s: unpacks to more than %d times its compressed size "
+                    "(%lld bytes): too repetitive for a scene or mesh",
+                    path, UNPACK_RATIO, (long long)file_size);
+    if (zr == Z_STREAM_END)
+      in_member = 0;
   }
   inflateEnd(&z);
-  fclose(raw);
   free(in);
-  return verdict;
+  return st;
 }
 
 glint_status gli_file_read_all(const char *path, size_t max_bytes, int text,
@@ -105,123 +196,27 @@ glint_status gli_file_read_all(const char *path, size_t max_bytes, int text,
   if (!S_ISREG(sb.st_mode))
     return gli_fail(e, GLINT_E_IO, "%s: not a regular file", path);
   errno = 0;
-  gzFile f = gzopen(path, "rb");
-  if (!f)
+  FILE *raw = fopen(path, "rb");
+  if (!raw)
     return errno ? io_fail(e, path, "", errno)
                  : gli_fail(e, GLINT_E_MEMORY, "%s: out of memory", path);
-  gzbuffer(f, 1 << 17);
-  /* A plain file past the limit is refused unread (a sparse file of
-   * gigabytes was read whole first, up to the limit: seconds and as many
-   * gigabytes of memory). gzdirect reads the first bytes to tell. */
-  if ((uintmax_t)sb.st_size > max_bytes && gzdirect(f)) {
-    gzclose(f);
-    return too_large(e, path, max_bytes);
+  /* gzip by its magic, whatever the name */
+  unsigned char magic[2];
+  int gzip =
+      fread(magic, 1, 2, raw) == 2 && magic[0] == 0x1f && magic[1] == 0x8b;
+  rewind(raw);
+  file_buffer b = {NULL, 0, 0};
+  glint_status st =
+      gzip ? read_gzip(raw, path, sb.st_size, max_bytes, text, &b, e)
+           : read_plain(raw, path, sb.st_size, max_bytes, text, &b, e);
+  fclose(raw);
+  if (st) {
+    free(b.data);
+    return st;
   }
-  /* A plain file fits exactly (a text one once its first part is read and
-   * has no NUL); a compressed one grows by doubling. The capacity is one
-   * more than allowed, to see that a file is more. */
-  size_t full = (size_t)sb.st_size + 1, size = 0;
-  if (full < FIRST_TEXT_BYTES)
-    full = FIRST_TEXT_BYTES;
-  if (full > max_bytes + 1)
-    full = max_bytes + 1;
-  size_t cap = text && full > FIRST_TEXT_BYTES ? FIRST_TEXT_BYTES : full;
-  char *data = malloc(cap + 1);
-  for (;;) {
-    if (!data) {
-      gzclose(f);
-      return gli_fail(e, GLINT_E_MEMORY, "%s: out of memory", path);
-    }
-    size_t want = cap - size;
-    int n =
-        gzread(f, data + size, (unsigned)(want < (1u << 30) ? want : 1u << 30));
-    if (n < 0) {
-      int zerr;
-      const char *msg = gzerror(f, &zerr);
-      /* zlib's message starts with the path we are about to print. */
-      size_t plen = strlen(path);
-      if (strncmp(msg, path, plen) == 0 && msg[plen] == ':')
-        msg += plen + (msg[plen + 1] == ' ' ? 2 : 1);
-      glint_status st =
-          zerr == Z_ERRNO
-              ? io_fail(e, path, "cannot read: ", errno ? errno : EIO)
-              : gli_fail(e, GLINT_E_PARSE, "%s: damaged compressed file: %s",
-                         path, msg);
-      gzclose(f);
-      free(data);
-      return st;
-    }
-    if (text && memchr(data + size, '\0', (size_t)n)) {
-      glint_status st = gli_file_check_text(path, data, size + (size_t)n, 1, e);
-      gzclose(f);
-      free(data);
-      return st;
-    }
-    size += (size_t)n;
-    if (size > max_bytes) {
-      gzclose(f);
-      free(data);
-      return too_large(e, path, max_bytes);
-    }
-    if (size > UNPACK_FREE && size / UNPACK_RATIO > (size_t)sb.st_size &&
-        !gzdirect(f)) {
-      gzclose(f);
-      free(data);
-      return gli_fail(e, GLINT_E_PARSE,
-                      "%s: unpacks to more than %d times its compressed size "
-                      "(%lld bytes): too repetitive for a scene or mesh",
-                      path, UNPACK_RATIO, (long long)sb.st_size);
-    }
-    if (n == 0)
-      break;
-    if (size == cap) {
-      cap = cap * 2 > full ? cap * 2 : full;
-      cap = cap < max_bytes + 1 ? cap : max_bytes + 1;
-      char *bigger = realloc(data, cap + 1);
-      if (!bigger)
-        free(data);
-      data = bigger;
-    }
-  }
-  /* A truncated gzip stream reads as a short file without an error from
-   * gzread; only gzclose_r reports it. */
-  int direct = gzdirect(f);
-  int zst = gzclose_r(f);
-  if (zst != Z_OK) {
-    free(data);
-    if (zst == Z_BUF_ERROR)
-      return gli_fail(e, GLINT_E_PARSE, "%s: the compressed file is truncated",
-                      path);
-    /* Only the system failing to read is I/O; bad data is the file's. */
-    return zst == Z_ERRNO
-               ? io_fail(e, path, "cannot read: ", errno ? errno : EIO)
-               : gli_fail(e, GLINT_E_PARSE, "%s: damaged compressed file",
-                          path);
-  }
-  /* A single member ends with its length (mod 2^32): a file that does not
-   * is several members, or one with garbage after it, which the slow check
-   * tells apart. */
-  if (!direct) {
-    unsigned char tail[4] = {0, 0, 0, 0};
-    FILE *raw = fopen(path, "rb");
-    int single =
-        raw && sb.st_size >= 4 && fseeko(raw, sb.st_size - 4, SEEK_SET) == 0 &&
-        fread(tail, 1, 4, raw) == 4 &&
-        ((uint32_t)tail[0] | (uint32_t)tail[1] << 8 | (uint32_t)tail[2] << 16 |
-         (uint32_t)tail[3] << 24) == (uint32_t)size;
-    if (raw)
-      fclose(raw);
-    if (!single && gzip_trailing_garbage(path) != 0) {
-      free(data);
-      return gli_fail(e, GLINT_E_PARSE,
-                      "%s: data after the end of the compressed stream "
-                      "(a damaged or appended-to file)",
-                      path);
-    }
-  }
-  data[size] = '\0';
-  *out = data;
-  *out_size = size;
+  b.data[b.size] = '\0';
+  *out = b.data;
+  *out_size = b.size;
   return GLINT_OK;
 }
 

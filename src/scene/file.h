@@ -1,6 +1,7 @@
 /* Reading a whole scene or mesh file into memory, the one way every reader
- * does it: gzip-compressed files are decompressed transparently (zlib reads
- * plain files as they are, whatever their name), only regular files are
+ * does it: gzip-compressed files (known by their magic, whatever their
+ * name) are decompressed transparently, whole members only and nothing
+ * after the last, plain files read as they are, only regular files are
  * read (a FIFO or a device could block or never end), and every failure is
  * one message that starts with the path. */
 #ifndef GLINT_SCENE_FILE_H
@@ -13,7 +14,7 @@
 /* The whole of `path` in *data (malloc'ed, to be freed by the caller), with
  * a NUL one past the last of its *size bytes. Files of more than max_bytes
  * (after decompression) are refused, naming the limit. A `text` file is
- * refused at its first NUL byte, as gli_file_check_text says,, as soon as
+ * refused at its first NUL byte, as gli_file_check_text says, as soon as
  * that part is read (its first 64 KiB are read alone first): a large
  * binary file named as a text one is refused unread, not read whole first
  * (a sparse file of 3 GB took 18 s). Otherwise NUL bytes are kept.
