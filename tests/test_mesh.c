@@ -460,9 +460,11 @@ static void large_meshes_are_kept_in_space_order(void **state) {
   free(text);
 
   /* Faces 1500 and 700 (from 0) use a vertex past the limit: 700 is named,
-   * the 701st. */
+   * by its line. */
   text = scrambled_grid(N, 1500, 700);
-  expect_fail(f, "bad.obj", text, GLINT_E_ARGUMENT, "(of triangle 701),",
+  char line[32];
+  snprintf(line, sizeof line, "bad.obj:%d: vertex ", (N + 1) * (N + 1) + 702);
+  expect_fail(f, "bad.obj", text, GLINT_E_ARGUMENT, line,
               "magnitude at most 1e15");
   free(text);
 }
@@ -859,7 +861,7 @@ static void ply_binary_errors(void **state) {
   memcpy(b.b + y1, "\x00\x00\xc0\x7f", 4);
   expect_fail_path(write_bytes(f, "nan.ply", b.b, b.n), GLINT_E_PARSE,
                    "vertex 1: the vertex's y is nan, not a finite number",
-                   NULL);
+                   "(and face 0 uses it)");
   make_binary_ply(&b, 1, 5, 2); /* a shorter format line */
   y1 = (size_t)(strstr((const char *)b.b, "end_header\n") - (const char *)b.b) +
        11 + 32 + 8 + 2;
@@ -997,8 +999,15 @@ static void ply_ascii_errors(void **state) {
               PLY_HEAD "0 0 0\n1 0 nan\n1 1 0\n0 1 0\n3 0 1 2\n3 0 2 3\n",
               GLINT_E_PARSE,
               "nan.ply:11: the vertex's z is 'nan', not a finite number (and "
-              "a face uses it)",
+              "the face on line 14 uses it)",
               NULL);
+  /* the first such vertex unused, a later one used: numbered as the faces
+   * number it, from 0 (it was "vertex 4", from 1, and "triangle 1") */
+  expect_fail(
+      f, "nan3.ply",
+      PLY_HEAD "0 0 0\nnan 0 0\n1 1 0\n0 inf 0\n3 0 2 3\n3 0 1 2\n",
+      GLINT_E_PARSE,
+      "nan3.ply:14: the face uses vertex 3, which is not a finite point", NULL);
   expect_fail(
       f, "nan-normal.ply",
       "ply\nformat ascii 1.0\nelement vertex 3\nproperty float x\n"
@@ -1008,7 +1017,7 @@ static void ply_ascii_errors(void **state) {
       "0 0 0 0 0 1\n1 0 0 0 0 1\n0 1 0 0 nan 1\n3 0 1 2\n",
       GLINT_E_PARSE,
       "nan-normal.ply:15: the vertex's ny is 'nan', not a finite number "
-      "(and a face uses it)",
+      "(and the face on line 16 uses it)",
       NULL);
   expect_fail(f, "trunc.ply", PLY_HEAD "0 0 0\n1 0 0\n", GLINT_E_PARSE,
               "the file ends after 2 of 4 vertices", NULL);
@@ -1139,16 +1148,17 @@ static void obj_errors(void **state) {
               "number.obj:12: expected a number for the vertex's y, found "
               "'abc'",
               NULL);
-  expect_fail(f, "nan.obj", "v 0 0 0\nv nan 0 0\nv 0 1 0\nf 1 2 3\n",
-              GLINT_E_PARSE,
-              "nan.obj:2: the vertex's x is 'nan', not a finite number (and a "
-              "face uses it)",
-              NULL);
-  /* the first such vertex unused, a later one used: named by number */
+  expect_fail(
+      f, "nan.obj", "v 0 0 0\nv nan 0 0\nv 0 1 0\nf 1 2 3\n", GLINT_E_PARSE,
+      "nan.obj:2: the vertex's x is 'nan', not a finite number (and the "
+      "face on line 4 uses it)",
+      NULL);
+  /* the first such vertex unused, a later one used: named by number, at
+   * the face's line (it was "triangle N", counted after faces were cut) */
   expect_fail(
       f, "nan2.obj", "v nan 0 0\nv 0 0 0\nv 1 0 0\nv 0 inf 0\nf 2 3 4\n",
       GLINT_E_PARSE,
-      "nan2.obj: vertex 4 is not a finite point, and triangle 1 uses it", NULL);
+      "nan2.obj:5: the face uses vertex 4, which is not a finite point", NULL);
   expect_fail(
       f, "inf.obj", "v 0 0 1e999\nv 1 0 0\nv 0 1 0\nf 1 2 3\n", GLINT_E_PARSE,
       "inf.obj:1: the vertex's z is '1e999', not a finite number", NULL);
@@ -1159,14 +1169,14 @@ static void obj_errors(void **state) {
               "f 1//1 2//2 3//1\n",
               GLINT_E_PARSE,
               "vn-nan.obj:5: the normal's z is 'nan', not a finite number "
-              "(and a face uses it)",
+              "(and the face on line 6 uses it)",
               NULL);
   expect_fail(f, "vn-nan2.obj",
               "vn inf 0 0\nv 0 0 0\nv 1 0 0\nv 0 1 0\nvn 0 0 1\nvn 0 nan 0\n"
               "f 1//2 2//3 3//2\n",
               GLINT_E_PARSE,
-              "vn-nan2.obj: normal 3 is not a finite direction, and triangle 1 "
-              "uses it",
+              "vn-nan2.obj:7: the face uses normal 3, which is not a finite "
+              "direction",
               NULL);
   expect_fail(f, "vn.obj", "vn 0 x 0\n", GLINT_E_PARSE,
               "vn.obj:1: expected a number for the normal's y, found 'x'",
@@ -1584,8 +1594,9 @@ static void bad_arguments(void **state) {
    * one good triangle was pushed, and rolled back. */
   assert_int_equal(glint_scene_add_mesh_file(s, p, 1e10, (V){0, 0, 0}, m, &e),
                    GLINT_E_ARGUMENT);
-  assert_non_null(strstr(e.message, "arg.obj: vertex "));
-  assert_non_null(strstr(e.message, " (of triangle 2), scaled by 1e+10"));
+  assert_non_null(strstr(e.message, "arg.obj:"));
+  assert_non_null(strstr(e.message, ": vertex "));
+  assert_non_null(strstr(e.message, ", scaled by 1e+10: "));
   assert_non_null(strstr(e.message, "magnitude at most 1e15"));
   assert_int_equal(s->object_count, 0);
   assert_int_equal(s->triangle_count, 0);
@@ -1608,8 +1619,9 @@ static void bad_arguments(void **state) {
                                "f 1 2 3\n");
   assert_int_equal(glint_scene_add_mesh_file(s, far, 1, (V){0, 0, 0}, m, &e),
                    GLINT_E_ARGUMENT);
-  /* named by its number, as the faces name it (it said "triangle 0") */
-  assert_non_null(strstr(e.message, "far.obj: vertex 3 (of triangle 1)"));
+  /* named by its number, as the faces name it, at the face's line (it
+   * said "triangle 0") */
+  assert_non_null(strstr(e.message, "far.obj:4: vertex 3, scaled by 1: "));
   assert_int_equal(s->triangle_count, 2);
   glint_scene_destroy(s);
 }

@@ -31,6 +31,7 @@ void gli_mesh_free(mesh_data *m) {
   free(m->nrm);
   free(m->tri);
   free(m->tri_nrm);
+  free(m->tri_where);
   free(m->corners);
 }
 
@@ -56,6 +57,7 @@ static int emit_corners(void *user, size_t a, size_t b, size_t c) {
         fe->with_normals
             ? (tri3){{k[a].n, k[b].n, k[c].n}}
             : (tri3){{MESH_NO_INDEX, MESH_NO_INDEX, MESH_NO_INDEX}};
+  m->tri_where[m->ntri] = m->face_where;
   m->ntri++;
   return 0;
 }
@@ -76,7 +78,9 @@ static int finite_point(glint_vec3 p) {
  * clipped by ears instead. */
 int gli_mesh_emit_face(mesh_data *m, int obj, int with_normals) {
   size_t n = m->ncorners, add = n - 2;
-  if (gli_grow((void **)&m->tri, &m->tri_cap, m->ntri + add, sizeof(tri3)))
+  if (gli_grow((void **)&m->tri, &m->tri_cap, m->ntri + add, sizeof(tri3)) ||
+      gli_grow((void **)&m->tri_where, &m->tri_where_cap, m->ntri + add,
+               sizeof *m->tri_where))
     return -1;
   if (obj && gli_grow((void **)&m->tri_nrm, &m->tri_nrm_cap, m->ntri + add,
                       sizeof(tri3)))
@@ -124,6 +128,16 @@ static const glint_vec3 *triangle_normals(const mesh_data *m, size_t i,
   return n;
 }
 
+/* Where triangle i's face is, as a message starts: "FILE:LINE", or
+ * "FILE: face N" (binary PLY). */
+static void face_of(const char *path, const mesh_data *m, size_t i, char *buf,
+                    size_t cap) {
+  if (m->where_is_line)
+    snprintf(buf, cap, "%.1000s:%u", path, m->tri_where[i]);
+  else
+    snprintf(buf, cap, "%.1000s: face %u", path, m->tri_where[i]);
+}
+
 /* A vertex or a normal that is not finite is refused where a face uses
  * it: `normals` chooses which, `list` and `first` are its. */
 static glint_status check_used(const char *path, const mesh_data *m,
@@ -136,14 +150,16 @@ static glint_status check_used(const char *path, const mesh_data *m,
     for (int k = 0; v && k < 3; k++) {
       if (finite_point(list[v[k]]))
         continue;
-      if (v[k] == first->index)
-        return gli_fail(e, GLINT_E_PARSE, "%s (and a face uses it)",
-                        first->why);
-      return gli_fail(e, GLINT_E_PARSE,
-                      "%s: %s %u is not a finite %s, and triangle %zu uses "
-                      "it",
-                      path, normals ? "normal" : "vertex", v[k] + 1,
-                      normals ? "direction" : "point", i + 1);
+      char face[1100];
+      face_of(path, m, i, face, sizeof face);
+      if (v[k] == first->index) /* the reader's message names the vertex */
+        return gli_fail(e, GLINT_E_PARSE, "%s (and %s %u uses it)", first->why,
+                        m->where_is_line ? "the face on line" : "face",
+                        m->tri_where[i]);
+      return gli_fail(
+          e, GLINT_E_PARSE, "%s: the face uses %s %u, which is not a finite %s",
+          face, normals ? "normal" : "vertex", v[k] + (uint32_t)m->first_index,
+          normals ? "direction" : "point");
     }
   }
   return GLINT_OK;
@@ -207,12 +223,13 @@ static glint_status add_to_scene(glint_scene *s, const char *path, mesh_data *m,
       int k = 0;
       while (k < 2 && gli_vec3_in_range(m->pos[v[k]]))
         k++;
+      char face[1100];
+      face_of(path, m, i, face, sizeof face);
       if (!gli_vec3_in_range(m->pos[v[k]]))
-        st = gli_fail(e, st, "%s: vertex %u (of triangle %zu), %s: %s", path,
-                      v[k] + 1, i + 1, placed, msg);
-      else
-        st = gli_fail(e, st, "%s: triangle %zu, %s: %s", path, i + 1, placed,
-                      msg);
+        st = gli_fail(e, st, "%s: vertex %u, %s: %s", face,
+                      v[k] + (uint32_t)m->first_index, placed, msg);
+      else /* a normal's: not scaled nor moved */
+        st = gli_fail(e, st, "%s: %s", face, msg);
       goto fail;
     }
   }

@@ -41,7 +41,16 @@ typedef struct mesh_data {
   tri3 *tri_nrm; /* OBJ: normal indices, parallel to tri; MESH_NO_INDEX: flat */
   size_t tri_nrm_cap;
   int vertex_normals; /* PLY: nrm[i] belongs to pos[i] */
-  corner *corners;    /* the face being read */
+  /* Where each triangle's face is, for the messages of the checks that run
+   * once the file is read: its line (where_is_line: OBJ, ASCII PLY) or its
+   * number among the faces (binary PLY, from 0 as PLY counts), as the
+   * reader set face_where before gli_mesh_emit_face. first_index is the
+   * number the file's faces give its first vertex (OBJ 1, PLY 0). */
+  uint32_t *tri_where;
+  size_t tri_where_cap;
+  uint32_t face_where;
+  int where_is_line, first_index;
+  corner *corners; /* the face being read */
   size_t ncorners, corners_cap;
   size_t *ear_tests_left; /* the scene's (scene/polygon.h) */
   /* The first vertex whose position is not a finite number, and the first

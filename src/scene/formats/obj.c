@@ -265,6 +265,7 @@ static glint_status obj_face(obj_reader *r, glint_error *e) {
   if (m->ntri + m->ncorners - 2 > MESH_MAX_ITEMS)
     return gli_fail(e, GLINT_E_PARSE, "%s:%zu: too many triangles", r->path,
                     r->line);
+  m->face_where = r->line < UINT32_MAX ? (uint32_t)r->line : UINT32_MAX;
   switch (gli_mesh_emit_face(m, 1, smooth)) {
   case 0: return GLINT_OK;
   case GLI_TRIANGULATE_TOO_COMPLEX:
@@ -299,6 +300,8 @@ glint_status gli_obj_parse(const char *path, const char *data, size_t size,
   if (st)
     return st;
   obj_reader r = {path, data, 1, 0, m};
+  m->where_is_line = 1;
+  m->first_index = 1;
   /* Some Windows exporters start the file with a UTF-8 byte order mark. */
   if (size >= 3 && memcmp(data, "\xef\xbb\xbf", 3) == 0)
     r.p += 3;

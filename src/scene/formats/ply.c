@@ -90,12 +90,20 @@ typedef struct ply_reader {
   size_t vertex_count; /* declared: faces are checked against it */
   mesh_data *m;
   /* Faces of more than 3 corners read before their vertices (a file may
-   * order its elements so): each its count, then its indices, cut into
+   * order its elements so): each its count, where it is (face_where), then
+   * its indices, cut into
    * triangles once the vertices are read (ply_late_faces), as a concave
    * one cannot be cut before. */
   uint32_t *late;
   size_t nlate, late_cap;
 } ply_reader;
+
+/* The face being read as mesh_data.face_where has it: its line (ASCII) or
+ * its number among its element's (binary). */
+static uint32_t ply_face_where(const ply_reader *r) {
+  size_t w = r->format == PLY_ASCII ? r->line : r->index;
+  return w < UINT32_MAX ? (uint32_t)w : UINT32_MAX;
+}
 
 /* Where an error is: FILE:LINE for ASCII, FILE: vertex 12 for binary. */
 static const char *ply_where(const ply_reader *r, char *buf, size_t cap) {
@@ -364,10 +372,11 @@ static glint_status ply_face(ply_reader *r, const ply_property *p, long long n,
   for (long long k = 0; k < n && read; k++)
     read = m->corners[k].v < m->npos;
   if (n > 3 && !read) {
-    if (gli_grow((void **)&r->late, &r->late_cap, r->nlate + 1 + (size_t)n,
+    if (gli_grow((void **)&r->late, &r->late_cap, r->nlate + 2 + (size_t)n,
                  sizeof *r->late))
       return gli_mesh_oom(r->path, e);
     r->late[r->nlate++] = (uint32_t)n;
+    r->late[r->nlate++] = ply_face_where(r);
     for (long long k = 0; k < n; k++)
       r->late[r->nlate++] = m->corners[k].v;
     return GLINT_OK;
@@ -381,6 +390,8 @@ static glint_status ply_face(ply_reader *r, const ply_property *p, long long n,
  * dragon's parse. */
 static glint_status ply_emit(ply_reader *r, int late, glint_error *e) {
   char where[1100];
+  if (!late)
+    r->m->face_where = ply_face_where(r);
   switch (gli_mesh_emit_face(r->m, 0, 0)) {
   case 0: return GLINT_OK;
   case GLI_TRIANGULATE_TOO_COMPLEX:
@@ -446,10 +457,11 @@ static glint_status ply_strip(ply_reader *r, const ply_property *p, long long n,
 /* The faces read before their vertices (ply_reader.late), now. */
 static glint_status ply_late_faces(ply_reader *r, glint_error *e) {
   mesh_data *m = r->m;
-  for (size_t i = 0; i < r->nlate; i += 1 + r->late[i]) {
+  for (size_t i = 0; i < r->nlate; i += 2 + r->late[i]) {
     m->ncorners = r->late[i];
+    m->face_where = r->late[i + 1];
     for (size_t k = 0; k < m->ncorners; k++)
-      m->corners[k] = (corner){r->late[i + 1 + k], MESH_NO_INDEX};
+      m->corners[k] = (corner){r->late[i + 2 + k], MESH_NO_INDEX};
     glint_status st = ply_emit(r, 1, e);
     if (st)
       return st;
@@ -884,6 +896,7 @@ glint_status gli_ply_parse(const char *path, const char *data, size_t size,
   r.size = size;
   r.m = m;
   glint_status st = ply_header(&r, e);
+  m->where_is_line = r.format == PLY_ASCII;
   for (size_t i = 0; i < r.nelements && !st; i++)
     st = ply_read_element(&r, &r.elements[i], e);
   if (!st)
