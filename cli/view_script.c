@@ -291,12 +291,14 @@ static void push_drag(const viewer *v, const command *c) {
 }
 
 static void print_state(const viewer *v) {
-  printf("state: frames %ld, samples %d/%d, depth %d, %dx%d at scale %.3f, "
-         "%s",
-         v->frames, v->samples, v->rs.spp, v->rs.max_depth, v->rw, v->rh,
-         (double)v->rw / v->win_w,
-         glint_backend_name(
-             glint_backend_choose(v->rs.backend, v->scene, &v->rs)));
+  printf("state: frames %ld, samples %d/%d, depth %d, ", v->frames,
+         v->samples, v->rs.spp, v->rs.max_depth);
+  if (v->rw > 0) /* (before the first frame there is no size: 0x0 said so) */
+    printf("%dx%d at scale %.3f, ", v->rw, v->rh, (double)v->rw / v->win_w);
+  else
+    printf("no frame yet, ");
+  printf("%s", glint_backend_name(
+                   glint_backend_choose(v->rs.backend, v->scene, &v->rs)));
   if (v->refined_at > v->stopped_at && v->stopped_at > 0)
     printf(", refined %.3f s after the camera stopped",
            v->refined_at - v->stopped_at);
