@@ -1,3 +1,4 @@
+#define _GNU_SOURCE /* program_invocation_short_name */
 #include "args.h"
 
 #include <ctype.h>
@@ -29,7 +30,10 @@ void cli_error(const char *format, ...) {
     text = line; /* cut, rather than nothing */
   va_end(again);
   va_end(args);
-  fputs("glint: ", stderr);
+  /* glint-mpi's messages are its own; glint-view speaks for glint view */
+  fputs(strcmp(program_invocation_short_name, "glint-mpi") == 0 ? "glint-mpi: "
+                                                                 : "glint: ",
+        stderr);
   for (const unsigned char *p = (const unsigned char *)text; *p; p++)
     fputc((*p < 0x20 && *p != '\n' && *p != '\t') || *p == 0x7f ? '?' : *p,
           stderr);

@@ -110,7 +110,7 @@ int mpi_all_ok(const mpi_world *w, int ok, const char *message) {
       if (all[(size_t)r * sizeof mine])
         first_failed = r;
   if (first_failed == 0)
-    fprintf(stderr, "glint: %s\n", all);
+    fprintf(stderr, "glint-mpi: %s\n", all);
   else if (first_failed > 0)
     fprintf(stderr, "glint-mpi: rank %d (%s): %s\n", first_failed,
             w->hosts[first_failed], all + (size_t)first_failed * sizeof mine);
@@ -407,7 +407,7 @@ static int share_threads(const mpi_world *w, int threads, int local,
 /* Parses with rank 0's voice only: the ranks usually parse the same
  * arguments, and one message is enough. Another rank's message, should its
  * own arguments be refused (an MPMD launch), is kept in `message` (its
- * first line, without the "glint: ") for rank 0 to print. */
+ * first line, without the "glint-mpi: ") for rank 0 to print. */
 static int parse_quietly(const mpi_world *w, int argc, char **argv,
                          mpi_options *o, char *message, size_t size) {
   message[0] = '\0';
@@ -439,7 +439,8 @@ static int parse_quietly(const mpi_world *w, int argc, char **argv,
     char line[MPI_MESSAGE_CHARS];
     if (status > 0 && fgets(line, sizeof line, said)) {
       line[strcspn(line, "\n")] = '\0';
-      const char *text = strncmp(line, "glint: ", 7) ? line : line + 7;
+      const char *text =
+          strncmp(line, "glint-mpi: ", 11) ? line : line + 11;
       snprintf(message, size, "%s", text);
     }
     fclose(said);

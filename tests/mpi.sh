@@ -203,6 +203,9 @@ worker_refuses() { # $1: the worker's option; $2: what rank 0 says of it
   [ ! -e x.png ] || fail "a worker given $1: an image was written"
 }
 worker_refuses --bogus "unknown option '--bogus'"
+# glint-mpi's own messages say glint-mpi (its argument errors said glint)
+grep -q "^glint-mpi: rank 1 (.*): unknown option '--bogus'" run.err ||
+  fail "a worker's refusal: not glint-mpi's own message: $(cat run.err)"
 worker_refuses --help "its arguments ask for --help"
 # A rank whose memory limit (ulimit -v) breaks Open MPI's shared memory:
 # MPI_Init succeeds, no message passes, and every rank waited for ever. The
@@ -241,8 +244,8 @@ run 2 whitted --schedule sometimes >run.out 2>run.err
   fail "a bad --schedule: not one message"
 run 2 whitted --tile 24 >run.out 2>run.err
 [ $? -ne 0 ] || fail "a --tile off the renderer's grid: exit status 0"
-[ "$(grep -c "tile: 24 is not a multiple of 16" run.err)" -eq 1 ] ||
-  fail "a --tile off the renderer's grid: not one message"
+[ "$(grep -c "^glint-mpi: --tile: 24 is not a multiple of 16" run.err)" -eq 1 ] ||
+  fail "a --tile off the renderer's grid: not one message of glint-mpi's"
 # (--tile with --frames was taken and ignored)
 run 2 whitted --frames 0-1 --tile 64 >run.out 2>run.err
 [ $? -ne 0 ] || fail "--tile with --frames: exit status 0"
