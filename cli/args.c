@@ -32,7 +32,7 @@ void cli_error(const char *format, ...) {
   va_end(args);
   /* glint-mpi's messages are its own; glint-view speaks for glint view */
   fputs(strcmp(program_invocation_short_name, "glint-mpi") == 0 ? "glint-mpi: "
-                                                                 : "glint: ",
+                                                                : "glint: ",
         stderr);
   for (const unsigned char *p = (const unsigned char *)text; *p; p++)
     fputc((*p < 0x20 && *p != '\n' && *p != '\t') || *p == 0x7f ? '?' : *p,

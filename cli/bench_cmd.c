@@ -364,6 +364,15 @@ int bench_parse(int argc, char **argv, bench_options *o) {
                                  GLINT_MAX_THREADS, o->threads);
   if (o->nthreads < 0)
     return EXIT_USAGE;
+  /* 0 is every CPU: -t 0,2 on two CPUs made two columns alike */
+  for (int i = 0; i < o->nthreads; i++)
+    for (int j = 0; j < o->nthreads; j++)
+      if (o->threads[i] == 0 && o->threads[j] == glint_cpu_count()) {
+        cli_error("--threads: 0 (every CPU this process may use) and %d are "
+                  "one thread count here",
+                  o->threads[j]);
+        return EXIT_USAGE;
+      }
   o->nscenes = split_list(scene_list, o->scenes, MAX_ITEMS);
   if (o->nscenes <= 0) {
     cli_error("--scenes: give at least one scene");

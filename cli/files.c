@@ -32,9 +32,37 @@ int named_as_input(const char *path) {
 }
 
 int links_to_input(const char *path, char *target) {
-  struct stat sb;
-  return lstat(path, &sb) == 0 && S_ISLNK(sb.st_mode) &&
-         realpath(path, target) && named_as_input(target);
+  /* Every link of the chain: a mesh may itself be a link to a file of
+   * another name (mesh.obj -> store/blob), which the image written
+   * through out.png -> mesh.obj would replace. */
+  char at[PATH_MAX];
+  if (snprintf(at, sizeof at, "%s", path) >= (int)sizeof at)
+    return 0;
+  for (int hop = 0; hop < 40; hop++) { /* (a loop fails to open anyway) */
+    struct stat sb;
+    if (lstat(at, &sb) != 0 || !S_ISLNK(sb.st_mode))
+      return 0;
+    char to[PATH_MAX];
+    ssize_t n = readlink(at, to, sizeof to - 1);
+    if (n <= 0)
+      return 0;
+    to[n] = '\0';
+    /* a relative target is relative to the link's folder */
+    char *slash = strrchr(at, '/');
+    if (to[0] != '/' && slash) {
+      slash[1] = '\0';
+      if (strlen(at) + strlen(to) >= sizeof at)
+        return 0;
+      strcat(at, to);
+    } else {
+      strcpy(at, to);
+    }
+    if (named_as_input(at)) {
+      snprintf(target, PATH_MAX, "%s", at);
+      return 1;
+    }
+  }
+  return 0;
 }
 
 int create_beside(const char *path, char *temp, size_t size) {

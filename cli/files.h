@@ -18,9 +18,10 @@ int same_file(const char *a, const char *b);
  * readers compare them. */
 int named_as_input(const char *path);
 
-/* Whether `path` is a symbolic link (or a chain of them) to an existing
- * file named as an input, which a file written through the link would
- * replace; its name then in target (PATH_MAX bytes). */
+/* Whether `path` is a symbolic link (or a chain of them) any link of
+ * which names a file named as an input, which a file written through the
+ * link would replace; that link's target then in target (PATH_MAX
+ * bytes), as the links name it. */
 int links_to_input(const char *path, char *target);
 
 /* A new file beside `path` (its name in `temp`), mode 0666 less the umask;

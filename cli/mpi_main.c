@@ -439,8 +439,7 @@ static int parse_quietly(const mpi_world *w, int argc, char **argv,
     char line[MPI_MESSAGE_CHARS];
     if (status > 0 && fgets(line, sizeof line, said)) {
       line[strcspn(line, "\n")] = '\0';
-      const char *text =
-          strncmp(line, "glint-mpi: ", 11) ? line : line + 11;
+      const char *text = strncmp(line, "glint-mpi: ", 11) ? line : line + 11;
       snprintf(message, size, "%s", text);
     }
     fclose(said);

@@ -334,7 +334,7 @@ static void print_stats(FILE *out, const glint_stats *s,
             (double)s->wide_bytes / 1048576.0, s->wide_build_seconds * 1e3);
   else if (s->bvh_nodes)
     fprintf(out, "  wide bvh           none: no walk of this render takes it "
-                 "(--accel bvh8 would)\n");
+                 "(a beam or scalar backend's with --accel bvh8 would)\n");
   fprintf(out, "  render             %.4f s\n", s->render_seconds);
   fprintf(out, "  load scene         %.4f s\n", t->load);
   /* An 8-bit image file is encoded while the frame renders: this is what

@@ -291,8 +291,8 @@ static void push_drag(const viewer *v, const command *c) {
 }
 
 static void print_state(const viewer *v) {
-  printf("state: frames %ld, samples %d/%d, depth %d, ", v->frames,
-         v->samples, v->rs.spp, v->rs.max_depth);
+  printf("state: frames %ld, samples %d/%d, depth %d, ", v->frames, v->samples,
+         v->rs.spp, v->rs.max_depth);
   if (v->rw > 0) /* (before the first frame there is no size: 0x0 said so) */
     printf("%dx%d at scale %.3f, ", v->rw, v->rh, (double)v->rw / v->win_w);
   else

@@ -681,6 +681,10 @@ static void bench_errors(void **state) {
   EXPECT_USAGE_ERROR("--depths: 3 is in the list twice", "bench", "--depths",
                      "1-5,3");
   EXPECT_USAGE_ERROR("--threads: 1 is in the list twice", "bench", "-t", "1,1");
+  char all_cpus[32];
+  snprintf(all_cpus, sizeof all_cpus, "0,%d", glint_cpu_count());
+  EXPECT_USAGE_ERROR("--threads: 0 (every CPU this process may use) and",
+                     "bench", "-t", all_cpus);
   EXPECT_USAGE_ERROR("--backends: sse is in the list twice", "bench",
                      "--backends", "sse,sse");
   EXPECT_USAGE_ERROR("--depths: '1-2-3' is not a value or a range A-B", "bench",
@@ -1308,9 +1312,28 @@ static void output_linked_to_the_scene(void **state) {
   assert_non_null(strstr(err, "tri.obj, a scene or mesh file (.nff, .json, "
                               ".obj, .ply): the image would replace it"));
   assert_kept("tri.obj", "v -1 -1 0", 1);
+  /* ...also where the mesh is itself a link to a file of another name
+   * (the check looked at the chain's last name only) */
+  char blob[600], chained[600], tri[600], out_png[600];
+  snprintf(blob, sizeof blob, "%s/blob", dir);
+  snprintf(chained, sizeof chained, "%s/chained.obj", dir);
+  snprintf(tri, sizeof tri, "%s/tri.obj", dir);
+  snprintf(out_png, sizeof out_png, "%s/out.png", dir);
+  assert_int_equal(rename(tri, blob), 0);
+  assert_int_equal(symlink("blob", chained), 0);
   assert_int_equal(remove_in_folder("out.png"), 0);
+  assert_int_equal(symlink("chained.obj", out_png), 0);
+  put_text("m.json", "{\"materials\": {\"m\": {}}, \"objects\": [{\"type\": "
+                     "\"mesh\", \"file\": \"chained.obj\", \"material\": "
+                     "\"m\"}]}");
+  EXPECT_USAGE_ERROR_KEEPING("out.png: a link to ", "render", "m.json", "-o",
+                             "out.png");
+  assert_non_null(strstr(err, "chained.obj, a scene or mesh file"));
+  assert_kept("blob", "v -1 -1 0", 1);
+  assert_int_equal(remove_in_folder("out.png"), 0);
+  assert_int_equal(remove_in_folder("chained.obj"), 0);
+  assert_int_equal(remove_in_folder("blob"), 0);
   assert_int_equal(remove_in_folder("m.json"), 0);
-  assert_int_equal(remove_in_folder("tri.obj"), 0);
   assert_true(folder_is_empty());
 }
 

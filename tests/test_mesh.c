@@ -688,6 +688,28 @@ static void ply_tristrips(void **state) {
               "stripnone.ply:8: the triangle strip's 'vertex_indices' must be "
               "a list of integers",
               NULL);
+  /* A binary file's strip is named as a strip, by its number from 0 (it
+   * was "face 1", in a file with no faces). */
+  static const char strip_head[] =
+      "ply\nformat binary_little_endian 1.0\nelement vertex 4\n"
+      "property float x\nproperty float y\nproperty float z\n"
+      "element tristrips 2\nproperty list uchar int vertex_indices\n"
+      "end_header\n";
+  unsigned char bin[sizeof strip_head - 1 + 4 * 12 + 2 * 13];
+  size_t nb = sizeof strip_head - 1;
+  memcpy(bin, strip_head, nb);
+  const float xyz[4][3] = {{0, 0, 0}, {1, 0, 0}, {0, 1, 0}, {1, 1, 1e30f}};
+  memcpy(bin + nb, xyz, sizeof xyz); /* (x86: little-endian floats) */
+  nb += sizeof xyz;
+  const int32_t strips[2][3] = {{0, 1, 2}, {1, 2, 3}};
+  for (int k = 0; k < 2; k++) {
+    bin[nb++] = 3;
+    memcpy(bin + nb, strips[k], sizeof strips[k]);
+    nb += sizeof strips[k];
+  }
+  expect_fail_path(
+      write_bytes(f, "farstrip.ply", bin, nb), GLINT_E_ARGUMENT,
+      "farstrip.ply: triangle strip 1: vertex 3, scaled by 1: ", NULL);
   /* strips of restarts alone: no triangle, and no empty face element to
    * blame (it said "the face element is empty") */
   expect_fail(f, "restarts.ply",

@@ -90,9 +90,12 @@ static glint_status read_plain(FILE *raw, const char *path, off_t file_size,
   for (;;) {
     if (!b->data || buffer_grow(b, full, max_bytes))
       return gli_fail(e, GLINT_E_MEMORY, "%s: out of memory", path);
+    errno = 0;
     size_t n = fread(b->data + b->size, 1, b->cap - b->size, raw);
     if (n == 0)
-      return ferror(raw) ? io_fail(e, path, "cannot read: ", EIO) : GLINT_OK;
+      return ferror(raw)
+                 ? io_fail(e, path, "cannot read: ", errno ? errno : EIO)
+                 : GLINT_OK;
     glint_status st = buffer_take(b, n, path, max_bytes, text, e);
     if (st)
       return st;
@@ -124,9 +127,10 @@ static glint_status read_gzip(FILE *raw, const char *path, off_t file_size,
     if (z.avail_in < (in_member ? 1u : 2u) && !at_end) {
       if (z.avail_in)
         memmove(in, z.next_in, z.avail_in);
+      errno = 0;
       size_t n = fread(in + z.avail_in, 1, CHUNK - z.avail_in, raw);
       if (n == 0 && ferror(raw)) {
-        st = io_fail(e, path, "cannot read: ", EIO);
+        st = io_fail(e, path, "cannot read: ", errno ? errno : EIO);
         break;
       }
       at_end = n == 0;

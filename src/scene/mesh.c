@@ -132,10 +132,27 @@ static const glint_vec3 *triangle_normals(const mesh_data *m, size_t i,
  * "FILE: face N" (binary PLY). */
 static void face_of(const char *path, const mesh_data *m, size_t i, char *buf,
                     size_t cap) {
+  uint32_t w = m->tri_where[i];
   if (m->where_is_line)
-    snprintf(buf, cap, "%.1000s:%u", path, m->tri_where[i]);
+    snprintf(buf, cap, "%.1000s:%u", path, w);
   else
-    snprintf(buf, cap, "%.1000s: face %u", path, m->tri_where[i]);
+    snprintf(buf, cap, "%.1000s: %s %u", path,
+             w & MESH_WHERE_STRIP ? "triangle strip" : "face",
+             w & ~MESH_WHERE_STRIP);
+}
+
+/* The same, as the tail of a message that names the vertex: "the face on
+ * line N", "face N" or "triangle strip N". */
+static const char *face_of_first(const mesh_data *m, size_t i, char *buf,
+                                 size_t cap) {
+  uint32_t w = m->tri_where[i];
+  if (m->where_is_line)
+    snprintf(buf, cap, "the face on line %u", w);
+  else
+    snprintf(buf, cap, "%s %u",
+             w & MESH_WHERE_STRIP ? "triangle strip" : "face",
+             w & ~MESH_WHERE_STRIP);
+  return buf;
 }
 
 /* A vertex or a normal that is not finite is refused where a face uses
@@ -153,9 +170,8 @@ static glint_status check_used(const char *path, const mesh_data *m,
       char face[1100];
       face_of(path, m, i, face, sizeof face);
       if (v[k] == first->index) /* the reader's message names the vertex */
-        return gli_fail(e, GLINT_E_PARSE, "%s (and %s %u uses it)", first->why,
-                        m->where_is_line ? "the face on line" : "face",
-                        m->tri_where[i]);
+        return gli_fail(e, GLINT_E_PARSE, "%s (and %s uses it)", first->why,
+                        face_of_first(m, i, face, sizeof face));
       return gli_fail(
           e, GLINT_E_PARSE, "%s: the face uses %s %u, which is not a finite %s",
           face, normals ? "normal" : "vertex", v[k] + (uint32_t)m->first_index,

@@ -16,6 +16,7 @@
 /* Vertex and triangle indices are uint32_t in the scene. */
 #define MESH_MAX_ITEMS ((size_t)UINT32_MAX - 1)
 #define MESH_NO_INDEX UINT32_MAX
+#define MESH_WHERE_STRIP (UINT32_C(1) << 31) /* see mesh_data.tri_where */
 
 typedef struct tri3 {
   uint32_t v[3];
@@ -46,7 +47,7 @@ typedef struct mesh_data {
    * number among the faces (binary PLY, from 0 as PLY counts), as the
    * reader set face_where before gli_mesh_emit_face. first_index is the
    * number the file's faces give its first vertex (OBJ 1, PLY 0). */
-  uint32_t *tri_where;
+  uint32_t *tri_where; /* binary PLY: | MESH_WHERE_STRIP for a strip's */
   size_t tri_where_cap;
   uint32_t face_where;
   int where_is_line, first_index;

@@ -99,10 +99,13 @@ typedef struct ply_reader {
 } ply_reader;
 
 /* The face being read as mesh_data.face_where has it: its line (ASCII) or
- * its number among its element's (binary). */
+ * its number among its element's (binary; a triangle strip's marked). */
 static uint32_t ply_face_where(const ply_reader *r) {
-  size_t w = r->format == PLY_ASCII ? r->line : r->index;
-  return w < UINT32_MAX ? (uint32_t)w : UINT32_MAX;
+  if (r->format == PLY_ASCII)
+    return r->line < UINT32_MAX ? (uint32_t)r->line : UINT32_MAX;
+  uint32_t w = r->index < MESH_WHERE_STRIP - 1 ? (uint32_t)r->index
+                                               : MESH_WHERE_STRIP - 1;
+  return r->el->kind == 3 ? w | MESH_WHERE_STRIP : w;
 }
 
 /* Where an error is: FILE:LINE for ASCII, FILE: vertex 12 for binary. */
@@ -585,7 +588,10 @@ static glint_status ply_read_element(ply_reader *r, const ply_element *el,
       return gli_mesh_oom(r->path, e);
   } else if (el->kind == 2) {
     size_t want = el->count < left / 4 + 1 ? el->count : left / 4 + 1;
-    if (gli_grow((void **)&m->tri, &m->tri_cap, m->ntri + want, sizeof *m->tri))
+    if (gli_grow((void **)&m->tri, &m->tri_cap, m->ntri + want,
+                 sizeof *m->tri) ||
+        gli_grow((void **)&m->tri_where, &m->tri_where_cap, m->ntri + want,
+                 sizeof *m->tri_where))
       return gli_mesh_oom(r->path, e);
   }
   for (; r->index < el->count; r->index++) {
