@@ -138,15 +138,9 @@ static inline stream_scratch *carve(void *scratch, int levels) {
 static ALWAYS_INLINE void ray_stream_append(ray_stream *r, vmask m, vvec3 o,
                                             vvec3 d, vvec3 w, vint pixel) {
   int n = r->count;
-  vf_compress_store(r->ox + n, m, o.x);
-  vf_compress_store(r->oy + n, m, o.y);
-  vf_compress_store(r->oz + n, m, o.z);
-  vf_compress_store(r->dx + n, m, d.x);
-  vf_compress_store(r->dy + n, m, d.y);
-  vf_compress_store(r->dz + n, m, d.z);
-  vf_compress_store(r->wr + n, m, w.x);
-  vf_compress_store(r->wg + n, m, w.y);
-  vf_compress_store(r->wb + n, m, w.z);
+  vv_compress_store(r->ox + n, r->oy + n, r->oz + n, m, o);
+  vv_compress_store(r->dx + n, r->dy + n, r->dz + n, m, d);
+  vv_compress_store(r->wr + n, r->wg + n, r->wb + n, m, w);
   r->count += vf_compress_store((float *)r->pixel + n, m, vi_as_vf(pixel));
 }
 
@@ -158,16 +152,10 @@ static ALWAYS_INLINE void shadow_stream_append(shadow_stream *sh, vmask m,
                                                vvec3 brings, vint pixel,
                                                vint key) {
   int n = sh->count;
-  vf_compress_store(sh->ox + n, m, o.x);
-  vf_compress_store(sh->oy + n, m, o.y);
-  vf_compress_store(sh->oz + n, m, o.z);
-  vf_compress_store(sh->dx + n, m, d.x);
-  vf_compress_store(sh->dy + n, m, d.y);
-  vf_compress_store(sh->dz + n, m, d.z);
+  vv_compress_store(sh->ox + n, sh->oy + n, sh->oz + n, m, o);
+  vv_compress_store(sh->dx + n, sh->dy + n, sh->dz + n, m, d);
   vf_compress_store(sh->dist + n, m, dist);
-  vf_compress_store(sh->cr + n, m, brings.x);
-  vf_compress_store(sh->cg + n, m, brings.y);
-  vf_compress_store(sh->cb + n, m, brings.z);
+  vv_compress_store(sh->cr + n, sh->cg + n, sh->cb + n, m, brings);
   vf_compress_store((float *)sh->pixel + n, m, vi_as_vf(pixel));
   sh->count += vf_compress_store((float *)sh->key + n, m, vi_as_vf(key));
 }

@@ -128,23 +128,10 @@ static const glint_vec3 *triangle_normals(const mesh_data *m, size_t i,
   return n;
 }
 
-/* Where triangle i's face is, as a message starts: "FILE:LINE", or
- * "FILE: face N" (binary PLY). */
-static void face_of(const char *path, const mesh_data *m, size_t i, char *buf,
-                    size_t cap) {
-  uint32_t w = m->tri_where[i];
-  if (m->where_is_line)
-    snprintf(buf, cap, "%.1000s:%u", path, w);
-  else
-    snprintf(buf, cap, "%.1000s: %s %u", path,
-             w & MESH_WHERE_STRIP ? "triangle strip" : "face",
-             w & ~MESH_WHERE_STRIP);
-}
-
-/* The same, as the tail of a message that names the vertex: "the face on
- * line N", "face N" or "triangle strip N". */
-static const char *face_of_first(const mesh_data *m, size_t i, char *buf,
-                                 size_t cap) {
+/* Triangle i's face as a message's tail names it: "the face on line N",
+ * or in a binary PLY "face N" or "triangle strip N". */
+static const char *face_named(const mesh_data *m, size_t i, char *buf,
+                              size_t cap) {
   uint32_t w = m->tri_where[i];
   if (m->where_is_line)
     snprintf(buf, cap, "the face on line %u", w);
@@ -153,6 +140,17 @@ static const char *face_of_first(const mesh_data *m, size_t i, char *buf,
              w & MESH_WHERE_STRIP ? "triangle strip" : "face",
              w & ~MESH_WHERE_STRIP);
   return buf;
+}
+
+/* The same as a message starts: "FILE:LINE", or "FILE: face N". */
+static void face_of(const char *path, const mesh_data *m, size_t i, char *buf,
+                    size_t cap) {
+  char named[48];
+  if (m->where_is_line)
+    snprintf(buf, cap, "%.1000s:%u", path, m->tri_where[i]);
+  else
+    snprintf(buf, cap, "%.1000s: %s", path,
+             face_named(m, i, named, sizeof named));
 }
 
 /* A vertex or a normal that is not finite is refused where a face uses
@@ -171,7 +169,7 @@ static glint_status check_used(const char *path, const mesh_data *m,
       face_of(path, m, i, face, sizeof face);
       if (v[k] == first->index) /* the reader's message names the vertex */
         return gli_fail(e, GLINT_E_PARSE, "%s (and %s uses it)", first->why,
-                        face_of_first(m, i, face, sizeof face));
+                        face_named(m, i, face, sizeof face));
       return gli_fail(
           e, GLINT_E_PARSE, "%s: the face uses %s %u, which is not a finite %s",
           face, normals ? "normal" : "vertex", v[k] + (uint32_t)m->first_index,

@@ -97,4 +97,13 @@ static ALWAYS_INLINE vvec3 vv_gather(const float *base, vint idx, int stride,
   return r;
 }
 
+/* The lanes of m of a vvec3 stored one after another at x, y and z (three
+ * arrays of a stream, as vf_compress_store does one). */
+static ALWAYS_INLINE void vv_compress_store(float *x, float *y, float *z,
+                                            vmask m, vvec3 a) {
+  vf_compress_store(x, m, a.x);
+  vf_compress_store(y, m, a.y);
+  vf_compress_store(z, m, a.z);
+}
+
 #endif
