@@ -534,9 +534,7 @@ glint_status gli_bvh_build(const glint_scene *scene, gli_bvh *bvh,
     return gli_fail(error, GLINT_E_ARGUMENT,
                     "too many primitives for the BVH (%zu)", n);
   builder b = {0};
-  b.boxes = aligned_alloc(GLI_ALIGN,
-                          ((n * sizeof *b.boxes + GLI_ALIGN - 1) / GLI_ALIGN) *
-                              GLI_ALIGN);
+  b.boxes = gli_aligned_calloc(n, sizeof *b.boxes);
   b.refs = malloc(n * sizeof *b.refs);
   b.nodes = nodes_alloc(2 * n);
   task *stack = malloc(sizeof *stack * 4 * GLI_BVH_MAX_DEPTH);

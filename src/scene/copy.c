@@ -3,6 +3,7 @@
 #include "scene/scene.h"
 
 #include "core/error.h"
+#include "core/memory.h"
 
 #include <stdlib.h>
 #include <string.h>
@@ -18,6 +19,7 @@ static int copy_array(void **dst, const void *src, size_t count, size_t size,
   *dst = malloc(count * size);
   if (!*dst)
     return 0;
+  gli_advise_huge(*dst, count * size);
   memcpy(*dst, src, count * size);
   *cap = count;
   return 1;

@@ -1,6 +1,7 @@
 #include "scene/file.h"
 
 #include "core/error.h"
+#include "core/memory.h"
 
 #include <errno.h>
 #include <stdint.h>
@@ -56,6 +57,7 @@ static int buffer_grow(file_buffer *b, size_t want, size_t max_bytes) {
   char *bigger = realloc(b->data, cap + 1);
   if (!bigger)
     return -1;
+  gli_advise_huge(bigger, cap + 1);
   b->data = bigger;
   b->cap = cap;
   return 0;
