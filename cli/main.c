@@ -20,7 +20,8 @@ static void usage(FILE *f) {
         "  glint --version                 the version\n"
         "\n"
         "Built-in scenes: whitted, giza, billiard, phong.\n"
-        "'glint COMMAND --help' lists a command's options.\n"
+        "'glint COMMAND --help' (or 'glint help COMMAND') lists a command's\n"
+        "options.\n"
         "\n"
         "Environment:\n"
         "  GLINT_ISA=none|sse|avx2|avx512  use no instruction set beyond\n"
@@ -45,12 +46,33 @@ int main(int argc, char **argv) {
     return EXIT_USAGE;
   }
   const char *cmd = argv[1];
-  if (strcmp(cmd, "--help") == 0 || strcmp(cmd, "-h") == 0 ||
-      strcmp(cmd, "help") == 0) {
+  int asks_help = strcmp(cmd, "--help") == 0 || strcmp(cmd, "-h") == 0 ||
+                  strcmp(cmd, "help") == 0;
+  int asks_version = strcmp(cmd, "--version") == 0 || strcmp(cmd, "-V") == 0;
+  if (strcmp(cmd, "help") == 0 && argc == 3) { /* glint help COMMAND */
+    char *help_arg[] = {"--help", NULL};
+    const char *of = argv[2];
+    if (strcmp(of, "render") == 0)
+      return cmd_render(1, help_arg);
+    if (strcmp(of, "bench") == 0)
+      return cmd_bench(1, help_arg);
+    if (strcmp(of, "view") == 0)
+      return cmd_view(1, help_arg);
+    if (strcmp(of, "compare") == 0)
+      return cmd_compare(1, help_arg);
+    cli_error("help: unknown command '%s' (see glint --help)", of);
+    return EXIT_USAGE;
+  }
+  if ((asks_help || asks_version) && argc > 2) {
+    cli_error("%s takes nothing after it: '%s'%s", cmd, argv[2],
+              asks_help ? " (a command's help: glint COMMAND --help)" : "");
+    return EXIT_USAGE;
+  }
+  if (asks_help) {
     usage(stdout);
     return 0;
   }
-  if (strcmp(cmd, "--version") == 0 || strcmp(cmd, "-V") == 0) {
+  if (asks_version) {
     printf("glint %s\n", glint_version());
     return 0;
   }

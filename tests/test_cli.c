@@ -357,6 +357,14 @@ static void help_and_version(void **state) {
   assert_non_null(strstr(out, "glint 0."));
   assert_int_equal(run("--help", NULL), 0);
   assert_non_null(strstr(out, "glint render"));
+  assert_int_equal(run("help", "bench", NULL), 0);
+  assert_non_null(strstr(out, "--backends"));
+  assert_int_equal(run("help", "paint", NULL), 2);
+  assert_non_null(strstr(err, "help: unknown command 'paint'"));
+  assert_int_equal(run("--version", "extra", NULL), 2);
+  assert_non_null(strstr(err, "--version takes nothing after it: 'extra'"));
+  assert_int_equal(run("--help", "render", "x", NULL), 2);
+  assert_non_null(strstr(err, "glint COMMAND --help"));
   assert_int_equal(run("render", "--help", NULL), 0);
   assert_non_null(strstr(out, "--backend"));
   assert_non_null(strstr(out, "--depth"));
