@@ -496,6 +496,21 @@ static void mesh_indices_checked(void **state) {
   glint_scene_get_info(s, &info);
   assert_int_equal(info.triangles, 1);
   assert_int_equal(info.objects, 1);
+  /* NULL arrays: refused where they have elements, an empty mesh taken
+   * with NULL arrays as with non-NULL ones */
+  glint_mesh no_positions = {NULL, NULL, 3, good, 1};
+  EXPECT_ERR(glint_scene_add_mesh(s, &no_positions, m, &e_), GLINT_E_ARGUMENT,
+             "mesh: positions is NULL, but vertex_count is 3");
+  glint_mesh no_indices = {p, NULL, 3, NULL, 1};
+  EXPECT_ERR(glint_scene_add_mesh(s, &no_indices, m, &e_), GLINT_E_ARGUMENT,
+             "mesh: indices is NULL, but triangle_count is 1");
+  glint_mesh empty_null = {NULL, NULL, 0, NULL, 0};
+  glint_mesh empty = {p, NULL, 0, good, 0};
+  ASSERT_OK(glint_scene_add_mesh(s, &empty_null, m, &e_));
+  ASSERT_OK(glint_scene_add_mesh(s, &empty, m, &e_));
+  glint_scene_get_info(s, &info);
+  assert_int_equal(info.triangles, 1);
+  assert_int_equal(info.objects, 3);
   glint_scene_destroy(s);
 }
 

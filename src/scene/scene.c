@@ -506,8 +506,15 @@ glint_status glint_scene_add_mesh(glint_scene *s, const glint_mesh *m,
                                   uint32_t material, glint_error *error) {
   GLI_NOT_NULL(s, "scene", error);
   GLI_NOT_NULL(m, "mesh", error);
-  if (!m->positions || (!m->indices && m->triangle_count))
-    return gli_fail(error, GLINT_E_ARGUMENT, "mesh: missing arrays");
+  /* (an empty mesh needs no arrays, as an empty array needs no memory) */
+  if (!m->positions && m->vertex_count)
+    return gli_fail(error, GLINT_E_ARGUMENT,
+                    "mesh: positions is NULL, but vertex_count is %zu",
+                    m->vertex_count);
+  if (!m->indices && m->triangle_count)
+    return gli_fail(error, GLINT_E_ARGUMENT,
+                    "mesh: indices is NULL, but triangle_count is %zu",
+                    m->triangle_count);
   /* 3 * triangle_count must not wrap (past it the loop below would check
    * a few indices and the copy read beyond them) */
   if (m->triangle_count > GLI_MAX_MESH_TRIANGLES)
