@@ -195,7 +195,8 @@ glint_status glint_scene_add_cone(glint_scene *scene, glint_vec3 base,
                                   glint_error *error);
 
 /* A triangle mesh as one object. `normals` (per vertex, may be NULL) gives
- * smooth shading by interpolation. Indices are 3 per triangle. */
+ * smooth shading by interpolation. Indices are 3 per triangle. `positions`
+ * and `indices` may be NULL only where their counts are 0. */
 typedef struct glint_mesh {
   const glint_vec3 *positions;
   const glint_vec3 *normals;
