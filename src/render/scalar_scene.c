@@ -75,6 +75,14 @@ static int light_may_be_inside_absorber(const glint_scene *g) {
   return 0;
 }
 
+/* [lo, hi] grown to hold p (comparisons, not fmin and fmax, which are
+ * calls: 3.6 million of them for the 200k-triangle dragon). */
+static void grow_bounds(glint_vec3 *lo, glint_vec3 *hi, glint_vec3 p) {
+  lo->x = p.x < lo->x ? p.x : lo->x, hi->x = p.x > hi->x ? p.x : hi->x;
+  lo->y = p.y < lo->y ? p.y : lo->y, hi->y = p.y > hi->y ? p.y : hi->y;
+  lo->z = p.z < lo->z ? p.z : lo->z, hi->z = p.z > hi->z ? p.z : hi->z;
+}
+
 glint_status scalar_scene_prepare(const glint_scene *g, double eps,
                                   scene_r **out, glint_error *error) {
   scene_r *s = calloc(1, sizeof *s);
@@ -118,11 +126,8 @@ glint_status scalar_scene_prepare(const glint_scene *g, double eps,
   glint_vec3 lo = {INFINITY, INFINITY, INFINITY},
              hi = {-INFINITY, -INFINITY, -INFINITY};
   for (size_t i = 0; i < g->triangle_count; i++)
-    for (int k = 0; k < 3; k++) {
-      glint_vec3 q = g->triangles[i].v[k];
-      lo.x = fmin(lo.x, q.x), lo.y = fmin(lo.y, q.y), lo.z = fmin(lo.z, q.z);
-      hi.x = fmax(hi.x, q.x), hi.y = fmax(hi.y, q.y), hi.z = fmax(hi.z, q.z);
-    }
+    for (int k = 0; k < 3; k++)
+      grow_bounds(&lo, &hi, g->triangles[i].v[k]);
   s->tri_origin = g->triangle_count ? v3((real)(0.5 * (lo.x + hi.x)),
                                          (real)(0.5 * (lo.y + hi.y)),
                                          (real)(0.5 * (lo.z + hi.z)))
@@ -152,8 +157,14 @@ glint_status scalar_scene_prepare(const glint_scene *g, double eps,
        * not overflow or underflow. */
       int exponent;
       frexp(nl, &exponent);
-      t->n = from_d((glint_vec3){ldexp(n.x, -exponent), ldexp(n.y, -exponent),
-                                 ldexp(n.z, -exponent)});
+      /* (one ldexp, not three: a power of two's product rounds as ldexp
+       * does, and they were a tenth of this loop's instructions) */
+      double scale = ldexp(1.0, -exponent);
+      if (exponent > -1000 && exponent < 1000)
+        t->n = from_d((glint_vec3){n.x * scale, n.y * scale, n.z * scale});
+      else
+        t->n = from_d((glint_vec3){ldexp(n.x, -exponent), ldexp(n.y, -exponent),
+                                   ldexp(n.z, -exponent)});
     } /* else degenerate: zero edges and normal, never hit */
     t->object = p->object;
     t->normals = p->normals;

@@ -637,10 +637,11 @@ void glint_scene_get_scale(const glint_scene *s, double *epsilon,
     *smallest = s ? smallest_object(s) : 0;
 }
 
+/* (higher, not fmax: once per vertex, as in glint_scene_get_info) */
 static double absmax3(glint_vec3 v, double m) {
-  m = fmax(m, fabs(v.x));
-  m = fmax(m, fabs(v.y));
-  return fmax(m, fabs(v.z));
+  m = higher(fabs(v.x), m);
+  m = higher(fabs(v.y), m);
+  return higher(fabs(v.z), m);
 }
 
 double gli_scene_epsilon(const glint_scene *s) {
