@@ -63,7 +63,7 @@ int bench_frames(const char *scene_name, const glint_render_settings *base,
       glint_renderer_create(world, &rs, &renderer, &err) ||
       glint_film_create(width, height, &film, &err)) {
     cli_error("%s", err.message);
-    status = EXIT_USAGE;
+    status = cli_exit_code(err.status);
     goto done;
   }
   glint_stats st;

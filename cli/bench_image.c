@@ -116,7 +116,7 @@ int bench_time_to_image(char **scenes, int nscenes,
       glint_error err;
       if (glint_render(scene, base, &image, &st, &err)) {
         cli_error("%s", err.message);
-        status = EXIT_USAGE;
+        status = cli_exit_code(err.status);
         break;
       }
       glint_image_destroy(image);

@@ -90,7 +90,7 @@ int bench_meshes(const char *dir, const glint_render_settings *base,
   for (size_t m = 0; m < MESH_COUNT && !status; m++) {
     char path[PATH_MAX];
     snprintf(path, sizeof path, "%s/%s", dir, meshes[m]);
-    glint_scene *scene;
+    glint_scene *scene = NULL;
     glint_error err;
     glint_material mat;
     uint32_t id;
@@ -100,7 +100,8 @@ int bench_meshes(const char *dir, const glint_render_settings *base,
         glint_scene_add_mesh_file(scene, path, 1, (glint_vec3){0, 0, 0}, id,
                                   &err)) {
       cli_error("--meshes: %s", err.message);
-      return EXIT_USAGE;
+      glint_scene_destroy(scene);
+      return cli_exit_code(err.status);
     }
     glint_scene_info info;
     glint_scene_get_info(scene, &info);
@@ -121,7 +122,7 @@ int bench_meshes(const char *dir, const glint_render_settings *base,
       for (int r = 0; r < runs; r++) {
         if (glint_trace_primary(scene, &rs, &hits[b], &st, &err)) {
           cli_error("%s: %s", meshes[m], err.message);
-          status = EXIT_USAGE;
+          status = cli_exit_code(err.status);
           break;
         }
         t[r] = st.render_seconds;
@@ -131,8 +132,10 @@ int bench_meshes(const char *dir, const glint_render_settings *base,
       build_ms = st.bvh_build_seconds * 1e3;
       bytes = st.bvh_bytes;
     }
-    if (status)
+    if (status) {
+      glint_scene_destroy(scene);
       break;
+    }
     printf("%-26s %9zu %9.1f %8.1f", meshes[m], info.triangles, build_ms,
            (double)bytes / (double)info.triangles);
     for (int b = 0; b < nbackends; b++)

@@ -104,7 +104,7 @@ int bench_spd(const char *dir, const glint_render_settings *base,
       cli_error("--spd: %s", err.message);
       for (size_t k = 0; k < i; k++)
         glint_scene_destroy(scenes[k]);
-      return EXIT_USAGE;
+      return cli_exit_code(err.status);
     }
   }
   int tachyon = bench_have_program("tachyon");

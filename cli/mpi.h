@@ -58,10 +58,11 @@ void mpi_fail(const mpi_world *w, int status, const char *format, ...)
 #endif
     ;
 
-/* Collective: whether every rank is ok. A rank that is not passes its
- * message, which rank 0 prints with the rank and host of the first such
- * rank; then every rank returns 0. */
-int mpi_all_ok(const mpi_world *w, int ok, const char *message);
+/* Collective: whether every rank is ok (st, GLINT_OK where it is). A rank
+ * that is not passes its status and message, which rank 0 prints with the
+ * rank and host of the first such rank; then every rank returns that
+ * rank's exit status (1 out of memory, else 2). 0 when all are ok. */
+int mpi_agree(const mpi_world *w, glint_status st, const char *message);
 
 /* The work of one job: `units` units, each a result of at most
  * `unit_bytes` bytes (a tile's linear RGB floats, a frame's encoded file). */

@@ -99,25 +99,33 @@ static char *gather_texts(const mpi_world *w, const char *mine,
   return all;
 }
 
-int mpi_all_ok(const mpi_world *w, int ok, const char *message) {
+int mpi_agree(const mpi_world *w, glint_status st, const char *message) {
+  /* a rank's text: its status in the first byte (0: ok), its message */
   char mine[MPI_MESSAGE_CHARS] = {0};
-  if (!ok)
-    snprintf(mine, sizeof mine, "%s", message ? message : "failed");
+  if (st) {
+    mine[0] = (char)st;
+    snprintf(mine + 1, sizeof mine - 1, "%s", message ? message : "failed");
+  }
   char *all = gather_texts(w, mine, "gathering the ranks' state");
-  int first_failed = -1;
+  int first_failed[2] = {-1, 0}; /* the rank, its exit status */
   if (w->rank == 0)
-    for (int r = 0; r < w->size && first_failed < 0; r++)
-      if (all[(size_t)r * sizeof mine])
-        first_failed = r;
-  if (first_failed == 0)
-    fprintf(stderr, "glint-mpi: %s\n", all);
-  else if (first_failed > 0)
-    fprintf(stderr, "glint-mpi: rank %d (%s): %s\n", first_failed,
-            w->hosts[first_failed], all + (size_t)first_failed * sizeof mine);
+    for (int r = 0; r < w->size && first_failed[0] < 0; r++)
+      if (all[(size_t)r * sizeof mine]) {
+        first_failed[0] = r;
+        first_failed[1] = cli_exit_code((glint_status)all[r * sizeof mine]);
+      }
+  if (first_failed[0] >= 0) {
+    int r = first_failed[0];
+    const char *said = all + (size_t)r * sizeof mine + 1;
+    if (r == 0)
+      fprintf(stderr, "glint-mpi: %s\n", said);
+    else
+      fprintf(stderr, "glint-mpi: rank %d (%s): %s\n", r, w->hosts[r], said);
+  }
   free(all);
-  mpi_check(w, MPI_Bcast(&first_failed, 1, MPI_INT, 0, w->comm),
+  mpi_check(w, MPI_Bcast(first_failed, 2, MPI_INT, 0, w->comm),
             "sharing the ranks' state");
-  return first_failed < 0;
+  return first_failed[1];
 }
 
 int mpi_copy_tile(void *user, const glint_tile *tile) {
@@ -294,9 +302,10 @@ static int same_renderers(const mpi_world *w, const mpi_options *o) {
 }
 
 /* The scene on every rank: rank 0 packs the file and what it refers to,
- * and broadcasts the bytes; a built-in scene is made by name. */
+ * and broadcasts the bytes; a built-in scene is made by name. NULL, with
+ * *code the exit status, where a rank failed. */
 static glint_scene *share_scene(const mpi_world *w, const mpi_options *o,
-                                char *stem, size_t stem_size) {
+                                char *stem, size_t stem_size, int *code) {
   const char *arg = o->render.scene;
   int is_file = w->rank == 0 && cli_scene_is_file(arg); /* rank 0's word */
   mpi_check(w, MPI_Bcast(&is_file, 1, MPI_INT, 0, w->comm),
@@ -315,7 +324,7 @@ static glint_scene *share_scene(const mpi_world *w, const mpi_options *o,
     mpi_check(w, MPI_Bcast(&sent, 1, MPI_UINT64_T, 0, w->comm),
               "broadcasting the scene");
     if (sent == UINT64_MAX) { /* rank 0 could not read it: it says why */
-      mpi_all_ok(w, w->rank != 0, err.message);
+      *code = mpi_agree(w, st, err.message);
       return NULL;
     }
     size = (size_t)sent;
@@ -332,7 +341,7 @@ static glint_scene *share_scene(const mpi_world *w, const mpi_options *o,
     st = glint_scene_load_packed(packed, size, &scene, &err);
     glint_free(packed);
   }
-  if (!mpi_all_ok(w, st == GLINT_OK, err.message)) {
+  if ((*code = mpi_agree(w, st, err.message))) {
     glint_scene_destroy(scene);
     return NULL;
   }
@@ -462,7 +471,8 @@ static int agree_on_arguments(const mpi_world *w, int status,
             "sharing rank 0's arguments");
   if (first >= 0) /* every rank stops, as rank 0 said */
     return first;
-  return mpi_all_ok(w, status < 0, message) ? -1 : EXIT_USAGE;
+  int refused = mpi_agree(w, status < 0 ? GLINT_OK : GLINT_E_ARGUMENT, message);
+  return refused ? refused : -1;
 }
 
 static int run(mpi_world *w, int argc, char **argv) {
@@ -480,9 +490,10 @@ static int run(mpi_world *w, int argc, char **argv) {
   if (!same_renderers(w, &o))
     return EXIT_USAGE;
   char stem[256];
-  glint_scene *scene = share_scene(w, &o, stem, sizeof stem);
+  int code = EXIT_USAGE;
+  glint_scene *scene = share_scene(w, &o, stem, sizeof stem, &code);
   if (!scene)
-    return EXIT_USAGE;
+    return code;
   glint_animation animation;
   glint_error err = {0};
   if (!o.render.frames && glint_scene_get_animation(scene, &animation)) {
@@ -490,8 +501,8 @@ static int run(mpi_world *w, int argc, char **argv) {
     glint_status st = glint_scene_at_time(scene, 0, &still, &err);
     glint_scene_destroy(scene);
     scene = still;
-    if (!mpi_all_ok(w, st == GLINT_OK, err.message))
-      return EXIT_USAGE;
+    if ((code = mpi_agree(w, st, err.message)))
+      return code;
   }
   glint_world *world = NULL;
   glint_renderer *renderer = NULL;
@@ -499,10 +510,10 @@ static int run(mpi_world *w, int argc, char **argv) {
   if (!st)
     st = glint_renderer_create(world, rs, &renderer, &err);
   glint_world_destroy(world);
-  if (!mpi_all_ok(w, st == GLINT_OK, err.message)) {
+  if ((code = mpi_agree(w, st, err.message))) {
     glint_renderer_destroy(renderer);
     glint_scene_destroy(scene);
-    return EXIT_USAGE;
+    return code;
   }
   if (w->rank == 0)
     cli_catch_stop_signals();

@@ -192,10 +192,11 @@ int mpi_render_tiles(const mpi_world *w, const mpi_options *o,
       st = glint_film_create(t.width, t.height, &t.film, &err);
   }
   /* The tile's region must lie in the frame; the renderer says so once. */
-  if (!mpi_all_ok(w, st == GLINT_OK, err.message)) {
+  int refused = mpi_agree(w, st, err.message);
+  if (refused) {
     glint_image_writer_discard(t.sink.writer);
     glint_film_destroy(t.film);
-    return EXIT_USAGE;
+    return refused;
   }
   pthread_mutex_init(&t.output_lock, NULL);
   mpi_world *world = (mpi_world *)w;
@@ -240,7 +241,7 @@ int mpi_render_tiles(const mpi_world *w, const mpi_options *o,
   glint_film_destroy(t.film);
   if (st) {
     cli_error("%s", err.message);
-    return EXIT_USAGE;
+    return cli_exit_code(st);
   }
   mpi_end_if_silent(&job, output);
   if (!o->render.quiet) {

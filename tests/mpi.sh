@@ -222,6 +222,19 @@ grep -q "AddressSanitizer" run.err ||
   grep -q "the ranks did not all reach each other within 10 s" run.err ||
   fail "a rank that cannot be reached: not said"
 [ ! -e x.png ] || fail "a rank that cannot be reached: an image was written"
+# Out of memory is exit status 1 from glint-mpi as from glint (it was 2):
+# rank 0's film for a 16384x16384 PFM, under a limit on every rank.
+limited=(sh -c 'ulimit -v 1500000; exec "$0" "$@"')
+timeout 60 "${mpi[@]}" -np 2 "${limited[@]}" "$glint_mpi" whitted \
+  -W 16384 -H 16384 -q -o big.pfm >run.out 2>run.err
+status=$?
+# (AddressSanitizer, reserving its shadow memory, cannot start under it)
+if ! grep -q "AddressSanitizer" run.err; then
+  [ "$status" -eq 1 ] || fail "a film out of memory: exit status $status"
+  grep -q "^glint-mpi: out of memory for a 16384x16384 film" run.err ||
+    fail "a film out of memory: not said: $(cat run.err)"
+  [ ! -e big.pfm ] || fail "a film out of memory: an image was written"
+fi
 # A scene file named without an extension is rank 0's file, as glint render
 # reads it: refused as no scene file, once (ranks called it an unknown
 # built-in scene)

@@ -1182,9 +1182,21 @@ static void out_of_memory_exits_1(void **state) {
   setrlimit(RLIMIT_AS, &small);
   int rc = run("render", "whitted", "-W", "16384", "-H", "16384", "-d", "1",
                "-s", "1", "-o", "big.bmp", NULL);
+  char bench_err[2][sizeof err];
+  /* bench's own modes too (they exited 2) */
+  int frames = run("bench", "--frames", "2", "--scenes", "whitted", "-W",
+                   "16384", "-H", "16384", "--depths", "1", NULL);
+  snprintf(bench_err[0], sizeof bench_err[0], "%s", err);
+  int to_image =
+      run("bench", "--time-to-image", "--scenes", "whitted", "-W", "16384",
+          "-H", "16384", "--depths", "1", "--runs", "1", NULL);
+  snprintf(bench_err[1], sizeof bench_err[1], "%s", err);
   setrlimit(RLIMIT_AS, &saved);
   assert_int_equal(rc, 1);
-  assert_non_null(strstr(err, "out of memory"));
+  assert_int_equal(frames, 1);
+  assert_non_null(strstr(bench_err[0], "out of memory for a 16384x16384 film"));
+  assert_int_equal(to_image, 1);
+  assert_non_null(strstr(bench_err[1], "out of memory"));
   assert_true(folder_is_empty());
 }
 

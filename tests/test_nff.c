@@ -2,6 +2,7 @@
  * counts, and every kind of malformed input reported as FILE:LINE. */
 #include "test_util.h"
 
+#include "scene/polygon.h"
 #include "scene/scene.h"
 #include "shared.h"
 
@@ -450,11 +451,49 @@ static void spd_counts_shared(void **state) {
   }
 }
 
+/* An emit that fails at triangle `fail_at` with GLINT_E_MEMORY (the scene's
+ * push out of memory), counting the triangles it is given. */
+typedef struct failing_emit {
+  int calls, fail_at;
+} failing_emit;
+
+static int emit_until(void *user, size_t a, size_t b, size_t c) {
+  (void)a, (void)b, (void)c;
+  failing_emit *f = user;
+  return ++f->calls == f->fail_at ? GLINT_E_MEMORY : 0;
+}
+
+/* The emit's own status comes back from every path of the triangulation:
+ * a quad's two triangles (it became 1, and an NFF reader out of memory
+ * exited 2, not 1), a convex polygon's bisection, a concave one's ears. */
+static void emit_failures_keep_their_status(void **state) {
+  (void)state;
+  const glint_vec3 quad[4] = {{0, 0, 0}, {1, 0, 0}, {1, 1, 0}, {0, 1, 0}};
+  const glint_vec3 hexagon[6] = {{2, 0, 0},  {1, 1.7, 0},   {-1, 1.7, 0},
+                                 {-2, 0, 0}, {-1, -1.7, 0}, {1, -1.7, 0}};
+  const glint_vec3 arrow[5] = {
+      {0, 0, 0}, {2, 1, 0}, {0, 2, 0}, {1, 1, 0}, {0.2, 1, 0}};
+  struct {
+    const glint_vec3 *v;
+    size_t n;
+  } shapes[] = {{quad, 4}, {hexagon, 6}, {arrow, 5}};
+  for (size_t s = 0; s < 3; s++)
+    for (int at = 1; at <= (int)shapes[s].n - 2; at++) {
+      failing_emit f = {0, at};
+      size_t tests = GLI_SCENE_EAR_TESTS;
+      assert_int_equal(
+          gli_triangulate(shapes[s].v, shapes[s].n, emit_until, &f, &tests),
+          GLINT_E_MEMORY);
+      assert_int_equal(f.calls, at); /* stopped there */
+    }
+}
+
 int main(int argc, char **argv) {
   const struct CMUnitTest tests[] = {
       cmocka_unit_test(every_entity),
       cmocka_unit_test(malformed_files),
       cmocka_unit_test(large_polygons),
+      cmocka_unit_test(emit_failures_keep_their_status),
       cmocka_unit_test(spd_counts_shared),
   };
   return glint_run_tests(tests, argc, argv, setup, teardown);

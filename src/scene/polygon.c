@@ -177,9 +177,10 @@ int gli_triangulate(const glint_vec3 *v, size_t n, gli_polygon_emit emit,
       b = first_vertex(&g, b, m);
       for (size_t k = 0, i = b; k < m; k++, i = g.next[i])
         idx[k] = i;
-      r = m == 4 ? emit(user, idx[0], idx[1], idx[2]) ||
-                       emit(user, idx[0], idx[2], idx[3])
-                 : bisect(idx, m, tmp, emit, user);
+      if (m != 4)
+        r = bisect(idx, m, tmp, emit, user);
+      else if (!(r = emit(user, idx[0], idx[1], idx[2]))) /* (its status) */
+        r = emit(user, idx[0], idx[2], idx[3]);
       break;
     }
     /* Ear clipping: a corner that turns the polygon's way and whose triangle
