@@ -658,10 +658,8 @@ glint_status glint_film_check_writable(const char *path, glint_error *error);
 typedef struct glint_world glint_world;
 
 /* Converts the scene and builds its BVH (the cost of a render that does not
- * depend on the camera): for 10 000 primitives or more, the two at once,
- * the BVH on a thread of the call's own that ends before it returns.
- * `stats`, when given, receives prepare_seconds (the time the call took to
- * prepare), bvh_nodes, bvh_bytes, bvh_build_seconds and scene_bytes. */
+ * depend on the camera). `stats`, when given, receives prepare_seconds,
+ * bvh_nodes, bvh_bytes, bvh_build_seconds and scene_bytes. */
 glint_status glint_world_commit(const glint_scene *scene, glint_world **world,
                                 glint_stats *stats, glint_error *error);
 /* The world of an animated scene at `time` (glint_scene_at_time, committed

@@ -422,54 +422,6 @@ static glint_scene *mirrors(int n, int matte_spheres) {
   return s;
 }
 
-/* A commit of 10 000 primitives or more builds its BVH on a second thread
- * while it makes the default backend's layout (src/render/world.c): its
- * frames equal glint_render's, which builds the two one after the other
- * inside its renderer, for the default backend and a stream backend (a
- * layout the commit did not make). */
-static void large_commits_build_beside_the_layout(void **state) {
-  (void)state;
-  glint_scene *s;
-  ASSERT_OK(glint_scene_create(&s, &e_));
-  glint_material mat;
-  glint_material_default(&mat);
-  mat.kr = 0.5;
-  uint32_t m;
-  ASSERT_OK(glint_scene_add_material(s, &mat, &m, &e_));
-  for (int i = 0; i < 110; i++)
-    for (int j = 0; j < 110; j++)
-      ASSERT_OK(glint_scene_add_sphere(
-          s, (glint_vec3){i - 55, j - 55, (i * 7 + j * 3) % 5}, 0.6, m, &e_));
-  glint_camera cam = {{0, 0, -120}, {0, 0, 0}, {0, 1, 0}, 60};
-  ASSERT_OK(glint_scene_set_camera(s, &cam, &e_));
-  glint_stats st;
-  glint_world *world;
-  ASSERT_OK(glint_world_commit(s, &world, &st, &e_));
-  assert_true(st.bvh_nodes > 0);
-  assert_true(st.bvh_build_seconds > 0);
-  assert_true(st.prepare_seconds >= st.bvh_build_seconds);
-  const glint_backend backends[] = {GLINT_BACKEND_AUTO,
-                                    GLINT_BACKEND_STREAM_SSE};
-  for (int k = 0; k < 2; k++) {
-    if (backends[k] != GLINT_BACKEND_AUTO && backend_missing(backends[k]))
-      continue;
-    glint_render_settings rs = settings_for(backends[k]);
-    glint_renderer *renderer;
-    glint_film *film;
-    ASSERT_OK(glint_renderer_create(world, &rs, &renderer, &e_));
-    ASSERT_OK(glint_film_create(W, H, &film, &e_));
-    ASSERT_OK(glint_renderer_render(renderer, NULL, film, NULL, &e_));
-    glint_image *image;
-    ASSERT_OK(glint_render(s, &rs, &image, NULL, &e_));
-    assert_film_is_image(film, image);
-    glint_image_destroy(image);
-    glint_film_destroy(film);
-    glint_renderer_destroy(renderer);
-  }
-  glint_world_destroy(world);
-  glint_scene_destroy(s);
-}
-
 /* GLINT_BACKEND_AUTO (src/render/backend_choice.c): the widest beams unless
  * rays scatter: 64 specular primitives from depth 2, 4 from depth 5, but
  * only from depth 10 where they are under 1/16 of the primitives other
@@ -677,7 +629,6 @@ int main(void) {
       cmocka_unit_test(overlapping_calls_are_refused),
       cmocka_unit_test(bad_arguments_are_refused),
       cmocka_unit_test(auto_picks_streams_where_rays_scatter),
-      cmocka_unit_test(large_commits_build_beside_the_layout),
       cmocka_unit_test(a_small_thread_renders_deep),
   };
   return cmocka_run_group_tests(tests, NULL, NULL);

@@ -2,7 +2,6 @@
 #include "render/world.h"
 
 #include "core/error.h"
-#include "core/thread.h"
 #include "core/timer.h"
 #include "scene/scene.h"
 
@@ -46,21 +45,15 @@ void gli_world_release(glint_world *w) {
   free(w);
 }
 
-/* The binary tree unless built, under the world's lock or before anyone
- * else has the world. */
-static glint_status build_bvh(glint_world *w, glint_error *error) {
-  if (w->bvh_built)
-    return GLINT_OK;
-  glint_status st = gli_bvh_build(w->scene, &w->bvh, error);
-  w->bvh_built = st == GLINT_OK;
-  return st;
-}
-
 glint_status gli_world_bvh(glint_world *w, int wide, const gli_bvh **bvh,
                            glint_error *error) {
+  glint_status st = GLINT_OK;
   pthread_mutex_lock(&w->lock);
   double t0 = gli_now();
-  glint_status st = build_bvh(w, error);
+  if (!w->bvh_built) {
+    st = gli_bvh_build(w->scene, &w->bvh, error);
+    w->bvh_built = st == GLINT_OK;
+  }
   /* (renderers walking the tree meanwhile read nothing this writes) */
   if (!st && wide)
     st = gli_bvh_add_wide(&w->bvh, w->scene, error);
@@ -70,25 +63,19 @@ glint_status gli_world_bvh(glint_world *w, int wide, const gli_bvh **bvh,
   return st;
 }
 
-/* The scene in layout `kind` unless made, under the world's lock or before
- * anyone else has the world. */
-static glint_status convert_data(glint_world *w, data_kind kind,
-                                 glint_error *error) {
+glint_status gli_world_data(glint_world *w, data_kind kind, const void **data,
+                            glint_error *error) {
   const data_ops *ops = gli_data_ops_of(kind);
   if (!ops)
     return gli_fail(error, GLINT_E_UNSUPPORTED,
                     "this build has no converter for layout %d", (int)kind);
-  if (w->data[kind])
-    return GLINT_OK;
-  return ops->convert(w->scene, w->epsilon, &w->data[kind], error);
-}
-
-glint_status gli_world_data(glint_world *w, data_kind kind, const void **data,
-                            glint_error *error) {
+  glint_status st = GLINT_OK;
   pthread_mutex_lock(&w->lock);
-  double t0 = gli_now();
-  glint_status st = convert_data(w, kind, error);
-  w->prepare_seconds += gli_now() - t0;
+  if (!w->data[kind]) {
+    double t0 = gli_now();
+    st = ops->convert(w->scene, w->epsilon, &w->data[kind], error);
+    w->prepare_seconds += gli_now() - t0;
+  }
   pthread_mutex_unlock(&w->lock);
   *data = w->data[kind];
   return st;
@@ -112,60 +99,18 @@ void gli_world_stats(glint_world *w, glint_stats *stats) {
 
 /* ---- the public API ----------------------------------------------------- */
 
-/* The primitives from which a commit builds its BVH on a second thread
- * while the first makes the default backend's layout: the dragon (202 520
- * triangles) committed in 0.16 s one after the other and in N s together
- * (2 CPUs); a thread's start is some 50 us, a hundredth of a 10 000
- * primitive build. */
-#define GLI_COMMIT_THREAD_PRIMS 10000
-
-typedef struct bvh_job {
-  glint_world *w;
-  glint_status status;
-  glint_error error;
-} bvh_job;
-
-static void *build_bvh_job(void *arg) {
-  bvh_job *job = arg;
-  job->status = build_bvh(job->w, &job->error);
-  return NULL;
-}
-
-/* The BVH (unless already refitted) and the layout of the default backend,
- * together where the scene is large: the two read the scene and write
- * apart, and nobody else has the world yet, so neither takes its lock. */
-static glint_status build_commit(glint_world *w, glint_error *error) {
-  const gli_backend_ops *ops =
-      gli_backend_ops_of(glint_backend_resolve(GLINT_BACKEND_AUTO));
-  const glint_scene *s = w->scene;
-  double t0 = gli_now();
-  bvh_job job = {w, GLINT_OK, {0}};
-  pthread_t thread;
-  int apart = !w->bvh_built &&
-              s->sphere_count + s->triangle_count + s->cone_count >=
-                  GLI_COMMIT_THREAD_PRIMS &&
-              gli_thread_start(&thread, build_bvh_job, &job) == 0;
-  if (!apart)
-    job.status = build_bvh(w, &job.error);
-  glint_status st =
-      apart || !job.status ? convert_data(w, ops->data, error) : GLINT_OK;
-  if (apart)
-    pthread_join(thread, NULL);
-  if (job.status) { /* the tree's failure first, as one after the other */
-    if (error)
-      *error = job.error;
-    st = job.status;
-  }
-  w->prepare_seconds += gli_now() - t0;
-  return st;
-}
-
-/* The end of a commit: the BVH and the layout of the default backend now
- * (build_commit), the others on first use by a renderer that needs them;
- * the world is released on failure. */
+/* The end of a commit: the BVH (unless already refitted) and the layout of
+ * the default backend now, the others on first use by a renderer that needs
+ * them; the world is released on failure. */
 static glint_status finish_commit(glint_world *w, glint_world **out,
                                   glint_stats *stats, glint_error *error) {
-  glint_status st = build_commit(w, error);
+  const gli_bvh *bvh;
+  glint_status st = gli_world_bvh(w, 0, &bvh, error);
+  const gli_backend_ops *ops =
+      gli_backend_ops_of(glint_backend_resolve(GLINT_BACKEND_AUTO));
+  const void *data;
+  if (!st)
+    st = gli_world_data(w, ops->data, &data, error);
   if (st) {
     gli_world_release(w);
     return st;
