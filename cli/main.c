@@ -63,6 +63,10 @@ int main(int argc, char **argv) {
     cli_error("help: unknown command '%s' (see glint --help)", of);
     return EXIT_USAGE;
   }
+  if (strcmp(cmd, "help") == 0 && argc > 3) {
+    cli_error("help takes one command: '%s' follows '%s'", argv[3], argv[2]);
+    return EXIT_USAGE;
+  }
   if ((asks_help || asks_version) && argc > 2) {
     cli_error("%s takes nothing after it: '%s'%s", cmd, argv[2],
               asks_help ? " (a command's help: glint COMMAND --help)" : "");

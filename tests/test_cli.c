@@ -359,6 +359,9 @@ static void help_and_version(void **state) {
   assert_non_null(strstr(out, "glint render"));
   assert_int_equal(run("help", "bench", NULL), 0);
   assert_non_null(strstr(out, "--backends"));
+  assert_int_equal(run("help", "render", "extra", NULL), 2);
+  assert_non_null(strstr(err, "help takes one command: 'extra' follows "
+                              "'render'"));
   assert_int_equal(run("help", "paint", NULL), 2);
   assert_non_null(strstr(err, "help: unknown command 'paint'"));
   assert_int_equal(run("--version", "extra", NULL), 2);

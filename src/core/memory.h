@@ -8,8 +8,23 @@
 
 #define GLI_ALIGN 64
 
+/* AddressSanitizer checks the bounds of malloc's blocks, not of blocks
+ * with a head before them or mapped by hand: under it every block is
+ * aligned_alloc's, without huge pages. */
+#if defined(__SANITIZE_ADDRESS__)
+#define GLI_PLAIN_BLOCKS 1
+#elif defined(__has_feature)
+#if __has_feature(address_sanitizer)
+#define GLI_PLAIN_BLOCKS 1
+#endif
+#endif
+#ifndef GLI_PLAIN_BLOCKS
+#define GLI_PLAIN_BLOCKS 0
+#endif
+
 /* NULL on failure or on size overflow; zero-filled. A block of a huge
- * page or more starts on a huge page (see gli_advise_huge). */
+ * page or more is mapped on its own, starting on a huge page (see
+ * gli_advise_huge), and unmapped when freed. */
 void *gli_aligned_calloc(size_t count, size_t size);
 void gli_aligned_free(void *p);
 
