@@ -471,7 +471,10 @@ static int agree_on_arguments(const mpi_world *w, int status,
             "sharing rank 0's arguments");
   if (first >= 0) /* every rank stops, as rank 0 said */
     return first;
-  int refused = mpi_agree(w, status < 0 ? GLINT_OK : GLINT_E_ARGUMENT, message);
+  glint_status st = status < 0              ? GLINT_OK
+                    : status == EXIT_MEMORY ? GLINT_E_MEMORY
+                                            : GLINT_E_ARGUMENT;
+  int refused = mpi_agree(w, st, message);
   return refused ? refused : -1;
 }
 
