@@ -158,7 +158,8 @@ glint_status scalar_scene_prepare(const glint_scene *g, double eps,
       int exponent;
       frexp(nl, &exponent);
       /* (one ldexp, not three: a power of two's product rounds as ldexp
-       * does, and they were a tenth of this loop's instructions) */
+       * does, and the three calls were over a quarter of this loop's
+       * instructions) */
       double scale = ldexp(1.0, -exponent);
       if (exponent > -1000 && exponent < 1000)
         t->n = from_d((glint_vec3){n.x * scale, n.y * scale, n.z * scale});
