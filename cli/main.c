@@ -33,6 +33,25 @@ static void usage(FILE *f) {
         f);
 }
 
+/* The commands, and whether each renders (a bad GLINT_ISA stops it). */
+typedef struct command {
+  const char *name;
+  int (*run)(int argc, char **argv);
+  int renders;
+} command;
+
+static const command commands[] = {{"render", cmd_render, 1},
+                                   {"bench", cmd_bench, 1},
+                                   {"view", cmd_view, 1},
+                                   {"compare", cmd_compare, 0}};
+
+static const command *command_named(const char *name) {
+  for (size_t i = 0; i < sizeof commands / sizeof *commands; i++)
+    if (strcmp(commands[i].name, name) == 0)
+      return &commands[i];
+  return NULL;
+}
+
 int main(int argc, char **argv) {
   cli_write_errors_not_signals();
   char why[128];
@@ -51,16 +70,10 @@ int main(int argc, char **argv) {
   int asks_version = strcmp(cmd, "--version") == 0 || strcmp(cmd, "-V") == 0;
   if (strcmp(cmd, "help") == 0 && argc == 3) { /* glint help COMMAND */
     char *help_arg[] = {"--help", NULL};
-    const char *of = argv[2];
-    if (strcmp(of, "render") == 0)
-      return cmd_render(1, help_arg);
-    if (strcmp(of, "bench") == 0)
-      return cmd_bench(1, help_arg);
-    if (strcmp(of, "view") == 0)
-      return cmd_view(1, help_arg);
-    if (strcmp(of, "compare") == 0)
-      return cmd_compare(1, help_arg);
-    cli_error("help: unknown command '%s' (see glint --help)", of);
+    const command *of = command_named(argv[2]);
+    if (of)
+      return of->run(1, help_arg);
+    cli_error("help: unknown command '%s' (see glint --help)", argv[2]);
     return EXIT_USAGE;
   }
   if (strcmp(cmd, "help") == 0 && argc > 3) {
@@ -85,20 +98,13 @@ int main(int argc, char **argv) {
   for (int i = 2; i < argc && strcmp(argv[i], "--") != 0; i++)
     help |= strcmp(argv[i], "-h") == 0 || strcmp(argv[i], "--help") == 0;
   glint_error err;
-  if ((strcmp(cmd, "render") == 0 || strcmp(cmd, "bench") == 0 ||
-       strcmp(cmd, "view") == 0) &&
-      !help && glint_isa_cap_check(&err)) {
+  const command *named = command_named(cmd);
+  if (named && named->renders && !help && glint_isa_cap_check(&err)) {
     cli_error("%s", err.message);
     return EXIT_USAGE;
   }
-  if (strcmp(cmd, "render") == 0)
-    return cmd_render(argc - 2, argv + 2);
-  if (strcmp(cmd, "bench") == 0)
-    return cmd_bench(argc - 2, argv + 2);
-  if (strcmp(cmd, "view") == 0)
-    return cmd_view(argc - 2, argv + 2);
-  if (strcmp(cmd, "compare") == 0)
-    return cmd_compare(argc - 2, argv + 2);
+  if (named)
+    return named->run(argc - 2, argv + 2);
   if (arg_is_help_with_value(cmd))
     cli_error("--help takes no value: '%s'", cmd);
   else

@@ -75,14 +75,6 @@ static int light_may_be_inside_absorber(const glint_scene *g) {
   return 0;
 }
 
-/* [lo, hi] grown to hold p (comparisons, not fmin and fmax, which are
- * calls: 3.6 million of them for the 200k-triangle dragon). */
-static void grow_bounds(glint_vec3 *lo, glint_vec3 *hi, glint_vec3 p) {
-  lo->x = p.x < lo->x ? p.x : lo->x, hi->x = p.x > hi->x ? p.x : hi->x;
-  lo->y = p.y < lo->y ? p.y : lo->y, hi->y = p.y > hi->y ? p.y : hi->y;
-  lo->z = p.z < lo->z ? p.z : lo->z, hi->z = p.z > hi->z ? p.z : hi->z;
-}
-
 glint_status scalar_scene_prepare(const glint_scene *g, double eps,
                                   scene_r **out, glint_error *error) {
   scene_r *s = calloc(1, sizeof *s);
@@ -127,7 +119,7 @@ glint_status scalar_scene_prepare(const glint_scene *g, double eps,
              hi = {-INFINITY, -INFINITY, -INFINITY};
   for (size_t i = 0; i < g->triangle_count; i++)
     for (int k = 0; k < 3; k++)
-      grow_bounds(&lo, &hi, g->triangles[i].v[k]);
+      gli_bounds_grow(&lo, &hi, g->triangles[i].v[k], 0.0);
   s->tri_origin = g->triangle_count ? v3((real)(0.5 * (lo.x + hi.x)),
                                          (real)(0.5 * (lo.y + hi.y)),
                                          (real)(0.5 * (lo.z + hi.z)))

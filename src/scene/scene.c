@@ -553,20 +553,6 @@ glint_status glint_scene_add_mesh(glint_scene *s, const glint_mesh *m,
   return st;
 }
 
-/* [lo, hi] grown to hold the cube of half-size r about p. Comparisons,
- * not fmin and fmax: those are calls, and every render through the CLI
- * asks for the scene's information (the 200k-triangle dragon: 3.6 million
- * calls). A NaN is passed over, as fmin and fmax do. */
-static double lower(double v, double m) { return v < m ? v : m; }
-static double higher(double v, double m) { return v > m ? v : m; }
-
-static void grow_bounds(glint_vec3 *lo, glint_vec3 *hi, glint_vec3 p,
-                        double r) {
-  lo->x = lower(p.x - r, lo->x), hi->x = higher(p.x + r, hi->x);
-  lo->y = lower(p.y - r, lo->y), hi->y = higher(p.y + r, hi->y);
-  lo->z = lower(p.z - r, lo->z), hi->z = higher(p.z + r, hi->z);
-}
-
 /* For glint_scene_get_scale. An object with no extent (a triangle object
  * whose corners are one point) renders as nothing either way: it has no
  * size to compare. */
@@ -587,7 +573,7 @@ static double smallest_object(const glint_scene *s) {
                hi = {-INFINITY, -INFINITY, -INFINITY};
     for (uint32_t i = obj->first; i < obj->first + obj->count; i++)
       for (int k = 0; k < 3; k++)
-        grow_bounds(&lo, &hi, s->triangles[i].v[k], 0.0);
+        gli_bounds_grow(&lo, &hi, s->triangles[i].v[k], 0.0);
     least = fmin(
         least, size_or_none(fmax(hi.x - lo.x, fmax(hi.y - lo.y, hi.z - lo.z))));
   }
@@ -616,14 +602,14 @@ void glint_scene_get_info(const glint_scene *s, glint_scene_info *info) {
   glint_vec3 lo = {INFINITY, INFINITY, INFINITY},
              hi = {-INFINITY, -INFINITY, -INFINITY};
   for (size_t i = 0; i < s->sphere_count; i++)
-    grow_bounds(&lo, &hi, s->spheres[i].center, s->spheres[i].radius);
+    gli_bounds_grow(&lo, &hi, s->spheres[i].center, s->spheres[i].radius);
   for (size_t i = 0; i < s->triangle_count; i++)
     for (int k = 0; k < 3; k++)
-      grow_bounds(&lo, &hi, s->triangles[i].v[k], 0.0);
+      gli_bounds_grow(&lo, &hi, s->triangles[i].v[k], 0.0);
   for (size_t i = 0; i < s->cone_count; i++) {
     double r = fmax(s->cones[i].base_radius, s->cones[i].apex_radius);
-    grow_bounds(&lo, &hi, s->cones[i].base, r);
-    grow_bounds(&lo, &hi, s->cones[i].apex, r);
+    gli_bounds_grow(&lo, &hi, s->cones[i].base, r);
+    gli_bounds_grow(&lo, &hi, s->cones[i].apex, r);
   }
   info->bounds_min = lo;
   info->bounds_max = hi;
@@ -637,11 +623,11 @@ void glint_scene_get_scale(const glint_scene *s, double *epsilon,
     *smallest = s ? smallest_object(s) : 0;
 }
 
-/* (higher, not fmax: once per vertex, as in glint_scene_get_info) */
+/* (gli_higher, not fmax: once per vertex) */
 static double absmax3(glint_vec3 v, double m) {
-  m = higher(fabs(v.x), m);
-  m = higher(fabs(v.y), m);
-  return higher(fabs(v.z), m);
+  m = gli_higher(fabs(v.x), m);
+  m = gli_higher(fabs(v.y), m);
+  return gli_higher(fabs(v.z), m);
 }
 
 double gli_scene_epsilon(const glint_scene *s) {
