@@ -230,7 +230,8 @@ void glint_scene_get_info(const glint_scene *scene, glint_scene_info *info);
  * secondary rays leave their own surface: 1e-4 times the largest
  * coordinate magnitude of the camera and the bounded primitives
  * (docs/specification.md, section 3). *smallest is the size of the
- * smallest bounded object: a sphere's radius, a cone's larger radius, a
+ * smallest bounded object: a sphere's radius, a cone's larger radius or its
+ * height where that is less, a
  * triangle object's longest bounding-box side (infinity when there is none;
  * objects of no extent are left out). One far or huge object makes epsilon
  * large for all the others: those not many times larger than it may be
@@ -793,9 +794,10 @@ glint_status glint_image_writer_open(const char *path, int width, int height,
                                      glint_error *error);
 /* Converts and takes the tile's pixels. tile->x and tile->y are pixels of
  * the image: for a frame's region, subtract the region's origin. Each pixel
- * is put once. Returns an error at once when the tile lies outside the image,
- * repeats a pixel, or writing has failed (a full disk): a tile callback then
- * cancels the frame. After a refused tile the image cannot be finished:
+ * is put once. Returns an error at once when the tile or its pixels are NULL,
+ * it is empty, its stride is shorter than its rows, it lies outside the
+ * image, it repeats a pixel, or writing has failed (a full disk): a tile
+ * callback then cancels the frame. After a refused tile the image cannot be finished:
  * later puts fail, and so does glint_image_writer_finish. A PNG or PPM writer
  * holds only the rows not yet encoded (a BMP, the whole image): a put that
  * finds 8 MiB of them held while the encoder has complete rows to encode waits

@@ -473,7 +473,11 @@ static void refuses_bad_tiles(void **state) {
   glint_tile no_pixels = {0, 0, 4, 4, NULL, W * 3};
   assert_int_equal(glint_image_writer_put(writer, &no_pixels, &e),
                    GLINT_E_ARGUMENT);
-  assert_non_null(strstr(e.message, "tile's pixels is NULL"));
+  assert_non_null(strstr(e.message, "the tile's pixels are NULL"));
+  glint_tile empty = {1, 1, 0, 0, glint_film_pixels_const(film), W * 3};
+  assert_int_equal(glint_image_writer_put(writer, &empty, &e),
+                   GLINT_E_ARGUMENT);
+  assert_non_null(strstr(e.message, "tile 0x0 at (1, 1) is empty"));
   glint_tile narrow = {0, 0, 4, 4, glint_film_pixels_const(film), 3};
   assert_int_equal(glint_image_writer_put(writer, &narrow, &e),
                    GLINT_E_ARGUMENT);
@@ -484,6 +488,29 @@ static void refuses_bad_tiles(void **state) {
   assert_non_null(strstr(e.message, "stride 6 is less than its 6442450941"));
   assert_int_equal(glint_image_writer_finish(writer, &e), GLINT_E_ARGUMENT);
   assert_non_null(strstr(e.message, "outside the image or repeated"));
+
+  /* Every refusal spoils the image, a bad stride or no pixels as much as
+   * a tile outside it (those two let the image be finished, without the
+   * tile the caller meant to give). */
+  for (int bad = 0; bad < 3; bad++) {
+    ASSERT_OK(
+        glint_image_writer_open(path, W, H, 1, GLINT_PNG_FAST, &writer, &e_));
+    glint_tile tile = {0, 0, W, H, glint_film_pixels_const(film), W * 3};
+    if (bad == 0)
+      tile.stride = 3;
+    else if (bad == 1)
+      tile.pixels = NULL;
+    assert_int_equal(
+        glint_image_writer_put(writer, bad == 2 ? NULL : &tile, &e),
+        GLINT_E_ARGUMENT);
+    tile.stride = W * 3;
+    tile.pixels = glint_film_pixels_const(film);
+    assert_int_equal(glint_image_writer_put(writer, &tile, &e),
+                     GLINT_E_ARGUMENT);
+    assert_non_null(strstr(e.message, "an earlier tile was refused"));
+    assert_int_equal(glint_image_writer_finish(writer, &e), GLINT_E_ARGUMENT);
+    assert_int_equal(access(path, F_OK), -1);
+  }
 
   ASSERT_OK(
       glint_image_writer_open(path, W, H, 1, GLINT_PNG_FAST, &writer, &e_));

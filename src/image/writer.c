@@ -24,6 +24,8 @@
 #include <errno.h>
 #include <limits.h>
 #include <pthread.h>
+#include <stdarg.h>
+#include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
 
@@ -350,27 +352,43 @@ glint_status glint_image_writer_open_memory(glint_image_format format,
   return GLINT_OK;
 }
 
+/* Refuses a put, and spoils the image: a tile the caller meant to give is
+ * missing from it, whatever was wrong with the tile. */
+static glint_status refuse_put(glint_image_writer *w, glint_error *error,
+                               const char *fmt, ...) GLI_PRINTF(3, 4);
+static glint_status refuse_put(glint_image_writer *w, glint_error *error,
+                               const char *fmt, ...) {
+  pthread_mutex_lock(&w->lock);
+  w->bad_put = 1;
+  pthread_mutex_unlock(&w->lock);
+  char message[512];
+  va_list ap;
+  va_start(ap, fmt);
+  vsnprintf(message, sizeof message, fmt, ap);
+  va_end(ap);
+  return gli_fail(error, GLINT_E_ARGUMENT, "%s: %s", w->file.path, message);
+}
+
 glint_status glint_image_writer_put(glint_image_writer *w,
                                     const glint_tile *tile,
                                     glint_error *error) {
   GLI_NOT_NULL(w, "writer", error);
-  GLI_NOT_NULL(tile, "tile", error);
-  GLI_NOT_NULL(tile->pixels, "tile's pixels", error);
-  if (tile->width > 0 && tile->stride < (size_t)tile->width * 3)
-    return gli_fail(error, GLINT_E_ARGUMENT,
-                    "%s: the tile's stride %zu is less than its %zu floats a "
-                    "row",
-                    w->file.path, tile->stride, (size_t)tile->width * 3);
-  if (tile->x < 0 || tile->y < 0 || tile->width < 1 || tile->height < 1 ||
-      tile->width > w->width - tile->x || tile->height > w->height - tile->y) {
-    pthread_mutex_lock(&w->lock);
-    w->bad_put = 1;
-    pthread_mutex_unlock(&w->lock);
-    return gli_fail(error, GLINT_E_ARGUMENT,
-                    "%s: tile %dx%d at (%d, %d) is outside the %dx%d image",
-                    w->file.path, tile->width, tile->height, tile->x, tile->y,
-                    w->width, w->height);
-  }
+  if (!tile)
+    return refuse_put(w, error, "tile is NULL");
+  if (!tile->pixels)
+    return refuse_put(w, error, "the tile's pixels are NULL");
+  if (tile->width < 1 || tile->height < 1)
+    return refuse_put(w, error, "tile %dx%d at (%d, %d) is empty", tile->width,
+                      tile->height, tile->x, tile->y);
+  if (tile->stride < (size_t)tile->width * 3)
+    return refuse_put(w, error,
+                      "the tile's stride %zu is less than its %zu floats a row",
+                      tile->stride, (size_t)tile->width * 3);
+  if (tile->x < 0 || tile->y < 0 || tile->width > w->width - tile->x ||
+      tile->height > w->height - tile->y)
+    return refuse_put(
+        w, error, "tile %dx%d at (%d, %d) is outside the %dx%d image",
+        tile->width, tile->height, tile->x, tile->y, w->width, w->height);
   /* Every pixel is given once: a tile that repeats one is refused before
    * it is converted, so that a row is complete only when each of its
    * pixels came (counting pixels a row, the left half given twice passed

@@ -562,9 +562,14 @@ static double smallest_object(const glint_scene *s) {
   double least = INFINITY;
   for (size_t i = 0; i < s->sphere_count; i++)
     least = fmin(least, size_or_none(s->spheres[i].radius));
-  for (size_t i = 0; i < s->cone_count; i++)
-    least = fmin(least, size_or_none(fmax(s->cones[i].base_radius,
-                                          s->cones[i].apex_radius)));
+  /* A cone's height counts as well as its radius: a cone flat against its
+   * radii has a slope (rb - ra) / h that float cannot trace (from about
+   * h = 1e-3 r the float and double backends drew it differently). */
+  for (size_t i = 0; i < s->cone_count; i++) {
+    const gli_cone_prim *c = &s->cones[i];
+    least = fmin(least, size_or_none(fmin(fmax(c->base_radius, c->apex_radius),
+                                          vlen(vsub(c->apex, c->base)))));
+  }
   for (size_t o = 0; o < s->object_count; o++) {
     const gli_object *obj = &s->objects[o];
     if (obj->shape != GLI_SHAPE_TRIANGLE || obj->count == 0)
