@@ -106,12 +106,6 @@ static int frame_path(char *out, size_t size, const char *name, int pattern,
   return 0;
 }
 
-/* The folders a run made, so that a refused run can take them away. */
-typedef struct made_folders {
-  char **paths;
-  size_t count;
-} made_folders;
-
 /* Forgets the folders in `made`, first removing those still empty (the
  * deepest first) when `remove`. */
 static void forget_made_folders(made_folders *made, int remove) {
@@ -123,6 +117,23 @@ static void forget_made_folders(made_folders *made, int remove) {
   }
   free(made->paths);
   made->paths = NULL;
+  made->room = 0;
+}
+
+/* Notes `folder` in `made` (short of memory, it is not noted, and stays). */
+static void note_made(made_folders *made, const char *folder) {
+  if (!made)
+    return;
+  if (made->count == made->room) { /* doubling: a folder a frame, 10^5 */
+    size_t room = made->room ? 2 * made->room : 16;
+    char **grown = realloc(made->paths, room * sizeof *grown);
+    if (!grown)
+      return;
+    made->paths = grown;
+    made->room = room;
+  }
+  if ((made->paths[made->count] = strdup(folder)) != NULL)
+    made->count++;
 }
 
 /* Makes the folders of `path` that are missing (mkdir -p of its dirname),
@@ -142,14 +153,7 @@ static int make_folders(const char *path, made_folders *made) {
       struct stat sb;
       if (stat(folder, &sb) != 0) {
         if (mkdir(folder, 0777) == 0) {
-          char **grown =
-              made ? realloc(made->paths, (made->count + 1) * sizeof *grown)
-                   : NULL;
-          if (grown) {
-            made->paths = grown;
-            if ((grown[made->count] = strdup(folder)) != NULL)
-              made->count++;
-          }
+          note_made(made, folder);
         } else if (errno != EEXIST) {
           cli_error("%s: cannot make the folder: %s", folder, strerror(errno));
           return -1;
@@ -303,8 +307,9 @@ int frame_files_init(frame_files *files, const glint_scene *scene,
    * whose number is in a folder's name makes that folder for each frame,
    * in frame_files_path). A run refused below takes away the folders it
    * made. */
-  made_folders made = {NULL, 0};
-  int refused = make_folders(first_path, &made);
+  made_folders *made = &files->made;
+  *made = (made_folders){NULL, 0, 0};
+  int refused = make_folders(first_path, made);
   /* Every frame's file can be written, before any is: a folder or a pipe
    * under frame 2's name had frames 0 and 1 written over what was there
    * before the run stopped. A frame --resume keeps is not written; one it
@@ -315,7 +320,13 @@ int frame_files_init(frame_files *files, const glint_scene *scene,
     char path[4096];
     struct stat sb;
     glint_error err, why;
-    refused = frame_file(files, f, path, sizeof path, &made);
+    if (cli_stopped()) {
+      cli_error("interrupted while checking the frames' files; no frame was "
+                "written");
+      refused = 1;
+      break;
+    }
+    refused = frame_file(files, f, path, sizeof path, made);
     if (!refused && cli_check_output_format(path, scene_name, &err)) {
       cli_error("frame %d: %s; no frame was written", f, err.message);
       refused = 1;
@@ -326,8 +337,13 @@ int frame_files_init(frame_files *files, const glint_scene *scene,
       refused = 1;
     }
   }
-  forget_made_folders(&made, refused);
+  if (refused)
+    forget_made_folders(made, 1);
   return refused ? -1 : 0;
+}
+
+void frame_files_end(frame_files *files, int failed) {
+  forget_made_folders(&files->made, failed);
 }
 
 int frame_files_path(const frame_files *files, int frame, char *path,

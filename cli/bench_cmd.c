@@ -191,20 +191,61 @@ static int parse_range_list(const char *option, const char *example, char *text,
   return count;
 }
 
+/* Whether gnuplot can be given `name`: its strings hold no line break
+ * (the plot failed after the whole benchmark). */
+static int plot_name_ok(const char *what, const char *name) {
+  if (!strpbrk(name, "\n\r"))
+    return 1;
+  cli_error("--plot: %s has a line break, which gnuplot cannot take", what);
+  return 0;
+}
+
 /* --plot needs gnuplot and a folder to write into; checked before the
- * (long) measurements rather than after. */
+ * (long) measurements rather than after. A missing folder is made once
+ * the scenes have loaded (make_plot_dir): here, only its parent is looked
+ * at (a run refused for a scene left the folder made). */
 static int check_plot_dir(const char *dir) {
   if (!bench_have_program("gnuplot")) {
     cli_error("--plot needs gnuplot (Debian package gnuplot-nox)");
     return -1;
   }
-  struct stat sb;
-  if (stat(dir, &sb) != 0 && mkdir(dir, 0777) != 0) {
-    cli_error("--plot: cannot create the folder %s", dir);
+  if (!plot_name_ok("the folder's name", dir))
     return -1;
+  struct stat sb;
+  if (stat(dir, &sb) == 0) {
+    if (!S_ISDIR(sb.st_mode)) {
+      cli_error("--plot: %s is not a folder", dir);
+      return -1;
+    }
+    return 0;
   }
-  if (stat(dir, &sb) != 0 || !S_ISDIR(sb.st_mode)) {
-    cli_error("--plot: %s is not a folder", dir);
+  int err = errno;
+  char parent[PATH_MAX]; /* the folder it would be made in */
+  snprintf(parent, sizeof parent, "%s", dir);
+  size_t n = strlen(parent);
+  while (n > 1 && parent[n - 1] == '/') /* plots/ */
+    parent[--n] = '\0';
+  char *slash = strrchr(parent, '/');
+  if (!slash)
+    strcpy(parent, ".");
+  else if (slash == parent)
+    parent[1] = '\0';
+  else
+    *slash = '\0';
+  if (err == ENOENT && access(parent, W_OK | X_OK) == 0)
+    return 0;
+  cli_error("--plot: cannot create the folder %s: %s", dir,
+            strerror(err == ENOENT ? errno : err));
+  return -1;
+}
+
+/* Makes --plot's folder if it is missing; *made says whether it was. */
+static int make_plot_dir(const char *dir, int *made) {
+  *made = 0;
+  if (mkdir(dir, 0777) == 0)
+    *made = 1;
+  else if (errno != EEXIST) {
+    cli_error("--plot: cannot create the folder %s: %s", dir, strerror(errno));
     return -1;
   }
   return 0;
@@ -237,7 +278,8 @@ static int plot_scene(const char *dir, const char *scene, const int *depths,
                       int ndepths, const bench_column *cols, int ncols,
                       const double *medians, const glint_stats *st) {
   char path[8192];
-  snprintf(path, sizeof path, "%s/%s.dat", dir, scene);
+  if (snprintf(path, sizeof path, "%s/%s.dat", dir, scene) >= (int)sizeof path)
+    return -1;
   FILE *f = fopen(path, "w");
   if (!f)
     return -1;
@@ -253,7 +295,8 @@ static int plot_scene(const char *dir, const char *scene, const int *depths,
   }
   if (fclose(f) != 0)
     return -1;
-  snprintf(path, sizeof path, "%s/%s.gp", dir, scene);
+  if (snprintf(path, sizeof path, "%s/%s.gp", dir, scene) >= (int)sizeof path)
+    return -1;
   if (!(f = fopen(path, "w")))
     return -1;
   /* Names go into gnuplot's single-quoted strings, quotes doubled; and
@@ -388,7 +431,7 @@ int bench_parse(int argc, char **argv, bench_options *o) {
    * could not be told apart (the second's plot replaced the first's). */
   for (int i = 1; i < o->nscenes; i++)
     for (int j = 0; j < i; j++) {
-      char a[256], b[256];
+      char a[CLI_STEM_SIZE], b[CLI_STEM_SIZE];
       cli_scene_stem(o->scenes[i], a, sizeof a);
       cli_scene_stem(o->scenes[j], b, sizeof b);
       if (strcmp(a, b) == 0) {
@@ -681,9 +724,16 @@ void bench_csv_row(FILE *csv, const char *scene, int depth,
  * took its plot without a word). */
 static int check_plot_files(const char *dir, const char *stem) {
   static const char *const suffixes[] = {"dat", "gp", "png"};
+  if (!plot_name_ok("a scene's name", stem))
+    return -1;
   for (int k = 0; k < 3; k++) {
     char path[8192];
-    snprintf(path, sizeof path, "%s/%s.%s", dir, stem, suffixes[k]);
+    if (snprintf(path, sizeof path, "%s/%s.%s", dir, stem, suffixes[k]) >=
+        (int)sizeof path) {
+      cli_error("--plot: %s/%s.%s: the name is too long", dir, stem,
+                suffixes[k]);
+      return -1;
+    }
     struct stat sb;
     if (stat(path, &sb) == 0 && !S_ISREG(sb.st_mode)) {
       cli_error("--plot: %s: not a regular file", path);
@@ -697,7 +747,7 @@ int bench_scenes(char **names, int nscenes, const int *depths, int ndepths,
                  const glint_render_settings *base, const bench_column *cols,
                  int ncols, int runs, FILE *csv, const char *plot_dir) {
   glint_scene *scenes[MAX_ITEMS];
-  char stems[MAX_ITEMS][64];
+  char stems[MAX_ITEMS][CLI_STEM_SIZE];
   for (int i = 0; i < nscenes; i++) {
     int code = EXIT_USAGE;
     scenes[i] = cli_load_scene(names[i], stems[i], sizeof stems[i], &code);
@@ -710,6 +760,12 @@ int bench_scenes(char **names, int nscenes, const int *depths, int ndepths,
         glint_scene_destroy(scenes[k]);
       return code;
     }
+  }
+  int made_plot_dir = 0;
+  if (plot_dir && make_plot_dir(plot_dir, &made_plot_dir)) {
+    for (int i = 0; i < nscenes; i++)
+      glint_scene_destroy(scenes[i]);
+    return EXIT_USAGE;
   }
   size_t ncells = (size_t)nscenes * ndepths * ncols;
   glint_stats *stats = calloc(ncells, sizeof *stats);
@@ -910,6 +966,8 @@ int bench_scenes(char **names, int nscenes, const int *depths, int ndepths,
   free(times);
   for (int i = 0; i < nscenes; i++)
     glint_scene_destroy(scenes[i]);
+  if (status && made_plot_dir)
+    rmdir(plot_dir); /* (one holding plots stays) */
   return status;
 #undef IDX
 #undef SECONDS

@@ -34,7 +34,7 @@ typedef struct frame_times {
 
 int bench_frames(const char *scene_name, const glint_render_settings *base,
                  int frames) {
-  char stem[256];
+  char stem[CLI_STEM_SIZE];
   int code = EXIT_USAGE;
   glint_scene *scene = cli_load_scene(scene_name, stem, sizeof stem, &code);
   if (!scene)

@@ -15,15 +15,18 @@
 #include <glint.h>
 
 #include <errno.h>
+#include <limits.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
 #include <unistd.h>
 
-/* Seconds one child `glint render ... --stats` took, or a negative value
- * on failure (with its output on stderr); *render: the render time it
- * reported itself. */
-static double time_child(char **argv, double *render) {
+/* Seconds one child `glint render ... --stats` of `scene` took, or a
+ * negative value on failure (with its output on stderr, and *code the exit
+ * status for it: a child's usage error is 2, as bench_view's, any other
+ * failure 1); *render: the render time it reported itself. */
+static double time_child(char **argv, const char *scene, double *render,
+                         int *code) {
   static char output[1 << 14];
   double t0 = cli_now();
   int rc = bench_run_capture(argv, output, sizeof output);
@@ -31,7 +34,8 @@ static double time_child(char **argv, double *render) {
   const char *line = strstr(output, "\n  render ");
   if (rc != 0 || !line || sscanf(line, " render %lf", render) != 1) {
     if (!cli_stopped()) /* a Ctrl-C stopped it too: the caller says so */
-      cli_error("'glint render %s' failed:\n%s", argv[2], output);
+      cli_error("'glint render %s' failed:\n%s", scene, output);
+    *code = rc == EXIT_USAGE ? EXIT_USAGE : 1;
     return -1;
   }
   return seconds;
@@ -46,11 +50,13 @@ int bench_time_to_image(char **scenes, int nscenes,
   const char *tmp = getenv("TMPDIR");
   if (!tmp || !*tmp)
     tmp = "/tmp";
-  char folder[512], png[600], ppm[600];
-  snprintf(folder, sizeof folder, "%s/glint-bench-XXXXXX", tmp);
-  if (!mkdtemp(folder)) {
+  char folder[PATH_MAX], png[PATH_MAX + 16], ppm[PATH_MAX + 16];
+  int fits = snprintf(folder, sizeof folder, "%s/glint-bench-XXXXXX", tmp) <
+             (int)sizeof folder;
+  if (!fits || !mkdtemp(folder)) {
     cli_error("%s%s: cannot make a folder there for the images: %s",
-              tmp == getenv("TMPDIR") ? "TMPDIR " : "", tmp, strerror(errno));
+              tmp == getenv("TMPDIR") ? "TMPDIR " : "", tmp,
+              strerror(fits ? errno : ENAMETOOLONG));
     return EXIT_USAGE;
   }
   snprintf(png, sizeof png, "%s/image.png", folder);
@@ -78,37 +84,35 @@ int bench_time_to_image(char **scenes, int nscenes,
   double *times = malloc(sizeof(double) * SERIES * (size_t)runs);
   int status = times ? 0 : 1;
   for (int s = 0; s < nscenes && status == 0; s++) {
-    char stem[256];
+    char stem[CLI_STEM_SIZE];
     int code = EXIT_USAGE;
     glint_scene *scene = cli_load_scene(scenes[s], stem, sizeof stem, &code);
     if (!scene) {
       status = code;
       break;
     }
-    char *argv[] = {"/proc/self/exe",
-                    "render",
-                    scenes[s],
-                    "-b",
-                    (char *)glint_backend_name(backend),
-                    "-t",
-                    threads,
-                    "-d",
-                    depth,
-                    "-s",
-                    spp,
-                    "--stats",
-                    "-o",
-                    png,
-                    more[0],
-                    more[1],
-                    more[2],
-                    more[3],
-                    more[4],
-                    more[5],
-                    more[6],
-                    more[7],
-                    more[8],
-                    NULL};
+    /* The scene after "--": a name that starts with '-' is still a scene
+     * (-dash.json was read as -d ash.json). */
+    char *argv[16 + BENCH_CHILD_ARGS] = {"/proc/self/exe",
+                                         "render",
+                                         "-b",
+                                         (char *)glint_backend_name(backend),
+                                         "-t",
+                                         threads,
+                                         "-d",
+                                         depth,
+                                         "-s",
+                                         spp,
+                                         "--stats",
+                                         "-o",
+                                         png};
+    enum { OUTPUT = 12 };
+    int n = OUTPUT + 1;
+    for (int k = 0; k < BENCH_CHILD_ARGS && more[k]; k++)
+      argv[n++] = more[k];
+    argv[n++] = "--";
+    argv[n++] = scenes[s];
+    argv[n] = NULL;
     /* One untimed round first: page cache, the dynamic loader's. */
     for (int r = -1; r < runs && status == 0 && !cli_stopped(); r++) {
       glint_image *image;
@@ -123,13 +127,12 @@ int bench_time_to_image(char **scenes, int nscenes,
       if (cli_stopped())
         break;
       double own, own_ppm;
-      argv[13] = png;
-      double t_png = time_child(argv, &own);
-      argv[13] = ppm;
-      double t_ppm = time_child(argv, &own_ppm);
-      if (t_png < 0 || t_ppm < 0)
-        status = 1;
-      else if (r >= 0) {
+      argv[OUTPUT] = png;
+      double t_png = time_child(argv, scenes[s], &own, &status);
+      argv[OUTPUT] = ppm;
+      double t_ppm =
+          t_png < 0 ? -1 : time_child(argv, scenes[s], &own_ppm, &status);
+      if (t_png >= 0 && t_ppm >= 0 && r >= 0) {
         times[RENDER * runs + r] = st.render_seconds;
         times[OWN * runs + r] = own;
         times[PNG * runs + r] = t_png;

@@ -32,11 +32,17 @@ int render_frames(struct glint_scene *scene, const render_options *options,
 
 /* The files of an animation's frames (cli/animation_frames.c), for
  * glint render --frames and glint-mpi. */
+/* The folders a run made, so that a run that fails can take them away. */
+typedef struct made_folders {
+  char **paths;
+  size_t count, room;
+} made_folders;
 typedef struct frame_files {
   const char *name; /* -o, or SCENE.png */
   char default_name[300];
-  int pattern; /* name has a %d */
-  int digits;  /* without one: the number's width */
+  int pattern;       /* name has a %d */
+  int digits;        /* without one: the number's width */
+  made_folders made; /* by frame_files_init, for frame_files_end */
 } frame_files;
 /* Checks that `scene` has an animation holding o's --frames, and o's -o (a
  * pattern with one %d, or an image name to put a number in), and makes the
@@ -44,6 +50,11 @@ typedef struct frame_files {
 int frame_files_init(frame_files *files, const struct glint_scene *scene,
                      const render_options *o, const char *stem,
                      glint_animation *animation);
+/* Ends a run of frames: when it `failed` (an error, Ctrl-C), the folders
+ * frame_files_init made that are still empty go (a Ctrl-C left one for
+ * each frame of -o out/%d/f.png), the deepest first; those holding a
+ * written frame stay. */
+void frame_files_end(frame_files *files, int failed);
 /* The file of `frame` (making its folder when the number names one); -1
  * after a message when the name is too long or the folder cannot be made. */
 int frame_files_path(const frame_files *files, int frame, char *path,
@@ -95,6 +106,9 @@ int cli_scene_is_file(const char *arg);
  * extension, and without .gz before it (scene.json.gz: scene, as for
  * scene.json); a built-in scene's name. */
 void cli_scene_stem(const char *arg, char *stem, size_t size);
+/* Room for any stem: a file's base name has at most 255 bytes (a stem cut
+ * shorter made two scenes one in bench's tables and plots). */
+#define CLI_STEM_SIZE 256
 /* Loads a built-in scene by name, or a scene file when the argument names
  * one (cli_scene_is_file); prints one message and returns NULL on
  * error, with the exit status in *exit_code (EXIT_MEMORY or EXIT_USAGE).

@@ -3,6 +3,7 @@
 
 #include <errno.h>
 #include <fcntl.h>
+#include <limits.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
@@ -66,9 +67,17 @@ int links_to_input(const char *path, char *target) {
 }
 
 int create_beside(const char *path, char *temp, size_t size) {
+  /* NAME.PID-k.tmp, or .glint-PID-k.tmp in NAME's folder where NAME is too
+   * long to take the suffix (a name of 250 bytes was refused) */
+  const char *slash = strrchr(path, '/');
+  int folder = slash ? (int)(slash - path + 1) : 0;
+  int whole = strlen(path + folder) + 24 <= (size_t)NAME_MAX;
   for (int k = 0; k < 100; k++) {
-    if (snprintf(temp, size, "%s.%ld-%d.tmp", path, (long)getpid(), k) >=
-        (int)size) {
+    int n = whole
+                ? snprintf(temp, size, "%s.%ld-%d.tmp", path, (long)getpid(), k)
+                : snprintf(temp, size, "%.*s.glint-%ld-%d.tmp", folder, path,
+                           (long)getpid(), k);
+    if (n >= (int)size) {
       errno = ENAMETOOLONG;
       return -1;
     }

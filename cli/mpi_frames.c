@@ -146,6 +146,7 @@ static void abandon(void *context) {
   frame_job *j = context;
   glint_image_writer_discard(j->writer);
   j->writer = NULL;
+  frame_files_end(&j->files, 1); /* the folders made still empty go */
 }
 
 /* Rank 0: the frames to render, those --resume finds written left out. */
@@ -193,6 +194,8 @@ int mpi_render_frames(const mpi_world *w, const mpi_options *o,
   if (w->rank == 0) {
     if (frame_files_init(&j.files, scene, &o->render, stem, &j.animation) == 0)
       count = plan(&j, &kept);
+    else if (cli_stopped())
+      count = -2; /* Ctrl-C while checking the files */
   } else {
     glint_scene_get_animation(scene, &j.animation);
   }
@@ -202,7 +205,9 @@ int mpi_render_frames(const mpi_world *w, const mpi_options *o,
   kept = header[1];
   if (count < 0) {
     free(j.frames);
-    return EXIT_USAGE;
+    if (w->rank == 0)
+      frame_files_end(&j.files, 1); /* (none made when the check failed) */
+    return count == -2 ? EXIT_INTERRUPTED : EXIT_USAGE;
   }
   if (w->rank != 0 && count &&
       !(j.frames = malloc((size_t)count * sizeof *j.frames)))
@@ -249,6 +254,8 @@ int mpi_render_frames(const mpi_world *w, const mpi_options *o,
   free(j.frames);
   glint_world_destroy(j.last_world);
   mpi_end_if_silent(&job, "every frame's file");
+  if (w->rank == 0)
+    frame_files_end(&j.files, 0);
   if (w->rank == 0 && !o->render.quiet) {
     printf("%d frame%s written", count, count == 1 ? "" : "s");
     if (kept)

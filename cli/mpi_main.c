@@ -492,7 +492,7 @@ static int run(mpi_world *w, int argc, char **argv) {
   o.most_threads = share_threads(w, rs->threads, local, o.render.quiet);
   if (!same_renderers(w, &o))
     return EXIT_USAGE;
-  char stem[256];
+  char stem[CLI_STEM_SIZE];
   int code = EXIT_USAGE;
   glint_scene *scene = share_scene(w, &o, stem, sizeof stem, &code);
   if (!scene)

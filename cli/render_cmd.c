@@ -654,7 +654,7 @@ int cmd_render(int argc, char **argv) {
             "they will take turns\n",
             rs.threads, glint_cpu_count());
 
-  char stem[256], default_output[300];
+  char stem[CLI_STEM_SIZE], default_output[300];
   command_times times;
   double t0 = cli_now();
   int load_status = EXIT_USAGE;

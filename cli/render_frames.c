@@ -27,9 +27,11 @@ int render_frames(glint_scene *scene, const render_options *o,
   glint_error err;
   glint_animation anim;
   frame_files files;
+  /* Ctrl-C from here: checking 10^5 frames' files takes a while */
+  cli_catch_stop_signals();
   if (frame_files_init(&files, scene, o, stem, &anim)) {
     glint_scene_destroy(scene);
-    return EXIT_USAGE;
+    return cli_stopped() ? EXIT_INTERRUPTED : EXIT_USAGE;
   }
   const glint_render_settings *rs = &o->settings;
   glint_world *world = NULL;
@@ -40,6 +42,7 @@ int render_frames(glint_scene *scene, const render_options *o,
     cli_error("%s", err.message);
     glint_world_destroy(world);
     glint_scene_destroy(scene);
+    frame_files_end(&files, 1);
     return cli_exit_code(err.status);
   }
   glint_world_destroy(world);
@@ -49,7 +52,6 @@ int render_frames(glint_scene *scene, const render_options *o,
   /* Objects that move need a world a frame; a camera alone does not. */
   int moving = glint_scene_has_motion(scene);
   glint_world *last_world = NULL; /* the last frame's: its BVH is refitted */
-  cli_catch_stop_signals();
   int status = 0, rendered = 0, kept = 0;
   double render_seconds = 0, frame_seconds = 0;
   for (int f = o->first_frame; f <= o->last_frame && !status; f++) {
@@ -115,6 +117,7 @@ int render_frames(glint_scene *scene, const render_options *o,
   glint_renderer_destroy(renderer);
   glint_world_destroy(last_world);
   glint_scene_destroy(scene);
+  frame_files_end(&files, status != 0);
   if (!status && !o->quiet) {
     double total = cli_now() - t_start;
     printf("%d frame%s written", rendered, rendered == 1 ? "" : "s");

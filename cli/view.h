@@ -16,7 +16,7 @@ typedef struct viewer {
   const view_options *opt;
   /* The scene: the file's (reloaded when it changes) or a built-in's. */
   glint_scene *scene;
-  char stem[256];
+  char stem[CLI_STEM_SIZE];
   int is_file;
   struct timespec mtime;
   char error[sizeof((glint_error *)0)->message]; /* the last reload's message,

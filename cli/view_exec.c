@@ -1,5 +1,6 @@
 /* glint view: the window is the program glint-view beside glint (see
- * cli/view_cmd.c for why); this runs it with the same arguments. */
+ * cli/view_cmd.c for why); this checks the arguments and runs it with
+ * them. */
 #include "args.h"
 #include "cli.h"
 
@@ -11,6 +12,12 @@
 #include <unistd.h>
 
 int cmd_view(int argc, char **argv) {
+  /* The help and the options' errors here, with or without glint-view
+   * (glint help view said "glint-view is missing") */
+  view_options options;
+  int status = view_parse(argc, argv, &options);
+  if (status >= 0)
+    return status;
   char self[PATH_MAX], path[PATH_MAX + 16];
   ssize_t n = readlink("/proc/self/exe", self, sizeof self - 1);
   if (n <= 0) {

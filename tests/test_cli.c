@@ -153,6 +153,20 @@ static int remove_in_folder(const char *name) {
 }
 
 /* Only the stdout/stderr capture files may be in the folder. */
+static void put_text(const char *name, const char *text) {
+  char p[256];
+  snprintf(p, sizeof p, "%s/%s", dir, name);
+  FILE *f = fopen(p, "wb");
+  fputs(text, f);
+  fclose(f);
+}
+
+/* A sphere in front of the camera, 8x8: the smallest scene file a test
+ * needs to be there (the start "v\nfrom" tells that it was kept). */
+static const char small_nff[] = "v\nfrom 0 0 -5\nat 0 0 0\nup 0 1 0\nangle 40\n"
+                                "hither 0.001\nresolution 8 8\n"
+                                "f 1 1 1 1 0 0 0 1\ns 0 0 0 1\n";
+
 static int folder_is_empty(void) {
   char cmd[256];
   snprintf(cmd, sizeof cmd, "test -z \"$(ls -A '%s')\"", dir);
@@ -375,6 +389,22 @@ static void help_and_version(void **state) {
   assert_non_null(strstr(out, "--runs"));
   assert_int_equal(run(NULL), 2); /* no command: usage on stderr */
   assert_non_null(strstr(err, "Usage"));
+  /* glint view's help and option errors come from glint, also where the
+   * window program glint-view is not beside it (they said it was missing) */
+  char alone[700], cmd[2400];
+  snprintf(alone, sizeof alone, "%s/alone", dir);
+  snprintf(cmd, sizeof cmd, "mkdir '%s' && cp '%s' '%s/glint'", alone,
+           GLINT_EXE, alone);
+  assert_int_equal(system(cmd), 0);
+  snprintf(
+      cmd, sizeof cmd,
+      "'%s/glint' help view | grep -q '^Usage: glint view' && "
+      "'%s/glint' view --help | grep -q '^Usage: glint view' && "
+      "'%s/glint' view --bogus 2>&1 | grep -q \"unknown option '--bogus'\"",
+      alone, alone, alone);
+  assert_int_equal(system(cmd), 0);
+  snprintf(cmd, sizeof cmd, "rm -r '%s'", alone);
+  assert_int_equal(system(cmd), 0);
 }
 
 static void render_writes_every_format(void **state) {
@@ -649,6 +679,15 @@ static void bench_time_to_image(void **state) {
   assert_non_null(strstr(out, "\nwhitted "));
   assert_non_null(strstr(out, "\nphong "));
   assert_true(folder_is_empty());
+  /* A scene whose name starts with '-' (the child read -dash.nff as -d
+   * ash.nff and failed) */
+  put_text("-dash.nff", small_nff);
+  assert_int_equal(run("bench", "--time-to-image", "--scenes", "-dash.nff",
+                       "--runs", "1", "-s", "1", "--backends", "scalar-float",
+                       NULL),
+                   0);
+  assert_non_null(strstr(out, "\n-dash "));
+  remove_in_folder("-dash.nff");
   EXPECT_USAGE_ERROR("unknown scene 'atlantis'", "bench", "--time-to-image",
                      "--scenes", "atlantis");
   /* A TMPDIR that cannot take the folder is named, with why */
@@ -868,14 +907,6 @@ static void default_threads_follow_the_affinity(void **state) {
 }
 
 /* Writes `text` to NAME in the test folder. */
-static void put_text(const char *name, const char *text) {
-  char p[256];
-  snprintf(p, sizeof p, "%s/%s", dir, name);
-  FILE *f = fopen(p, "wb");
-  fputs(text, f);
-  fclose(f);
-}
-
 /* m.json, a scene of one mesh (tri.obj, a triangle), and `link`, a
  * symbolic link to the mesh, where an output might be written. */
 static void put_mesh_scene(const char *link) {
@@ -887,12 +918,6 @@ static void put_mesh_scene(const char *link) {
   snprintf(link_file, sizeof link_file, "%s/%s", dir, link);
   assert_int_equal(symlink(mesh_file, link_file), 0);
 }
-
-/* A sphere in front of the camera, 8x8: the smallest scene file a test
- * needs to be there (the start "v\nfrom" tells that it was kept). */
-static const char small_nff[] = "v\nfrom 0 0 -5\nat 0 0 0\nup 0 1 0\nangle 40\n"
-                                "hither 0.001\nresolution 8 8\n"
-                                "f 1 1 1 1 0 0 0 1\ns 0 0 0 1\n";
 
 /* One far object makes the hit tolerance larger than the scene's other
  * objects, which then vanish from the image: glint renders it and says so
@@ -944,6 +969,15 @@ static void bench_plot_names_are_not_commands(void **state) {
                              "1", "--backends", "scalar-float", "--plot",
                              "plots");
   remove_in_folder("plots/s.png");
+  /* A run refused for its scene makes no folder (an empty one was left),
+   * and a line break, which gnuplot cannot take, is refused before the
+   * measurements (the plot failed after them) */
+  EXPECT_USAGE_ERROR_KEEPING("nosuch.nff", "bench", "--scenes", "nosuch.nff",
+                             "--plot", "newplots");
+  assert_false(exists("newplots"));
+  EXPECT_USAGE_ERROR_KEEPING("--plot: the folder's name has a line break",
+                             "bench", "--scenes", "s.nff", "--plot", "p\nx");
+  assert_false(exists("p\nx"));
   remove_in_folder("s.nff");
   static const char *made[] = {"plots/x'; touch INJECTED; echo '.png",
                                "plots/x'; touch INJECTED; echo '.dat",
@@ -2016,6 +2050,51 @@ static void stopped_while_loading(void **state) {
   assert_true(folder_is_empty());
 }
 
+/* A stop signal during --frames, while the frames' files are checked or
+ * while the frames render, takes away the folders the run made that hold
+ * no frame (-o o/%d/f.png makes a folder a frame: a Ctrl-C left 26 000
+ * empty ones); those holding a frame stay. */
+static void stopped_frames_leave_no_empty_folders(void **state) {
+  (void)state;
+  if (cpu_ticks(getpid()) < 0)
+    skip();
+  char text[2048], scene[600], pattern[600], err_path[600];
+  const char *frames = strstr(orbit_scene, "[1, 48]");
+  snprintf(text, sizeof text, "%.*s[1, 20000]%s", (int)(frames - orbit_scene),
+           orbit_scene, frames + 7);
+  put_text("long.json", text);
+  snprintf(scene, sizeof scene, "%s/long.json", dir);
+  snprintf(pattern, sizeof pattern, "%s/o/%%d/f.png", dir);
+  snprintf(err_path, sizeof err_path, "%s/.stderr", dir);
+  const long ticks = sysconf(_SC_CLK_TCK) / 5;
+  char *argv[] = {"glint", "render", scene, "--frames", "1-20000", "-s",
+                  "16",    "-q",     "-o",  pattern,    NULL};
+  pid_t pid = spawn_glint(argv, environ, "/dev/null", err_path);
+  for (int tries = 0; cpu_ticks(pid) < ticks && tries < 30000; tries++)
+    usleep(1000);
+  kill(pid, SIGTERM);
+  assert_int_equal(exit_status(pid, err_path), 130);
+  assert_non_null(strstr(err, "glint: interrupted"));
+  char o[600];
+  snprintf(o, sizeof o, "%s/o", dir);
+  DIR *d = opendir(o);
+  int empty = 0;
+  for (struct dirent *e; d && (e = readdir(d));) {
+    if (e->d_name[0] == '.')
+      continue;
+    char frame[1200];
+    snprintf(frame, sizeof frame, "%s/%s/f.png", o, e->d_name);
+    empty += access(frame, F_OK) != 0;
+  }
+  if (d)
+    closedir(d);
+  assert_int_equal(empty, 0);
+  char cmd[1300];
+  snprintf(cmd, sizeof cmd, "rm -rf '%s' '%s'", o, scene);
+  assert_int_equal(system(cmd), 0);
+  assert_true(folder_is_empty());
+}
+
 /* A render killed outright (SIGKILL, the out-of-memory killer, a batch
  * system's hard stop) has no handler to run, and still leaves nothing
  * behind: the image being written has no name until it is complete. */
@@ -2049,6 +2128,46 @@ static void a_killed_render_leaves_no_file(void **state) {
   assert_string_equal(buf, "precious");
   unlink(keep);
   assert_true(folder_is_empty()); /* no temporary file */
+}
+
+/* Scenes whose names share their first 63 characters are two scenes in
+ * bench's tables and CSV (their names were cut to 63: one row name for
+ * both, and one plot replaced the other's). */
+static void bench_keeps_long_scene_names(void **state) {
+  (void)state;
+  char a[128], b[128], list[300];
+  memset(a, 'p', 70);
+  memcpy(a + 70, "_one.nff", 9);
+  memset(b, 'p', 70);
+  memcpy(b + 70, "_two.nff", 9);
+  put_text(a, small_nff);
+  put_text(b, small_nff);
+  snprintf(list, sizeof list, "%s,%s", a, b);
+  assert_int_equal(run("bench", "--scenes", list, "--depths", "1", "--runs",
+                       "1", "-s", "1", "--backends", "scalar-float", "--csv",
+                       "long.csv", NULL),
+                   0);
+  long n;
+  char *csv = file_bytes("long.csv", &n);
+  a[74] = b[74] = '\0'; /* the stems */
+  assert_non_null(strstr(csv, a));
+  assert_non_null(strstr(csv, b));
+  free(csv);
+  remove_in_folder("long.csv");
+  a[74] = b[74] = '.';
+  /* A CSV of a legal 254-byte name (its temporary file's suffix made the
+   * name too long) */
+  char csv_name[255];
+  memset(csv_name, 'c', 250);
+  memcpy(csv_name + 250, ".csv", 5);
+  assert_int_equal(run("bench", "--scenes", a, "--depths", "1", "--runs", "1",
+                       "-s", "1", "--backends", "scalar-float", "--csv",
+                       csv_name, NULL),
+                   0);
+  assert_true(exists(csv_name));
+  remove_in_folder(csv_name);
+  remove_in_folder(a);
+  remove_in_folder(b);
 }
 
 static void compare_threshold_and_difference(void **state) {
@@ -2128,6 +2247,18 @@ static void compare_threshold_and_difference(void **state) {
   free(before);
   free(after);
   assert_int_equal(remove_in_folder("link.png"), 0);
+  /* ...and a --diff through a link to a scene file, as render's -o (the
+   * scene was replaced by the difference image). */
+  put_text("s.json", "{}");
+  snprintf(target, sizeof target, "%s/s.json", dir);
+  assert_int_equal(symlink(target, link_path), 0);
+  EXPECT_USAGE_ERROR_KEEPING("a scene or mesh file", "compare", "a.png",
+                             "b.png", "--diff", "link.png");
+  char *scene = file_bytes("s.json", &after_n);
+  assert_true(after_n == 2 && memcmp(scene, "{}", 2) == 0);
+  free(scene);
+  assert_int_equal(remove_in_folder("link.png"), 0);
+  assert_int_equal(remove_in_folder("s.json"), 0);
   char cmd[256];
   snprintf(cmd, sizeof cmd, "rm -f '%s'/*.png '%s'/*.ppm", dir, dir);
   assert_int_equal(system(cmd), 0);
@@ -2168,6 +2299,7 @@ int main(void) {
       cmocka_unit_test(options_as_people_write_them),
       cmocka_unit_test(default_threads_follow_the_affinity),
       cmocka_unit_test(frames_of_an_animation),
+      cmocka_unit_test(stopped_frames_leave_no_empty_folders),
       cmocka_unit_test(frames_with_moving_objects),
       cmocka_unit_test(interrupt_keeps_the_old_file),
       cmocka_unit_test(an_endless_render_stops_within_the_grace),
@@ -2176,6 +2308,7 @@ int main(void) {
       cmocka_unit_test(stopped_while_loading),
       cmocka_unit_test(ignored_stop_signals_stay_ignored),
       cmocka_unit_test(compare_threshold_and_difference),
+      cmocka_unit_test(bench_keeps_long_scene_names),
   };
   return cmocka_run_group_tests(tests, setup, teardown);
 }
