@@ -797,11 +797,11 @@ glint_status glint_image_writer_open(const char *path, int width, int height,
  * is put once. Returns an error at once when the tile or its pixels are NULL,
  * it is empty, its stride is shorter than its rows, it lies outside the
  * image, it repeats a pixel, or writing has failed (a full disk): a tile
- * callback then cancels the frame. After a refused tile the image cannot be finished:
- * later puts fail, and so does glint_image_writer_finish. A PNG or PPM writer
- * holds only the rows not yet encoded (a BMP, the whole image): a put that
- * finds 8 MiB of them held while the encoder has complete rows to encode waits
- * for it; tiles out of order never wait. */
+ * callback then cancels the frame. After a refused tile the image cannot be
+ * finished: later puts fail, and so does glint_image_writer_finish. A PNG or
+ * PPM writer holds only the rows not yet encoded (a BMP, the whole image): a
+ * put that finds 8 MiB of them held while the encoder has complete rows to
+ * encode waits for it; tiles out of order never wait. */
 glint_status glint_image_writer_put(glint_image_writer *writer,
                                     const glint_tile *tile, glint_error *error);
 /* Waits for the encoder, then flushes, syncs and renames the file into
