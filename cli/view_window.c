@@ -787,6 +787,8 @@ int view_run(const view_options *o) {
   } else {
     status = o->benchmark_frames ? run_benchmark(&v) : run_interactive(&v);
   }
+  if (status == EXIT_INTERRUPTED && cli_stopped())
+    cli_error("view: interrupted"); /* as render says (it said nothing) */
   free_buffers(&v);
   if (v.sdl)
     SDL_DestroyRenderer(v.sdl);

@@ -277,6 +277,7 @@ rc=$?
 took=$((($(date +%s%N) - start) / 1000000))
 [ $rc -eq 130 ] || fail "Ctrl-C during a pass: exit status $rc, want 130"
 [ $took -lt 5000 ] || fail "Ctrl-C during a pass: stopped after $took ms"
+grep -qF "glint: view: interrupted" err.txt || fail "Ctrl-C during a pass: no message"
 # A window resized past the memory there is: exit status 1 (out of memory,
 # as glint --help says), not 2. (Not under AddressSanitizer, which cannot
 # start under a limit on address space.)
