@@ -236,6 +236,11 @@ static int check_frames(const glint_scene *scene, const char *scene_name,
                         int first, int last, const glint_animation *anim) {
   int moving = glint_scene_has_motion(scene);
   for (int f = first; f <= last; f++) {
+    if (cli_stopped()) { /* (a scene a frame: seconds for 10^4 frames) */
+      cli_error("interrupted while checking the frames; no frame was "
+                "written");
+      return -1;
+    }
     double time = (double)(f - anim->first_frame) / anim->fps;
     glint_error err;
     glint_camera camera;

@@ -217,9 +217,18 @@ static int check_plot_dir(const char *dir) {
       cli_error("--plot: %s is not a folder", dir);
       return -1;
     }
+    if (access(dir, W_OK | X_OK) != 0) {
+      cli_error("--plot: cannot write in the folder %s: %s", dir,
+                strerror(errno));
+      return -1;
+    }
     return 0;
   }
   int err = errno;
+  if (lstat(dir, &sb) == 0) { /* a link to nothing */
+    cli_error("--plot: %s is a link to nothing, not a folder", dir);
+    return -1;
+  }
   char parent[PATH_MAX]; /* the folder it would be made in */
   snprintf(parent, sizeof parent, "%s", dir);
   size_t n = strlen(parent);
@@ -242,10 +251,14 @@ static int check_plot_dir(const char *dir) {
 /* Makes --plot's folder if it is missing; *made says whether it was. */
 static int make_plot_dir(const char *dir, int *made) {
   *made = 0;
+  struct stat sb;
   if (mkdir(dir, 0777) == 0)
     *made = 1;
   else if (errno != EEXIST) {
     cli_error("--plot: cannot create the folder %s: %s", dir, strerror(errno));
+    return -1;
+  } else if (stat(dir, &sb) != 0 || !S_ISDIR(sb.st_mode)) {
+    cli_error("--plot: %s is not a folder", dir); /* made meanwhile */
     return -1;
   }
   return 0;
@@ -761,20 +774,22 @@ int bench_scenes(char **names, int nscenes, const int *depths, int ndepths,
       return code;
     }
   }
-  int made_plot_dir = 0;
-  if (plot_dir && make_plot_dir(plot_dir, &made_plot_dir)) {
-    for (int i = 0; i < nscenes; i++)
-      glint_scene_destroy(scenes[i]);
-    return EXIT_USAGE;
-  }
   size_t ncells = (size_t)nscenes * ndepths * ncols;
   glint_stats *stats = calloc(ncells, sizeof *stats);
   double *times = calloc(ncells * (size_t)runs, sizeof *times);
+  int made_plot_dir = 0, failed = 0;
   if (!stats || !times) {
     cli_error("out of memory");
+    failed = 1;
+  } else if (plot_dir && make_plot_dir(plot_dir, &made_plot_dir)) {
+    failed = EXIT_USAGE;
+  }
+  if (failed) {
     free(stats);
     free(times);
-    return 1;
+    for (int i = 0; i < nscenes; i++)
+      glint_scene_destroy(scenes[i]);
+    return failed;
   }
 #define IDX(s, d, c) (((size_t)(s)*ndepths + (d)) * ncols + (c))
 #define SECONDS(s, d, c) (times + IDX(s, d, c) * runs)

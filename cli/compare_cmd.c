@@ -126,8 +126,11 @@ int cmd_compare(int argc, char **argv) {
   glint_error err;
   /* As glint render does with -o: a --diff that cannot be written fails
    * before any work, not after the result. */
-  if (diff_path && (cli_check_output_format(diff_path, NULL, &err) ||
-                    glint_image_check_writable(diff_path, &err))) {
+  if (diff_path && cli_check_output_format(diff_path, NULL, &err)) {
+    cli_error("--diff %s", err.message);
+    return EXIT_USAGE;
+  }
+  if (diff_path && glint_image_check_writable(diff_path, &err)) {
     cli_error("%s", err.message);
     return EXIT_USAGE;
   }

@@ -3,7 +3,6 @@
 
 #include <errno.h>
 #include <fcntl.h>
-#include <limits.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
@@ -67,25 +66,28 @@ int links_to_input(const char *path, char *target) {
 }
 
 int create_beside(const char *path, char *temp, size_t size) {
-  /* NAME.PID-k.tmp, or .glint-PID-k.tmp in NAME's folder where NAME is too
-   * long to take the suffix (a name of 250 bytes was refused) */
+  /* NAME.PID-k.tmp, or .glint-PID-k.tmp in NAME's folder where the file
+   * system finds that too long (a legal name of 250 bytes was refused) */
   const char *slash = strrchr(path, '/');
   int folder = slash ? (int)(slash - path + 1) : 0;
-  int whole = strlen(path + folder) + 24 <= (size_t)NAME_MAX;
-  for (int k = 0; k < 100; k++) {
-    int n = whole
-                ? snprintf(temp, size, "%s.%ld-%d.tmp", path, (long)getpid(), k)
+  for (int whole = 1; whole >= 0; whole--)
+    for (int k = 0; k < 100; k++) {
+      int n =
+          whole ? snprintf(temp, size, "%s.%ld-%d.tmp", path, (long)getpid(), k)
                 : snprintf(temp, size, "%.*s.glint-%ld-%d.tmp", folder, path,
                            (long)getpid(), k);
-    if (n >= (int)size) {
-      errno = ENAMETOOLONG;
-      return -1;
+      int fd = -1;
+      if (n >= (int)size)
+        errno = ENAMETOOLONG;
+      else
+        fd = open(temp, O_WRONLY | O_CREAT | O_EXCL | O_CLOEXEC, 0666);
+      if (fd >= 0 || (errno != EEXIST && (errno != ENAMETOOLONG || !whole)))
+        return fd;
+      if (errno == ENAMETOOLONG)
+        break; /* the shorter name */
     }
-    int fd = open(temp, O_WRONLY | O_CREAT | O_EXCL | O_CLOEXEC, 0666);
-    if (fd >= 0 || errno != EEXIST)
-      return fd;
-  }
-  errno = EEXIST;
+  if (errno != ENAMETOOLONG)
+    errno = EEXIST;
   return -1;
 }
 

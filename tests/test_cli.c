@@ -152,7 +152,7 @@ static int remove_in_folder(const char *name) {
   return remove(p);
 }
 
-/* Only the stdout/stderr capture files may be in the folder. */
+/* Writes `text` to NAME in the test folder. */
 static void put_text(const char *name, const char *text) {
   char p[256];
   snprintf(p, sizeof p, "%s/%s", dir, name);
@@ -167,6 +167,7 @@ static const char small_nff[] = "v\nfrom 0 0 -5\nat 0 0 0\nup 0 1 0\nangle 40\n"
                                 "hither 0.001\nresolution 8 8\n"
                                 "f 1 1 1 1 0 0 0 1\ns 0 0 0 1\n";
 
+/* Only the stdout/stderr capture files may be in the folder. */
 static int folder_is_empty(void) {
   char cmd[256];
   snprintf(cmd, sizeof cmd, "test -z \"$(ls -A '%s')\"", dir);
@@ -906,7 +907,6 @@ static void default_threads_follow_the_affinity(void **state) {
   unlink(p);
 }
 
-/* Writes `text` to NAME in the test folder. */
 /* m.json, a scene of one mesh (tri.obj, a triangle), and `link`, a
  * symbolic link to the mesh, where an output might be written. */
 static void put_mesh_scene(const char *link) {
@@ -978,6 +978,14 @@ static void bench_plot_names_are_not_commands(void **state) {
   EXPECT_USAGE_ERROR_KEEPING("--plot: the folder's name has a line break",
                              "bench", "--scenes", "s.nff", "--plot", "p\nx");
   assert_false(exists("p\nx"));
+  /* a link to nothing where the folder goes: refused up front (the whole
+   * benchmark ran, then gnuplot "could not draw") */
+  char dangling[600];
+  snprintf(dangling, sizeof dangling, "%s/dangling", dir);
+  assert_int_equal(symlink("nowhere", dangling), 0);
+  EXPECT_USAGE_ERROR_KEEPING("--plot: dangling is a link to nothing", "bench",
+                             "--scenes", "s.nff", "--plot", "dangling");
+  remove_in_folder("dangling");
   remove_in_folder("s.nff");
   static const char *made[] = {"plots/x'; touch INJECTED; echo '.png",
                                "plots/x'; touch INJECTED; echo '.dat",

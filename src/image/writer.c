@@ -65,7 +65,7 @@ struct glint_image_writer {
   int batch_rows; /* rows worth waking the encoder for */
   int closing, discarding;
   int failed, failed_errno; /* the encoder could not write */
-  int bad_put;              /* a put outside the image or repeated */
+  int bad_put;              /* a put refused (refuse_put), or out of memory */
 };
 
 /* The bits [from, from + n) of word k, as a mask. */
@@ -474,7 +474,8 @@ static glint_status incomplete(const glint_image_writer *w,
         path, w->failed_errno ? strerror(w->failed_errno) : "encoder error");
   if (w->bad_put)
     return gli_fail(error, GLINT_E_ARGUMENT,
-                    "%s: tiles outside the image or repeated", path);
+                    "%s: a tile was refused, so the image cannot be finished",
+                    path);
   if (w->encoded < w->height) {
     int complete = 0; /* anywhere, not only from the top (w->ready) */
     for (int y = 0; y < w->height; y++)

@@ -562,9 +562,11 @@ static double smallest_object(const glint_scene *s) {
   double least = INFINITY;
   for (size_t i = 0; i < s->sphere_count; i++)
     least = fmin(least, size_or_none(s->spheres[i].radius));
-  /* A cone's height counts as well as its radius: a cone flat against its
-   * radii has a slope (rb - ra) / h that float cannot trace (from about
-   * h = 1e-3 r the float and double backends drew it differently). */
+  /* A cone's height counts as well as its radius: a cone whose height is
+   * near epsilon is lost as any object that small is (at h = 1e-3 and
+   * epsilon 1e-3, with radius 2, the float and double backends drew it
+   * differently, and the note said nothing). Its slope (rb - ra) / h alone
+   * is not checked. */
   for (size_t i = 0; i < s->cone_count; i++) {
     const gli_cone_prim *c = &s->cones[i];
     least = fmin(least, size_or_none(fmin(fmax(c->base_radius, c->apex_radius),
