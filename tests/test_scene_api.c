@@ -267,6 +267,36 @@ static void plane_normals_of_any_length(void **state) {
   }
 }
 
+/* A camera's up need not be unit length either: an up of 1e-300, whose
+ * cross product with the view direction underflowed, was refused as "zero
+ * or parallel"; it draws what a unit up draws, and so does 1e15's. */
+static void camera_up_of_any_length(void **state) {
+  (void)state;
+  const double scale[] = {1, 1e-300, 1e15};
+  uint8_t first[24 * 16 * 3];
+  for (int k = 0; k < 3; k++) {
+    uint32_t m;
+    glint_scene *s = scene_with_default_material(&m);
+    glint_camera cam = {
+        {0, 0, 5}, {0, 0, 0}, {scale[k] * 0.5, scale[k], 0}, 60};
+    ASSERT_OK(glint_scene_set_camera(s, &cam, &e_));
+    ASSERT_OK(glint_scene_add_plane(s, (V){0, 1, 0.25}, (V){0, -1, 0}, m, &e_));
+    ASSERT_OK(glint_scene_add_light(s, (V){0, 10, 0}, (V){1, 1, 1}, &e_));
+    glint_render_settings rs =
+        settings_for(GLINT_BACKEND_SCALAR_DOUBLE, 24, 16);
+    glint_image *img;
+    ASSERT_OK(glint_render(s, &rs, &img, NULL, &e_));
+    const uint8_t *px = glint_image_pixels_const(img);
+    if (k == 0) {
+      memcpy(first, px, sizeof first);
+      assert_true(memcmp(px, px + sizeof first - 3, 3) != 0);
+    } else
+      assert_memory_equal(px, first, sizeof first);
+    glint_image_destroy(img);
+    glint_scene_destroy(s);
+  }
+}
+
 /* GLINT_MAX_COORDINATE: 1e15 and -1e15 are accepted everywhere a scene
  * takes a coordinate or a size, anything beyond is refused with the
  * limit named; and at the limit every backend still draws the image double
@@ -653,6 +683,7 @@ int main(void) {
       cmocka_unit_test(mesh_indices_checked),
       cmocka_unit_test(region_is_a_window_of_the_frame),
       cmocka_unit_test(plane_normals_of_any_length),
+      cmocka_unit_test(camera_up_of_any_length),
       cmocka_unit_test(scenes_load_from_memory),
   };
   return cmocka_run_group_tests(tests, NULL, NULL);

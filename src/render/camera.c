@@ -10,9 +10,13 @@ void gli_camera_basis_init(camera_basis *c, const glint_camera *g, int width,
          dz = g->at.z - g->from.z;
   double dl = sqrt(dx * dx + dy * dy + dz * dz);
   dx /= dl, dy /= dl, dz /= dl;
-  /* r = normalize(d x up), u = r x d */
-  double rx = dy * g->up.z - dz * g->up.y, ry = dz * g->up.x - dx * g->up.z,
-         rz = dx * g->up.y - dy * g->up.x;
+  /* r = normalize(d x up), u = r x d; up scaled to a largest component of
+   * 1 first (an up of 1e-300 is legal, and its cross product's squares
+   * underflowed to a zero length) */
+  double um = fmax(fabs(g->up.x), fmax(fabs(g->up.y), fabs(g->up.z)));
+  double upx = g->up.x / um, upy = g->up.y / um, upz = g->up.z / um;
+  double rx = dy * upz - dz * upy, ry = dz * upx - dx * upz,
+         rz = dx * upy - dy * upx;
   double rl = sqrt(rx * rx + ry * ry + rz * rz);
   rx /= rl, ry /= rl, rz /= rl;
   double ux = ry * dz - rz * dy, uy = rz * dx - rx * dz, uz = rx * dy - ry * dx;

@@ -109,8 +109,12 @@ glint_status gli_camera_check_field(const glint_camera *c,
                         ? "the same point"
                         : "too close for a direction between them");
   *field = GLI_CAMERA_UP;
-  double dl = vlen(d), ul = vlen(c->up);
-  if (ul == 0 || vlen(vcross(d, c->up)) <= 1e-9 * dl * ul)
+  /* up scaled to a largest component of 1, as the camera's basis does (an
+   * up of 1e-300 was "zero or parallel": its cross product underflowed) */
+  double um = fmax(fabs(c->up.x), fmax(fabs(c->up.y), fabs(c->up.z)));
+  glint_vec3 up = {c->up.x / um, c->up.y / um, c->up.z / um};
+  double dl = vlen(d), ul = um > 0 ? vlen(up) : 0;
+  if (ul == 0 || vlen(vcross(d, up)) <= 1e-9 * dl * ul)
     return gli_fail(error, GLINT_E_ARGUMENT,
                     "camera: 'up' is zero or parallel to the view "
                     "direction");
