@@ -750,7 +750,7 @@ static const bad_case structure_cases[] = {
      "vertices, transform)"},
     {"{" M "'objects': [{'type': 'cone', 'material': 'm', 'base': [0, 0, 0], "
      "'base_radius': 0, 'apex': [0, 1, 0], 'apex_radius': 0}]}",
-     ": objects[0]: cone: radii 0 and 0 must be >= 0 and not both 0"},
+     ": objects[0]: cone: both radii are 0: it has no surface"},
     {"{" M "'objects': [{'type': 'cone', 'material': 'm', 'base': [0, 0, 0], "
      "'base_radius': 1, 'apex': [0, 1, 0]}]}",
      ": objects[0]: missing \"apex_radius\""},

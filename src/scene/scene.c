@@ -484,10 +484,12 @@ glint_status glint_scene_add_cone(glint_scene *s, glint_vec3 base, double rb,
       !gli_in_range(rb) || !gli_in_range(ra))
     return gli_fail(error, GLINT_E_ARGUMENT,
                     "cone: coordinates and radii must be " GLI_RANGE_TEXT);
-  if (rb < 0 || ra < 0 || (rb == 0 && ra == 0))
+  if (rb < 0 || ra < 0)
     return gli_fail(error, GLINT_E_ARGUMENT,
-                    "cone: radii %g and %g must be >= 0 and not both 0", rb,
-                    ra);
+                    "cone: radii %g and %g must be >= 0", rb, ra);
+  if (rb == 0 && ra == 0) /* (the message said ">= 0" of two zeros) */
+    return gli_fail(error, GLINT_E_ARGUMENT,
+                    "cone: both radii are 0: it has no surface");
   glint_vec3 axis = vsub(apex, base);
   if (vlen(axis) == 0)
     return gli_fail(error, GLINT_E_ARGUMENT, "cone: base and apex are %s",
