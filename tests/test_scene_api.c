@@ -238,32 +238,44 @@ static glint_render_settings settings_for(glint_backend backend, int width,
   return rs;
 }
 
+#define SCALED_W 24
+#define SCALED_H 16
+
+/* Lights scene s from above and renders it (scalar-double, SCALED_W x
+ * SCALED_H); the first of a series (k == 0) is kept in `first`, which must
+ * show the plane (not one colour), and every later one must equal it.
+ * Destroys s. */
+static void renders_as_the_first(glint_scene *s, int k, uint8_t *first) {
+  const size_t bytes = SCALED_W * SCALED_H * 3;
+  ASSERT_OK(glint_scene_add_light(s, (V){0, 10, 0}, (V){1, 1, 1}, &e_));
+  glint_render_settings rs =
+      settings_for(GLINT_BACKEND_SCALAR_DOUBLE, SCALED_W, SCALED_H);
+  glint_image *img;
+  ASSERT_OK(glint_render(s, &rs, &img, NULL, &e_));
+  const uint8_t *px = glint_image_pixels_const(img);
+  if (k == 0) {
+    memcpy(first, px, bytes);
+    /* the plane is in view: the image is not one colour */
+    assert_true(memcmp(px, px + bytes - 3, 3) != 0);
+  } else
+    assert_memory_equal(px, first, bytes);
+  glint_image_destroy(img);
+  glint_scene_destroy(s);
+}
+
 /* A plane's normal need not be unit length (glint.h), however short or
  * long: a normal of 1e-200, whose squared length underflows, draws the
  * plane a unit normal draws (it was refused as zero). */
 static void plane_normals_of_any_length(void **state) {
   (void)state;
   const double scale[] = {1, 1e-200, 1e15};
-  uint8_t first[24 * 16 * 3];
+  uint8_t first[SCALED_W * SCALED_H * 3];
   for (int k = 0; k < 3; k++) {
     uint32_t m;
     glint_scene *s = scene_with_default_material(&m);
     V n = {0, scale[k], scale[k] * 0.25};
     ASSERT_OK(glint_scene_add_plane(s, n, (V){0, -1, 0}, m, &e_));
-    ASSERT_OK(glint_scene_add_light(s, (V){0, 10, 0}, (V){1, 1, 1}, &e_));
-    glint_render_settings rs =
-        settings_for(GLINT_BACKEND_SCALAR_DOUBLE, 24, 16);
-    glint_image *img;
-    ASSERT_OK(glint_render(s, &rs, &img, NULL, &e_));
-    const uint8_t *px = glint_image_pixels_const(img);
-    if (k == 0) {
-      memcpy(first, px, sizeof first);
-      /* the plane is in view: the image is not one colour */
-      assert_true(memcmp(px, px + sizeof first - 3, 3) != 0);
-    } else
-      assert_memory_equal(px, first, sizeof first);
-    glint_image_destroy(img);
-    glint_scene_destroy(s);
+    renders_as_the_first(s, k, first);
   }
 }
 
@@ -273,7 +285,7 @@ static void plane_normals_of_any_length(void **state) {
 static void camera_up_of_any_length(void **state) {
   (void)state;
   const double scale[] = {1, 1e-300, 1e15};
-  uint8_t first[24 * 16 * 3];
+  uint8_t first[SCALED_W * SCALED_H * 3];
   for (int k = 0; k < 3; k++) {
     uint32_t m;
     glint_scene *s = scene_with_default_material(&m);
@@ -281,19 +293,7 @@ static void camera_up_of_any_length(void **state) {
         {0, 0, 5}, {0, 0, 0}, {scale[k] * 0.5, scale[k], 0}, 60};
     ASSERT_OK(glint_scene_set_camera(s, &cam, &e_));
     ASSERT_OK(glint_scene_add_plane(s, (V){0, 1, 0.25}, (V){0, -1, 0}, m, &e_));
-    ASSERT_OK(glint_scene_add_light(s, (V){0, 10, 0}, (V){1, 1, 1}, &e_));
-    glint_render_settings rs =
-        settings_for(GLINT_BACKEND_SCALAR_DOUBLE, 24, 16);
-    glint_image *img;
-    ASSERT_OK(glint_render(s, &rs, &img, NULL, &e_));
-    const uint8_t *px = glint_image_pixels_const(img);
-    if (k == 0) {
-      memcpy(first, px, sizeof first);
-      assert_true(memcmp(px, px + sizeof first - 3, 3) != 0);
-    } else
-      assert_memory_equal(px, first, sizeof first);
-    glint_image_destroy(img);
-    glint_scene_destroy(s);
+    renders_as_the_first(s, k, first);
   }
 }
 
