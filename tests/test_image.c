@@ -437,6 +437,31 @@ static void png_flavours(void **state) {
   assert_int_equal(glint_image_read(path, &got, &e), GLINT_E_PARSE);
   assert_non_null(strstr(e.message, "flavour.png: a PNG of 16-bit samples"));
   assert_null(got);
+  /* A text chunk claiming 2 GiB in a file of 62 bytes: cut short, read
+   * without allocating what it claims (libpng allocated and zeroed it:
+   * 2 GiB of memory for 62 bytes; the peak would show it). */
+  FILE *f = fopen(path, "wb");
+  assert_non_null(f);
+  static const uint8_t signature[8] = {0x89, 'P',  'N',  'G',
+                                       '\r', '\n', 0x1a, '\n'};
+  assert_int_equal(fwrite(signature, 1, 8, f), 8);
+  uint8_t ihdr[13] = {0, 0, 0, 8, 0, 0, 0, 6, 8, 2};
+  put_chunk(f, "IHDR", ihdr, 13);
+  static const uint8_t huge_text[] = {0x7f, 0xff, 0xff, 0xff, 't',  'E', 'X',
+                                      't',  'k',  0,    'v',  'a', 'l', 'u',
+                                      'e',  0,    0,    0,    0,   0,   0};
+  assert_int_equal(fwrite(huge_text, 1, sizeof huge_text, f),
+                   sizeof huge_text);
+  assert_int_equal(fclose(f), 0);
+  struct rusage before, after;
+  getrusage(RUSAGE_SELF, &before);
+  int size[2];
+  assert_int_equal(glint_image_read_size(path, &size[0], &size[1], &e),
+                   GLINT_E_PARSE);
+  assert_non_null(strstr(e.message, "flavour.png: truncated PNG file"));
+  assert_int_equal(glint_image_read(path, &got, &e), GLINT_E_PARSE);
+  getrusage(RUSAGE_SELF, &after);
+  assert_true(after.ru_maxrss - before.ru_maxrss < 256 * 1024); /* KiB */
   /* cut inside its signature: a PNG cut short, not "not a PNG" */
   write_bytes(path, "\x89PNG\r", 5);
   assert_int_equal(glint_image_read(path, &got, &e), GLINT_E_PARSE);

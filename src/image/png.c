@@ -177,6 +177,18 @@ glint_status gli_png_decode(FILE *f, const char *path, glint_image **out,
   }
   png_init_io(png, f);
   png_set_sig_bytes(png, (int)sizeof signature);
+  /* Ancillary chunks are skipped unread: glint reads the pixels and a
+   * palette only (tRNS's alpha is dropped anyway). libpng allocates a text
+   * or suggested-palette chunk whole at the size its header claims, and
+   * zeroes it, before reading a byte of it: a 43-byte file claiming a
+   * 2 GiB tEXt cost 2 GiB, libpng's own size limit being a mere warning
+   * when reading. */
+  static const png_byte ignored[] = "bKGD\0cHRM\0eXIf\0gAMA\0hIST\0iCCP\0"
+                                    "iTXt\0oFFs\0pCAL\0pHYs\0sBIT\0sCAL\0"
+                                    "sPLT\0sRGB\0tEXt\0tIME\0zTXt";
+  png_set_keep_unknown_chunks(png, PNG_HANDLE_CHUNK_NEVER, NULL, 0);
+  png_set_keep_unknown_chunks(png, PNG_HANDLE_CHUNK_NEVER, ignored,
+                              (int)(sizeof ignored / 5));
   png_read_info(png, info);
   png_uint_32 w = png_get_image_width(png, info);
   png_uint_32 h = png_get_image_height(png, info);
