@@ -176,7 +176,20 @@ int cmd_compare(int argc, char **argv) {
       cli_error("%s", err.message);
       status = EXIT_USAGE;
     } else if (psnr < min_psnr) {
-      cli_error("PSNR %.2f dB is below --min-psnr %g", psnr, min_psnr);
+      /* with as many decimals as tell the two apart: 29.999998 was "PSNR
+       * 30.00 dB is below --min-psnr 30" */
+      char shown[2][64];
+      int digits = 2;
+      for (;; digits++) {
+        snprintf(shown[0], sizeof shown[0], "%.*f", digits, psnr);
+        snprintf(shown[1], sizeof shown[1], "%.*f", digits, min_psnr);
+        if (digits == 17 || strcmp(shown[0], shown[1]) != 0)
+          break;
+      }
+      if (digits == 2)
+        cli_error("PSNR %s dB is below --min-psnr %g", shown[0], min_psnr);
+      else
+        cli_error("PSNR %s dB is below --min-psnr %s", shown[0], shown[1]);
       status = 1;
     }
   }

@@ -2214,6 +2214,27 @@ static void compare_threshold_and_difference(void **state) {
   assert_int_equal(run("compare", "a.png", "b.png", "--min-psnr", "inf", NULL),
                    1);
   assert_non_null(strstr(err, "is below --min-psnr inf"));
+  /* A PSNR just below the threshold is shown with the decimals that tell
+   * them apart (29.999998 was "PSNR 30.00 dB is below --min-psnr 30"):
+   * 1000x1 grey 100 against 2408 samples 109, one 105, three 101. */
+  static unsigned char near[2][3000];
+  memset(near, 100, sizeof near);
+  memset(near[1], 109, 2408);
+  near[1][2408] = 105;
+  memset(near[1] + 2409, 101, 3);
+  for (int k = 0; k < 2; k++) {
+    char name[600];
+    snprintf(name, sizeof name, "%s/near%d.ppm", dir, k);
+    FILE *f = fopen(name, "wb");
+    assert_non_null(f);
+    fputs("P6\n1000 1\n255\n", f);
+    assert_int_equal(fwrite(near[k], 1, 3000, f), 3000);
+    assert_int_equal(fclose(f), 0);
+  }
+  assert_int_equal(
+      run("compare", "near0.ppm", "near1.ppm", "--min-psnr", "30", NULL), 1);
+  assert_non_null(strstr(out, "PSNR 30.00 dB"));
+  assert_non_null(strstr(err, "PSNR 29.99998 dB is below --min-psnr 30.00000"));
   assert_int_equal(
       run("compare", "a.png", "b.png", "--min-psnr", "1e999", NULL), 2);
   assert_non_null(strstr(err, "--min-psnr: '1e999' is not a finite number"));

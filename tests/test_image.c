@@ -267,7 +267,8 @@ static void writes_through_a_link(void **state) {
   assert_int_equal(symlink("/dev/null", link), 0);
   glint_error e;
   assert_int_equal(glint_image_write(small, link, &e), GLINT_E_IO);
-  assert_non_null(strstr(e.message, "/dev/null: not a regular file"));
+  assert_non_null(strstr(e.message, "link.ppm (a link to /dev/null): not a "
+                                    "regular file"));
   struct stat null_sb;
   assert_int_equal(stat("/dev/null", &null_sb), 0);
   assert_true(S_ISCHR(null_sb.st_mode));
@@ -327,6 +328,53 @@ static void read_only_file_is_kept(void **state) {
   assert_true(WIFEXITED(status) && WEXITSTATUS(status) == 0);
   assert_still_original(p);
   unlink(p);
+}
+
+/* In a folder with the sticky bit (as /tmp), another user's file is
+ * refused before anything is rendered or written, though its mode lets
+ * anyone write it: the rename after the render would be refused. Run as
+ * root, whose child becomes nobody to write; another user's file cannot be
+ * made otherwise: skipped. */
+static void sticky_folder_keeps_others_files(void **state) {
+  (void)state;
+  if (geteuid() != 0)
+    skip();
+  char folder[128], p[160], mine[160];
+  snprintf(folder, sizeof folder, "%s", path("sticky"));
+  assert_int_equal(mkdir(folder, 0700), 0);
+  assert_int_equal(chmod(folder, 01777), 0);
+  snprintf(p, sizeof p, "%s/theirs.ppm", folder);
+  snprintf(mine, sizeof mine, "%s/mine.ppm", folder);
+  FILE *f = fopen(p, "wb");
+  fputs("original", f);
+  fclose(f);
+  chmod(p, 0666);
+  chmod(dir, 0777);
+  pid_t pid = fork();
+  if (pid == 0) {
+    if (setgid(65534) != 0 || setuid(65534) != 0)
+      _exit(2);
+    glint_image *small = pattern(3, 3);
+    glint_error e;
+    int refused = glint_image_check_writable(p, &e) == GLINT_E_IO &&
+                  strstr(e.message, "theirs.ppm: cannot replace: it belongs "
+                                    "to another user, in a folder with the "
+                                    "sticky bit") &&
+                  glint_image_write(small, p, &e) == GLINT_E_IO;
+    /* a new file there, and then replacing one's own, are fine */
+    int written = glint_image_write(small, mine, &e) == GLINT_OK &&
+                  glint_image_write(small, mine, &e) == GLINT_OK;
+    glint_image_destroy(small);
+    _exit(refused && written ? 0 : 1);
+  }
+  int status;
+  waitpid(pid, &status, 0);
+  chmod(dir, 0700);
+  assert_true(WIFEXITED(status) && WEXITSTATUS(status) == 0);
+  assert_still_original(p);
+  unlink(p);
+  unlink(mine);
+  rmdir(folder);
 }
 
 static void write_bytes(const char *name, const void *bytes, size_t size) {
@@ -447,11 +495,10 @@ static void png_flavours(void **state) {
   assert_int_equal(fwrite(signature, 1, 8, f), 8);
   uint8_t ihdr[13] = {0, 0, 0, 8, 0, 0, 0, 6, 8, 2};
   put_chunk(f, "IHDR", ihdr, 13);
-  static const uint8_t huge_text[] = {0x7f, 0xff, 0xff, 0xff, 't',  'E', 'X',
+  static const uint8_t huge_text[] = {0x7f, 0xff, 0xff, 0xff, 't', 'E', 'X',
                                       't',  'k',  0,    'v',  'a', 'l', 'u',
                                       'e',  0,    0,    0,    0,   0,   0};
-  assert_int_equal(fwrite(huge_text, 1, sizeof huge_text, f),
-                   sizeof huge_text);
+  assert_int_equal(fwrite(huge_text, 1, sizeof huge_text, f), sizeof huge_text);
   assert_int_equal(fclose(f), 0);
   struct rusage before, after;
   getrusage(RUSAGE_SELF, &before);
@@ -536,6 +583,17 @@ static void damaged_files_are_refused(void **state) {
   assert_int_equal(glint_image_read(path, &got, &e), GLINT_E_PARSE);
   assert_non_null(
       strstr(e.message, "c.ppm: bad PPM header: the height is too large"));
+  /* netpbm's white space after the magic number ("P68 6" was 8 x 6), and
+   * a header cut right after a number (said "not a number") */
+  static const char joined[] = "P62 1\n255\n\x01\x02\x03\x04\x05\x06";
+  write_bytes(path, joined, sizeof joined - 1);
+  assert_int_equal(glint_image_read(path, &got, &e), GLINT_E_PARSE);
+  assert_non_null(strstr(e.message, "c.ppm: bad PPM header: P6 is not "
+                                    "followed by white space"));
+  write_bytes(path, "P6\n8", 4);
+  assert_int_equal(glint_image_read(path, &got, &e), GLINT_E_PARSE);
+  assert_non_null(strstr(e.message, "c.ppm: bad PPM header: the width is cut "
+                                    "short (the file ends after it)"));
   static const char deep[] = "P6\n2 1\n65535\n\x01\x02\x03\x04\x05\x06";
   write_bytes(path, deep, sizeof deep - 1);
   assert_int_equal(glint_image_read(path, &got, &e), GLINT_E_PARSE);
@@ -646,6 +704,7 @@ int main(void) {
       cmocka_unit_test(failed_write_keeps_existing_file),
       cmocka_unit_test(writes_through_a_link),
       cmocka_unit_test(read_only_file_is_kept),
+      cmocka_unit_test(sticky_folder_keeps_others_files),
       cmocka_unit_test(damaged_files_are_refused),
       cmocka_unit_test(png_flavours),
   };

@@ -172,11 +172,28 @@ static int claim_name(char *name, int fd) {
   return -1;
 }
 
+/* Whether the folder of `path` has the sticky bit (as /tmp has) and so
+ * lets no one but the owner of the file `file`, the folder's owner or root
+ * replace it, whatever the file's mode: the rename after a render would
+ * fail, which is found now. */
+static int sticky_forbids(const char *path, const struct stat *file) {
+  uid_t me = geteuid();
+  if (me == 0 || file->st_uid == me)
+    return 0;
+  const char *slash = strrchr(path, '/');
+  char *folder = slash ? strndup(path, (size_t)(slash - path) + 1) : NULL;
+  struct stat sb;
+  int forbids = stat(folder ? folder : ".", &sb) == 0 &&
+                (sb.st_mode & S_ISVTX) && sb.st_uid != me;
+  free(folder);
+  return forbids;
+}
+
 /* Creates the temporary file beside `path`; returns its descriptor. With
  * *unnamed set (the caller may pass NULL: a named file), the file has no
  * name yet and *temp is the template that claim_name completes. */
-static int open_temp(const char *path, char **temp, int *unnamed,
-                     glint_error *error) {
+static int open_temp_shown(const char *path, const char *shown, char **temp,
+                           int *unnamed, glint_error *error) {
   /* What is there already: only a regular file the user may write is
    * replaced. The rename asks only the folder, and would put a file in the
    * place of a device or a pipe (of /dev/null through a link to it) or of
@@ -185,28 +202,35 @@ static int open_temp(const char *path, char **temp, int *unnamed,
   int exists = stat(path, &sb) == 0;
   /* A loop of links: the rename would replace one of them. */
   if (!exists && errno == ELOOP) {
-    gli_fail(error, GLINT_E_IO, "%s: cannot write: %s", path, strerror(errno));
+    gli_fail(error, GLINT_E_IO, "%s: cannot write: %s", shown, strerror(errno));
     return -1;
   }
   if (exists) {
     if (S_ISDIR(sb.st_mode)) {
-      gli_fail(error, GLINT_E_IO, "%s: is a directory", path);
+      gli_fail(error, GLINT_E_IO, "%s: is a directory", shown);
       return -1;
     }
     if (!S_ISREG(sb.st_mode)) {
-      gli_fail(error, GLINT_E_IO, "%s: not a regular file", path);
+      gli_fail(error, GLINT_E_IO, "%s: not a regular file", shown);
       return -1;
     }
     if (access(path, W_OK) != 0) {
-      gli_fail(error, GLINT_E_IO, "%s: cannot write: %s", path,
+      gli_fail(error, GLINT_E_IO, "%s: cannot write: %s", shown,
                strerror(errno));
+      return -1;
+    }
+    if (sticky_forbids(path, &sb)) {
+      gli_fail(error, GLINT_E_IO,
+               "%s: cannot replace: it belongs to another user, in a folder "
+               "with the sticky bit",
+               shown);
       return -1;
     }
   }
   const char *slash = strrchr(path, '/');
   if (strlen(slash ? slash + 1 : path) > NAME_MAX) {
     /* found now, before a render, not by the rename after it */
-    gli_fail(error, GLINT_E_IO, "%s: cannot write here: %s", path,
+    gli_fail(error, GLINT_E_IO, "%s: cannot write here: %s", shown,
              strerror(ENAMETOOLONG));
     return -1;
   }
@@ -221,11 +245,26 @@ static int open_temp(const char *path, char **temp, int *unnamed,
   if (fd < 0)
     fd = claim_name(*temp, -1);
   if (fd < 0) {
-    gli_fail(error, GLINT_E_IO, "%s: cannot write here: %s", path,
+    gli_fail(error, GLINT_E_IO, "%s: cannot write here: %s", shown,
              strerror(errno));
     free(*temp);
     *temp = NULL;
   }
+  return fd;
+}
+
+/* open_temp_shown for `path`, reached as `given` (the same name, or a
+ * link to path): messages name what the user gave, and where it leads. */
+static int open_temp(const char *path, const char *given, char **temp,
+                     int *unnamed, glint_error *error) {
+  char *shown = NULL;
+  if (strcmp(given, path) != 0) {
+    size_t n = strlen(given) + strlen(path) + 16;
+    if ((shown = malloc(n)))
+      snprintf(shown, n, "%s (a link to %s)", given, path);
+  }
+  int fd = open_temp_shown(path, shown ? shown : given, temp, unnamed, error);
+  free(shown);
   return fd;
 }
 
@@ -282,7 +321,7 @@ glint_status gli_check_folder_writable(const char *path, glint_error *error) {
    * creation and the unlink left a named one (glint render --frames checks
    * every frame's file before the first is rendered). */
   int unnamed;
-  int fd = open_temp(target ? target : path, &temp, &unnamed, error);
+  int fd = open_temp(target ? target : path, path, &temp, &unnamed, error);
   free(target);
   if (fd < 0)
     return error ? error->status : GLINT_E_IO;
@@ -297,7 +336,7 @@ glint_status gli_atomic_open(const char *path, gli_atomic_file *file,
                              glint_error *error) {
   file->target = link_target(path);
   const char *dest = file->target ? file->target : path;
-  int fd = open_temp(dest, &file->temp, &file->unnamed, error);
+  int fd = open_temp(dest, path, &file->temp, &file->unnamed, error);
   if (fd < 0) {
     free(file->target);
     return error ? error->status : GLINT_E_IO;

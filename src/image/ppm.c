@@ -27,8 +27,9 @@ static void skip_comment(FILE *f) {
 /* The next header number, skipping white space and # comments; -1 if none,
  * or if it does not end in white space or a comment (netpbm's grammar:
  * "2x1" is no width and height), -2 past PPM_LARGEST, -3 where the file
- * ends before it. The white-space character after it, or the comment with
- * its line's end, is consumed: after the maxval, the pixels begin there. */
+ * ends before it, -4 where it ends right after its digits. The white-space
+ * character after it, or the comment with its line's end, is consumed: after
+ * the maxval, the pixels begin there. */
 #define PPM_LARGEST 1000000
 static long ppm_number(FILE *f) {
   int c;
@@ -50,6 +51,8 @@ static long ppm_number(FILE *f) {
       return -2;
     c = fgetc(f);
   }
+  if (c == EOF)
+    return -4;
   if (c == '#')
     skip_comment(f);
   else if (!isspace(c))
@@ -62,6 +65,12 @@ glint_status gli_ppm_decode(FILE *f, const char *path, glint_image **out,
   if (fgetc(f) != 'P' || fgetc(f) != '6')
     return gli_fail(error, GLINT_E_PARSE, "%s: not a binary PPM (P6) file",
                     path);
+  int after = fgetc(f); /* white space or a comment, as after each number */
+  if (after != '#' && !isspace(after))
+    return gli_fail(error, GLINT_E_PARSE,
+                    "%s: bad PPM header: P6 is not followed by white space",
+                    path);
+  ungetc(after, f);
   static const char *const field[3] = {"width", "height", "maxval"};
   long v[3];
   for (int i = 0; i < 3; i++)
@@ -74,6 +83,7 @@ glint_status gli_ppm_decode(FILE *f, const char *path, glint_image **out,
                       v[i] == 0    ? "0"
                       : v[i] == -2 ? "too large"
                       : v[i] == -3 ? "missing (the file ends)"
+                      : v[i] == -4 ? "cut short (the file ends after it)"
                                    : "not a number followed by white space");
   long w = v[0], h = v[1], maxval = v[2];
   if (maxval != 255)
