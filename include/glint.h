@@ -728,8 +728,11 @@ typedef int (*glint_tile_fn)(void *user, const glint_tile *tile);
 
 /* What changes from frame to frame. */
 typedef struct glint_frame_settings {
-  const glint_camera *camera; /* NULL: the world's camera */
-  int width, height;          /* 0: the renderer's (or else the world's) */
+  /* NULL: the world's camera. A frame's own camera renders what the scene
+   * with that camera would, its epsilon (docs/specification.md §3, scaled
+   * by the camera's distance too) included. */
+  const glint_camera *camera;
+  int width, height; /* 0: the renderer's (or else the world's) */
   /* A window of the width x height frame; all four 0: the renderer's
    * (itself all of the frame by default), as glint_render_settings. */
   int region_x, region_y, region_width, region_height;

@@ -121,6 +121,56 @@ static void frames_equal_glint_render(void **state) {
   glint_scene_destroy(scene);
 }
 
+/* A frame's own camera gets its own epsilon (docs/specification.md §3: it
+ * scales with the camera's distance as well as the scene's): a world
+ * committed with the camera far away, rendered from near, lost both
+ * spheres to the far camera's epsilon, and one committed near, rendered
+ * from far, showed acne. Each frame equals glint_render of the scene with
+ * that camera, for every backend, whichever camera the world had. */
+static void frame_cameras_have_their_own_epsilon(void **state) {
+  (void)state;
+  glint_scene *scene = whitted();
+  glint_scene_info info;
+  glint_scene_get_info(scene, &info);
+  glint_camera cams[3] = {info.camera, info.camera, info.camera};
+  cams[1].from.z = 1e5; /* the same look, from far */
+  /* the near view from 1e4 away, zoomed in to the same picture */
+  cams[2].from = (glint_vec3){0, 1241.6, 9922.8};
+  cams[2].fov_x_degrees = 0.04;
+  for (int b = GLINT_BACKEND_SCALAR_FLOAT; b < GLINT_BACKEND_COUNT; b++) {
+    if (b == GLINT_BACKEND_STREAM || backend_missing(b))
+      continue;
+    glint_render_settings rs = settings_for(b);
+    rs.spp = 1;
+    for (int committed = 0; committed < 2; committed++) {
+      glint_scene *at = whitted();
+      ASSERT_OK(glint_scene_set_camera(at, &cams[committed], &e_));
+      glint_world *world;
+      glint_renderer *renderer;
+      glint_film *film;
+      ASSERT_OK(glint_world_commit(at, &world, NULL, &e_));
+      ASSERT_OK(glint_renderer_create(world, &rs, &renderer, &e_));
+      ASSERT_OK(glint_film_create(W, H, &film, &e_));
+      for (int c = 0; c < 3; c++) {
+        glint_frame_settings fs;
+        glint_frame_settings_default(&fs);
+        fs.camera = &cams[c];
+        ASSERT_OK(glint_renderer_render(renderer, &fs, film, NULL, &e_));
+        ASSERT_OK(glint_scene_set_camera(at, &cams[c], &e_));
+        glint_image *image;
+        ASSERT_OK(glint_render(at, &rs, &image, NULL, &e_));
+        assert_film_is_image(film, image);
+        glint_image_destroy(image);
+      }
+      glint_film_destroy(film);
+      glint_renderer_destroy(renderer);
+      glint_world_destroy(world);
+      glint_scene_destroy(at);
+    }
+  }
+  glint_scene_destroy(scene);
+}
+
 /* Materials within glint.h's limits can still overflow single precision
  * (kr = kt = 1e6, two nested spheres, five bounces: about 1e30 a bounce);
  * every backend's film stays finite, an overflow held at FLT_MAX. */
@@ -622,6 +672,7 @@ static void overlapping_calls_are_refused(void **state) {
 int main(void) {
   const struct CMUnitTest tests[] = {
       cmocka_unit_test(frames_equal_glint_render),
+      cmocka_unit_test(frame_cameras_have_their_own_epsilon),
       cmocka_unit_test(films_stay_finite),
       cmocka_unit_test(worlds_are_independent_of_their_scene),
       cmocka_unit_test(tiles_cover_the_frame_once),

@@ -38,6 +38,10 @@ typedef struct data_ops {
   glint_status (*bind)(const void *data, const gli_bvh *bvh, glint_accel accel,
                        void **view, glint_error *error);
   void (*unbind)(void *view);
+  /* The smallest hit distance of a view's frames from now on: the
+   * epsilon depends on the camera (docs/specification.md §3), and a frame
+   * may have its own (glint_frame_settings.camera). */
+  void (*set_epsilon)(void *view, double eps);
 } data_ops;
 
 typedef struct gli_backend_ops {

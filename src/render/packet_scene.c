@@ -191,5 +191,11 @@ static void unbind(void *view) {
   gli_aligned_free(v);
 }
 
-const data_ops ISA_NAME(gli_packet_data) = {convert, release, bytes, bind,
-                                            unbind};
+static void set_epsilon(void *view, double eps) {
+  packet_view *v = view;
+  v->s.eps = (float)eps;
+  v->ps.eps = vs_make(v->s.eps);
+}
+
+const data_ops ISA_NAME(gli_packet_data) = {convert, release, bytes,
+                                            bind,    unbind,  set_epsilon};

@@ -287,5 +287,9 @@ static glint_status bind(const void *data, const gli_bvh *bvh,
 
 static void unbind(void *view) { free(view); }
 
-const data_ops REAL_NAME(gli_scalar_data) = {convert, release, bytes, bind,
-                                             unbind};
+static void set_epsilon(void *view, double eps) {
+  ((scene_r *)view)->eps = (real)eps;
+}
+
+const data_ops REAL_NAME(gli_scalar_data) = {convert, release, bytes,
+                                             bind,    unbind,  set_epsilon};

@@ -24,7 +24,8 @@ glint_status gli_world_create(const glint_scene *scene, int borrow,
     w->scene = w->owned_scene;
   }
   atomic_init(&w->refs, 1);
-  w->epsilon = gli_scene_epsilon(w->scene);
+  w->extent = gli_scene_extent(w->scene);
+  w->epsilon = gli_epsilon_at(w->extent, w->scene->camera.from);
   pthread_mutex_init(&w->lock, NULL);
   *out = w;
   return GLINT_OK;

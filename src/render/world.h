@@ -18,6 +18,7 @@ struct glint_world {
   const glint_scene *scene;
   glint_scene *owned_scene; /* the copy, or NULL when the scene is borrowed */
   double epsilon;           /* docs/specification.md §3, fixed at commit */
+  double extent; /* the primitives' scale, for a frame camera's epsilon */
   pthread_mutex_t lock;
   int bvh_built;
   gli_bvh bvh;

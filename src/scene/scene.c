@@ -644,7 +644,18 @@ static double absmax3(glint_vec3 v, double m) {
 }
 
 double gli_scene_epsilon(const glint_scene *s) {
-  double m = absmax3(s->camera.from, 0);
+  return gli_epsilon_at(gli_scene_extent(s), s->camera.from);
+}
+
+double gli_epsilon_at(double extent, glint_vec3 eye) {
+  double m = absmax3(eye, extent);
+  if (!(m > 1e-6))
+    m = 1e-6;
+  return 1e-4 * m;
+}
+
+double gli_scene_extent(const glint_scene *s) {
+  double m = 0;
   for (size_t i = 0; i < s->sphere_count; i++)
     m = fmax(m, absmax3(s->spheres[i].center, 0) + s->spheres[i].radius);
   for (size_t i = 0; i < s->triangle_count; i++)
@@ -656,7 +667,5 @@ double gli_scene_epsilon(const glint_scene *s) {
     m = fmax(m, absmax3(c->base, 0) + r);
     m = fmax(m, absmax3(c->apex, 0) + r);
   }
-  if (!(m > 1e-6))
-    m = 1e-6;
-  return 1e-4 * m;
+  return m;
 }

@@ -204,6 +204,11 @@ glint_status gli_scene_copy(const glint_scene *scene, glint_scene **copy,
  * scene's scale, the largest coordinate magnitude among the camera and the
  * bounded primitives. */
 double gli_scene_epsilon(const glint_scene *scene);
+/* The same in two steps, for a camera other than the scene's (a frame's
+ * own): the bounded primitives' largest coordinate magnitude, and the
+ * epsilon of that extent seen from `eye`. */
+double gli_scene_extent(const glint_scene *scene);
+double gli_epsilon_at(double extent, glint_vec3 eye);
 
 /* The lesser and the greater of v and m, and [lo, hi] grown to hold the
  * cube of half-size r about p. Comparisons, not fmin and fmax: those are
