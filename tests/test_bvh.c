@@ -6,8 +6,9 @@
  * (bvh8); renders with and without it are the same image; and images are
  * bit-identical for any number of threads. Scenes: Giza (the only thesis
  * scene above the BVH's size threshold) and the SPD scenes, and a random
- * scene large enough for the packets' cut of the tree. The wide tree
- * itself and the scalar single rays: tests/test_wide_bvh.c. */
+ * scene large enough for the packets' cut of the tree, and to be built on
+ * several threads (the same tree, node for node). The wide tree itself and
+ * the scalar single rays: tests/test_wide_bvh.c. */
 #define GLINT_REAL_FLOAT
 #include "test_util.h"
 
@@ -223,6 +224,8 @@ static void assert_packet_tree_sound(const gli_bvh *b, const glint_scene *g) {
  * objects makes it again, and finding the nearest hits brute force finds
  * for every packet width and walk (the hybrid hands its lanes the wide
  * tree at the packet tree's nodes). */
+static void assert_sound(const gli_bvh *b, size_t prims);
+
 static void large_scene_packet_tree(void **state) {
   (void)state;
   glint_scene *g;
@@ -253,7 +256,7 @@ static void large_scene_packet_tree(void **state) {
   test_view_close(&vb);
   /* An animation's next frame refits the tree and cuts it again. */
   gli_bvh built, refit;
-  ASSERT_OK(gli_bvh_build(g, &built, &e_));
+  ASSERT_OK(gli_bvh_build(g, 1, &built, &e_));
   glint_scene *moved;
   ASSERT_OK(gli_scene_copy(g, &moved, &e_));
   glint_transform turn = {{0, 40, 0}, {30, 60, 0}, {0, 0, 0}, 1.5};
@@ -264,6 +267,26 @@ static void large_scene_packet_tree(void **state) {
   gli_bvh_free(&refit);
   gli_bvh_free(&built);
   glint_scene_destroy(moved);
+
+  /* Built on several threads, the tree is the same, node for node (the
+   * parts that threads build apart, accel/bvh.c, grow_in_parts). */
+  gli_bvh one;
+  ASSERT_OK(gli_bvh_build(g, 1, &one, &e_));
+  for (int threads = 2; threads <= 9; threads += 7) {
+    gli_bvh many;
+    ASSERT_OK(gli_bvh_build(g, threads, &many, &e_));
+    assert_int_equal(many.node_count, one.node_count);
+    assert_int_equal(many.depth, one.depth);
+    assert_memory_equal(many.nodes, one.nodes,
+                        one.node_count * sizeof *one.nodes);
+    assert_memory_equal(many.refs, one.refs, one.ref_count * sizeof *one.refs);
+    assert_int_equal(many.packet_node_count, one.packet_node_count);
+    assert_memory_equal(many.packet_nodes, one.packet_nodes,
+                        one.packet_node_count * sizeof *one.packet_nodes);
+    gli_bvh_free(&many);
+  }
+  assert_sound(&one, one.ref_count);
+  gli_bvh_free(&one);
 
   int ties = 0;
   static const glint_accel walks[2] = {GLINT_ACCEL_BVH, GLINT_ACCEL_BVH2};
@@ -311,7 +334,7 @@ static void refit_follows_moved_objects(void **state) {
   (void)state;
   glint_scene *g = load("giza");
   gli_bvh built, refit;
-  ASSERT_OK(gli_bvh_build(g, &built, &e_));
+  ASSERT_OK(gli_bvh_build(g, 1, &built, &e_));
   assert_true(built.node_count > 1);
   assert_sound(&built, g->sphere_count + g->triangle_count + g->cone_count);
   assert_true(built.cost > 1 && built.cost == built.built_cost);

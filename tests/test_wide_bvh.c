@@ -97,7 +97,7 @@ static void wide_tree_is_sound(void **state) {
   for (size_t si = 0; scenes[si]; si++) {
     glint_scene *g = load(scenes[si]);
     gli_bvh b;
-    ASSERT_OK(gli_bvh_build(g, &b, &e_));
+    ASSERT_OK(gli_bvh_build(g, 1, &b, &e_));
     /* Collapsed with the BVH where packets may hand over to it, else on
      * demand (for --accel bvh8). */
     int may = gli_wide_may_hand_over(g->sphere_count, g->cone_count);
@@ -175,7 +175,7 @@ static glint_scene *field(int triangles, int spheres) {
 
 static uint32_t hand_over_points(glint_scene *g) {
   gli_bvh b;
-  ASSERT_OK(gli_bvh_build(g, &b, &e_));
+  ASSERT_OK(gli_bvh_build(g, 1, &b, &e_));
   uint32_t marked = b.wide.hand_overs;
   gli_bvh_free(&b);
   glint_scene_destroy(g);

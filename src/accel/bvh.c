@@ -8,6 +8,7 @@
 
 #include "core/error.h"
 #include "core/memory.h"
+#include "core/thread.h"
 #include "core/timer.h"
 #include "scene/scene.h"
 
@@ -140,12 +141,11 @@ static float box4_area(box4 b) {
   return _mm_cvtss_f32(s);
 }
 
+/* What every thread of a build reads: the references and their boxes,
+ * which each task permutes only within its own range. */
 typedef struct builder {
   box4 *boxes; /* by reference, in the order of refs */
   uint32_t *refs;
-  gli_bvh_node *nodes;
-  uint32_t node_count;
-  int depth;
 } builder;
 
 /* A node to build: its range of references, its bounds and the bounds of
@@ -155,6 +155,13 @@ typedef struct task {
   int depth;
   box4 bounds, cbounds;
 } task;
+
+/* Nodes being appended to: the next free one and the deepest level so far. */
+typedef struct node_array {
+  gli_bvh_node *nodes;
+  uint32_t count;
+  int depth;
+} node_array;
 
 static void store_bounds(gli_bvh_node *n, box4 b) {
   float lo[4], hi[4];
@@ -370,6 +377,228 @@ static void nodes_free(gli_bvh_node *nodes) {
     gli_aligned_free(nodes - 1);
 }
 
+/* ---- growing the tree ------------------------------------------------- */
+
+/* The tasks a grow keeps waiting: one per level and side of a path. */
+#define TASK_STACK (4 * GLI_BVH_MAX_DEPTH)
+
+typedef struct parts parts;
+static int defer_part(parts *p, const task *t, gli_bvh_node *node);
+
+/* Builds the subtree of task `first` (its node already allocated in out)
+ * depth first with an explicit stack, the left child first so that nodes
+ * lie close to their parents: each node split gets the next two nodes of
+ * out for its children. With `defer`, a task that defer_part takes becomes
+ * a part, built apart (see grow_in_parts). */
+static void grow(builder *b, task first, task *stack, node_array *out,
+                 parts *defer) {
+  int sp = 0;
+  stack[sp++] = first;
+  while (sp > 0) {
+    task t = stack[--sp];
+    gli_bvh_node *node = &out->nodes[t.node];
+    store_bounds(node, t.bounds);
+    if (defer && defer_part(defer, &t, node))
+      continue;
+    if (t.depth > out->depth)
+      out->depth = t.depth;
+    int axis = 0;
+    box4 lb, lc, rb, rc;
+    uint32_t mid = t.begin;
+    if (t.end - t.begin > 1 && t.depth < GLI_BVH_MAX_DEPTH - 1)
+      mid = split(b, &t, &axis, &lb, &lc, &rb, &rc);
+    if (mid == t.begin) {
+      if (t.end - t.begin > UINT16_MAX) { /* depth exhausted: still split */
+        mid = t.begin + (t.end - t.begin) / 2;
+        measure(b, t.begin, mid, &lb, &lc);
+        measure(b, mid, t.end, &rb, &rc);
+      } else {
+        node->offset = t.begin;
+        node->count = (uint16_t)(t.end - t.begin);
+        node->axis = 0;
+        continue;
+      }
+    }
+    uint32_t left = out->count;
+    out->count += 2;
+    node->offset = left;
+    node->count = 0;
+    node->axis = (uint8_t)axis;
+    stack[sp++] = (task){left + 1, mid, t.end, t.depth + 1, rb, rc};
+    stack[sp++] = (task){left, t.begin, mid, t.depth + 1, lb, lc};
+  }
+}
+
+/* ---- on several threads ------------------------------------------------ */
+
+/* A large scene's tree is built on several threads, and is the same tree,
+ * node for node, whatever their number. The calling thread splits the top
+ * of the tree as one thread would, but a subtree of at most part_refs
+ * references becomes a part: its node in the top is marked NODE_PART and
+ * any thread may build it. A part's references are a range no other task
+ * touches, and its splits depend on nothing else, so it comes out as it
+ * would have in place. A part over references [begin, end) is built into
+ * nodes [2 begin, 2 end) of one shared array (a subtree of k references
+ * has at most 2k - 1 nodes), with no allocation of its own. The parts are
+ * taken as soon as they are deferred, while the top is still being split.
+ * Finally lay_out copies the nodes into the order the one-threaded build
+ * gives them. */
+#define NODE_PART 0x80          /* in flags, during the build only */
+#define PARALLEL_MIN_REFS 32768 /* fewer: one thread (its start costs more) */
+#define PART_MIN_REFS 1024      /* smaller subtrees stay with the top */
+
+struct parts {
+  builder *b;
+  task *list; /* the deferred tasks, in order */
+  uint32_t room, count, taken;
+  uint32_t part_refs;
+  int top_done;      /* no more parts will come */
+  node_array shared; /* every part's nodes (count unused) */
+  uint32_t nodes;    /* the parts' nodes, counted as they finish */
+  int depth;         /* the deepest of them */
+  pthread_mutex_t lock;
+  pthread_cond_t more;
+};
+
+static int defer_part(parts *p, const task *t, gli_bvh_node *node) {
+  uint32_t refs = t->end - t->begin;
+  if (refs > p->part_refs || refs < PART_MIN_REFS)
+    return 0;
+  node->flags = NODE_PART;
+  node->offset = 2 * t->begin; /* the part's root in p->shared */
+  node->count = 0;
+  pthread_mutex_lock(&p->lock);
+  task *q = &p->list[p->count++]; /* room: at most n / PART_MIN_REFS */
+  *q = *t;
+  q->node = 2 * t->begin;
+  pthread_cond_signal(&p->more);
+  pthread_mutex_unlock(&p->lock);
+  return 1;
+}
+
+/* Builds parts until the top is done and none is left. */
+static void build_parts(parts *p, task *stack) {
+  pthread_mutex_lock(&p->lock);
+  for (;;) {
+    while (p->taken == p->count && !p->top_done)
+      pthread_cond_wait(&p->more, &p->lock);
+    if (p->taken == p->count)
+      break;
+    task t = p->list[p->taken++];
+    pthread_mutex_unlock(&p->lock);
+    node_array part = {p->shared.nodes, t.node + 1, 0};
+    grow(p->b, t, stack, &part, NULL);
+    pthread_mutex_lock(&p->lock);
+    p->nodes += part.count - t.node - 1;
+    if (part.depth > p->depth)
+      p->depth = part.depth;
+  }
+  pthread_mutex_unlock(&p->lock);
+}
+
+typedef struct part_worker {
+  parts *p;
+  task stack[TASK_STACK];
+} part_worker;
+
+static void *part_worker_run(void *arg) {
+  part_worker *w = arg;
+  build_parts(w->p, w->stack);
+  return NULL;
+}
+
+/* Copies the tree of top (its parts' nodes in shared) into out in the
+ * order of grow on one thread: each node, as it is taken from the stack,
+ * gets its children the next two slots. Returns the nodes copied. */
+static uint32_t lay_out(const gli_bvh_node *top, const gli_bvh_node *shared,
+                        gli_bvh_node *out) {
+  struct {
+    const gli_bvh_node *from; /* the node's array */
+    uint32_t node, to;
+  } stack[2 * GLI_BVH_MAX_DEPTH + 2];
+  int sp = 0;
+  uint32_t count = 1;
+  stack[sp].from = top, stack[sp].node = 0, stack[sp++].to = 0;
+  while (sp > 0) {
+    sp--;
+    const gli_bvh_node *from = stack[sp].from;
+    gli_bvh_node n = from[stack[sp].node];
+    uint32_t to = stack[sp].to;
+    if (n.flags & NODE_PART) {
+      from = shared;
+      n = from[n.offset];
+    }
+    if (n.count == 0) {
+      uint32_t left = count;
+      count += 2;
+      stack[sp].from = from, stack[sp].node = n.offset + 1,
+      stack[sp++].to = left + 1;
+      stack[sp].from = from, stack[sp].node = n.offset, stack[sp++].to = left;
+      n.offset = left;
+    }
+    out[to] = n;
+  }
+  return count;
+}
+
+/* grow on `threads` threads (the calling one among them): the tree of
+ * `root` into top's nodes; 0, or -1 out of memory (top then freed). */
+static int grow_in_parts(builder *b, task root, task *stack, node_array *top,
+                         uint32_t n, int threads) {
+  parts p = {b,
+             malloc((n / PART_MIN_REFS + 1) * sizeof *p.list),
+             n / PART_MIN_REFS + 1,
+             0,
+             0,
+             /* a few parts a thread, for balance: a split may be uneven */
+             n / (4 * (uint32_t)threads),
+             0,
+             {nodes_alloc(2 * (size_t)n), 0, 0},
+             0,
+             0,
+             PTHREAD_MUTEX_INITIALIZER,
+             PTHREAD_COND_INITIALIZER};
+  if (p.part_refs < PART_MIN_REFS)
+    p.part_refs = PART_MIN_REFS;
+  part_worker *w = malloc((size_t)(threads - 1) * sizeof *w);
+  pthread_t *ids = malloc((size_t)(threads - 1) * sizeof *ids);
+  if (!p.list || !p.shared.nodes || !w || !ids) {
+    free(p.list), nodes_free(p.shared.nodes), free(w), free(ids);
+    nodes_free(top->nodes);
+    return -1;
+  }
+  int started = 0;
+  for (int i = 0; i < threads - 1; i++) {
+    w[started].p = &p;
+    if (gli_thread_start(&ids[started], part_worker_run, &w[started]) == 0)
+      started++; /* (one refused: the others, and this thread, do its share) */
+  }
+  grow(b, root, stack, top, &p);
+  pthread_mutex_lock(&p.lock);
+  p.top_done = 1;
+  pthread_cond_broadcast(&p.more);
+  pthread_mutex_unlock(&p.lock);
+  build_parts(&p, stack);
+  for (int i = 0; i < started; i++)
+    pthread_join(ids[i], NULL);
+  free(w), free(ids), free(p.list);
+
+  gli_bvh_node *out = nodes_alloc((size_t)top->count + p.nodes);
+  if (!out) {
+    nodes_free(p.shared.nodes), nodes_free(top->nodes);
+    return -1;
+  }
+  top->count = lay_out(top->nodes, p.shared.nodes, out);
+  if (p.depth > top->depth)
+    top->depth = p.depth;
+  nodes_free(p.shared.nodes);
+  nodes_free(top->nodes);
+  top->nodes = out;
+  pthread_mutex_destroy(&p.lock);
+  pthread_cond_destroy(&p.more);
+  return 0;
+}
+
 /* The packets' tree: the binary tree with each subtree cut into one leaf
  * where that is cheaper for packets by the surface area heuristic with a
  * node cost of PACKET_COST_NODE, computed bottom-up (the optimal cut of
@@ -517,7 +746,7 @@ glint_status gli_bvh_add_wide(gli_bvh *bvh, const glint_scene *scene,
   return gli_wide_build(bvh, scene, 0, &bvh->wide, error);
 }
 
-glint_status gli_bvh_build(const glint_scene *scene, gli_bvh *bvh,
+glint_status gli_bvh_build(const glint_scene *scene, int threads, gli_bvh *bvh,
                            glint_error *error) {
   double t0 = gli_now();
   memset(bvh, 0, sizeof *bvh);
@@ -536,12 +765,12 @@ glint_status gli_bvh_build(const glint_scene *scene, gli_bvh *bvh,
   builder b = {0};
   b.boxes = gli_aligned_calloc(n, sizeof *b.boxes);
   b.refs = malloc(n * sizeof *b.refs);
-  b.nodes = nodes_alloc(2 * n);
-  task *stack = malloc(sizeof *stack * 4 * GLI_BVH_MAX_DEPTH);
-  if (!b.boxes || !b.refs || !b.nodes || !stack) {
+  node_array top = {nodes_alloc(2 * n), 1, 0};
+  task *stack = malloc(sizeof *stack * TASK_STACK);
+  if (!b.boxes || !b.refs || !top.nodes || !stack) {
     gli_aligned_free(b.boxes);
     free(b.refs);
-    nodes_free(b.nodes);
+    nodes_free(top.nodes);
     free(stack);
     return gli_fail(error, GLINT_E_MEMORY,
                     "out of memory building the BVH of %zu primitives", n);
@@ -567,58 +796,35 @@ glint_status gli_bvh_build(const glint_scene *scene, gli_bvh *bvh,
                         _mm_setr_ps(bx.hi[0], bx.hi[1], bx.hi[2], 0)};
   }
 
-  /* Depth first with an explicit stack; the left child is processed first
-   * so nodes are laid out close to their parents. */
-  b.node_count = 1;
-  int sp = 0;
   task root = {0, 0, (uint32_t)n, 1, box4_empty(), box4_empty()};
   measure(&b, 0, (uint32_t)n, &root.bounds, &root.cbounds);
-  stack[sp++] = root;
-  while (sp > 0) {
-    task t = stack[--sp];
-    gli_bvh_node *node = &b.nodes[t.node];
-    store_bounds(node, t.bounds);
-    if (t.depth > b.depth)
-      b.depth = t.depth;
-    int axis = 0;
-    box4 lb, lc, rb, rc;
-    uint32_t mid = t.begin;
-    if (t.end - t.begin > 1 && t.depth < GLI_BVH_MAX_DEPTH - 1)
-      mid = split(&b, &t, &axis, &lb, &lc, &rb, &rc);
-    if (mid == t.begin) {
-      if (t.end - t.begin > UINT16_MAX) { /* depth exhausted: still split */
-        mid = t.begin + (t.end - t.begin) / 2;
-        measure(&b, t.begin, mid, &lb, &lc);
-        measure(&b, mid, t.end, &rb, &rc);
-      } else {
-        node->offset = t.begin;
-        node->count = (uint16_t)(t.end - t.begin);
-        node->axis = 0;
-        continue;
-      }
+  if (threads > 1 && n >= PARALLEL_MIN_REFS) {
+    if (grow_in_parts(&b, root, stack, &top, (uint32_t)n, threads)) {
+      gli_aligned_free(b.boxes);
+      free(b.refs);
+      free(stack);
+      return gli_fail(error, GLINT_E_MEMORY,
+                      "out of memory building the BVH of %zu primitives", n);
     }
-    uint32_t left = b.node_count;
-    b.node_count += 2;
-    node->offset = left;
-    node->count = 0;
-    node->axis = (uint8_t)axis;
-    stack[sp++] = (task){left + 1, mid, t.end, t.depth + 1, rb, rc};
-    stack[sp++] = (task){left, t.begin, mid, t.depth + 1, lb, lc};
+  } else {
+    grow(&b, root, stack, &top, NULL);
   }
   free(stack);
   gli_aligned_free(b.boxes);
 
-  gli_bvh_node *shrunk = nodes_alloc(b.node_count);
+  /* (grow_in_parts's nodes are already as many as used) */
+  gli_bvh_node *shrunk =
+      threads > 1 && n >= PARALLEL_MIN_REFS ? NULL : nodes_alloc(top.count);
   if (shrunk) {
-    memcpy(shrunk, b.nodes, b.node_count * sizeof *shrunk);
-    nodes_free(b.nodes);
-    b.nodes = shrunk;
+    memcpy(shrunk, top.nodes, top.count * sizeof *shrunk);
+    nodes_free(top.nodes);
+    top.nodes = shrunk;
   }
-  bvh->nodes = b.nodes;
-  bvh->node_count = b.node_count;
+  bvh->nodes = top.nodes;
+  bvh->node_count = top.count;
   bvh->refs = b.refs;
   bvh->ref_count = (uint32_t)n;
-  bvh->depth = b.depth;
+  bvh->depth = top.depth;
   bvh->cost = bvh->built_cost = sah_cost(bvh);
   bvh->build_seconds = gli_now() - t0;
   return derive_trees(bvh, scene, error);

@@ -67,8 +67,10 @@ typedef struct gli_bvh {
 } gli_bvh;
 
 /* Builds over the scene's spheres, triangles and cones. A scene with at most
- * GLI_BVH_MIN_PRIMS of them gives node_count = 0: test them all. */
-glint_status gli_bvh_build(const glint_scene *scene, gli_bvh *bvh,
+ * GLI_BVH_MIN_PRIMS of them gives node_count = 0: test them all. A large
+ * scene's tree is built on up to `threads` threads (1: the calling one
+ * alone), and is the same tree whatever their number. */
+glint_status gli_bvh_build(const glint_scene *scene, int threads, gli_bvh *bvh,
                            glint_error *error);
 void gli_bvh_free(gli_bvh *bvh);
 

@@ -530,8 +530,8 @@ static glint_status render_frame(glint_renderer *r,
   /* The epsilon of the frame's camera: the world's was of its own (a camera
    * committed far away made one so large that whole spheres were lost
    * from a near one, and one committed near left acne on a far view). */
-  r->layout->set_epsilon(r->view, gli_epsilon_at(r->world->extent,
-                                                  camera->from));
+  r->layout->set_epsilon(r->view,
+                         gli_epsilon_at(r->world->extent, camera->from));
   job->params.spp = count;
   job->params.max_depth = depth;
   job->params.math = s->math;
