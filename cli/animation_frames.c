@@ -1,3 +1,4 @@
+#define _DEFAULT_SOURCE /* realpath */
 /* The frames of an animation, as glint render --frames and glint-mpi write
  * them: the -o pattern (or the number put before the extension), each
  * frame's file and its folder, and the world at a frame's time. */
@@ -7,6 +8,8 @@
 #include <glint.h>
 
 #include <errno.h>
+#include <limits.h>
+#include <stdint.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
@@ -258,6 +261,76 @@ static int check_frames(const glint_scene *scene, const char *scene_name,
   return 0;
 }
 
+/* The file that writing `path` replaces, named without links: glint's
+ * image writers write through a link to what it names, so two frames'
+ * names can lead to one file (f0003.png a link to f0001.png, or folder
+ * shot0002 a link to shot0001), and the later frame replaced the earlier.
+ * Links are followed to a name that is not one, whose folder realpath
+ * resolves; NULL out of memory. */
+static char *written_file(const char *path) {
+  char at[4096];
+  snprintf(at, sizeof at, "%s", path);
+  for (int hops = 0; hops < 40; hops++) { /* Linux's own limit */
+    struct stat sb;
+    char to[4096];
+    ssize_t n;
+    if (lstat(at, &sb) != 0 || !S_ISLNK(sb.st_mode) ||
+        (n = readlink(at, to, sizeof to - 1)) < 0)
+      break;
+    to[n] = '\0';
+    char *slash = strrchr(at, '/');
+    size_t folder = to[0] == '/' || !slash ? 0 : (size_t)(slash - at) + 1;
+    if (folder + (size_t)n >= sizeof at)
+      break;
+    memmove(at + folder, to, (size_t)n + 1); /* relative to its folder */
+  }
+  char *slash = strrchr(at, '/');
+  const char *base = slash ? slash + 1 : at;
+  if (slash)
+    *slash = '\0';
+  char *folder = realpath(slash ? (at[0] ? at : "/") : ".", NULL);
+  size_t size = (folder ? strlen(folder) : strlen(at)) + strlen(base) + 2;
+  char *file = malloc(size);
+  if (file)
+    snprintf(file, size, "%s/%s", folder ? folder : at, base);
+  free(folder);
+  return file;
+}
+
+/* The frames' files told apart by written_file: a table of `room` (a power
+ * of two) slots of frame numbers, hashed by the file's name. */
+typedef struct frame_targets {
+  int *frame; /* INT_MIN: empty */
+  size_t room;
+} frame_targets;
+
+static uint64_t name_hash(const char *s) {
+  uint64_t h = 1469598103934665603u; /* FNV-1a */
+  for (; *s; s++)
+    h = (h ^ (unsigned char)*s) * 1099511628211u;
+  return h;
+}
+
+/* Notes frame f's file `target`; returns the earlier frame whose file it
+ * is, or INT_MIN when none. */
+static int note_target(frame_targets *t, const frame_files *files, int f,
+                       const char *target) {
+  size_t i = name_hash(target) & (t->room - 1);
+  for (; t->frame[i] != INT_MIN; i = (i + 1) & (t->room - 1)) {
+    char path[4096];
+    if (frame_path(path, sizeof path, files->name, files->pattern, t->frame[i],
+                   files->digits))
+      continue;
+    char *other = written_file(path);
+    int same = other && strcmp(other, target) == 0;
+    free(other);
+    if (same)
+      return t->frame[i];
+  }
+  t->frame[i] = f;
+  return INT_MIN;
+}
+
 /* frame_files_path, noting in `made` the folders it makes. */
 static int frame_file(const frame_files *files, int frame, char *path,
                       size_t size, made_folders *made) {
@@ -321,6 +394,16 @@ int frame_files_init(frame_files *files, const glint_scene *scene,
    * renders again (of another size, damaged) is, and was not checked. */
   int width, height;
   frame_size(scene, &o->settings, &width, &height);
+  frame_targets targets = {NULL, 16};
+  while (targets.room < 2 * ((size_t)o->last_frame - o->first_frame + 1))
+    targets.room *= 2;
+  if (!refused && !(targets.frame = malloc(targets.room * sizeof(int)))) {
+    cli_error("out of memory checking %d frames' files",
+              o->last_frame - o->first_frame + 1);
+    refused = 1;
+  }
+  for (size_t i = 0; !refused && i < targets.room; i++)
+    targets.frame[i] = INT_MIN;
   for (int f = o->first_frame; f <= o->last_frame && !refused; f++) {
     char path[4096];
     struct stat sb;
@@ -332,7 +415,20 @@ int frame_files_init(frame_files *files, const glint_scene *scene,
       break;
     }
     refused = frame_file(files, f, path, sizeof path, made);
-    if (!refused && cli_check_output_format(path, scene_name, &err)) {
+    char *target = refused ? NULL : written_file(path);
+    int earlier = target ? note_target(&targets, files, f, target) : INT_MIN;
+    if (!refused && !target) {
+      cli_error("out of memory checking frame %d's file", f);
+      refused = 1;
+    } else if (earlier != INT_MIN) {
+      char first[4096];
+      if (frame_path(first, sizeof first, files->name, files->pattern, earlier,
+                     files->digits) == 0)
+        cli_error("frames %d and %d would both be written to %s (as %s and "
+                  "%s, through a link); no frame was written",
+                  earlier, f, target, first, path);
+      refused = 1;
+    } else if (!refused && cli_check_output_format(path, scene_name, &err)) {
       cli_error("frame %d: %s; no frame was written", f, err.message);
       refused = 1;
     } else if (!refused && glint_image_check_writable(path, &err) &&
@@ -341,7 +437,9 @@ int frame_files_init(frame_files *files, const glint_scene *scene,
       cli_error("frame %d: %s; no frame was written", f, err.message);
       refused = 1;
     }
+    free(target);
   }
+  free(targets.frame);
   if (refused)
     forget_made_folders(made, 1);
   return refused ? -1 : 0;

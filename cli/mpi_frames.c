@@ -149,7 +149,9 @@ static void abandon(void *context) {
   frame_files_end(&j->files, 1); /* the folders made still empty go */
 }
 
-/* Rank 0: the frames to render, those --resume finds written left out. */
+/* Rank 0: the frames to render, those --resume finds written left out;
+ * -2 after a message when Ctrl-C stops it (reading the kept frames takes
+ * milliseconds each). */
 static int plan(frame_job *j, int *kept) {
   const render_options *o = &j->options->render;
   int count = o->last_frame - o->first_frame + 1, n = 0;
@@ -160,6 +162,11 @@ static int plan(frame_job *j, int *kept) {
   }
   for (int f = o->first_frame; f <= o->last_frame; f++) {
     char path[4096];
+    if (cli_stopped()) {
+      cli_error("interrupted while looking for the frames written "
+                "(--resume); no frame was written");
+      return -2;
+    }
     if (frame_files_path(&j->files, f, path, sizeof path))
       return -1;
     if (o->resume && frame_file_kept(path, f, j->width, j->height, o->quiet)) {

@@ -50,9 +50,9 @@ static void usage(FILE *f) {
       "                       rank may use among the ranks on its host\n"
       "\n"
       "Exit status: 0 on success, 1 out of memory, 2 on bad arguments or\n"
-      "input, a failed or silent rank, 130 when stopped. A failed job leaves\n"
-      "no partial image; frames already written stay, and --resume renders\n"
-      "the rest.\n",
+      "input, a failed or silent rank, 130 when stopped (mpirun may report\n"
+      "its own: see glint-mpi(1)). A failed job leaves no partial image;\n"
+      "frames already written stay, and --resume renders the rest.\n",
       f);
 }
 

@@ -56,6 +56,13 @@ int render_frames(glint_scene *scene, const render_options *o,
   double render_seconds = 0, frame_seconds = 0;
   for (int f = o->first_frame; f <= o->last_frame && !status; f++) {
     char path[4096];
+    if (cli_stopped()) { /* (--resume reading the kept frames: ms each) */
+      cli_error("interrupted before frame %d; frames written stay, and "
+                "--resume renders the rest",
+                f);
+      status = EXIT_INTERRUPTED;
+      break;
+    }
     if (frame_files_path(&files, f, path, sizeof path)) {
       status = EXIT_USAGE;
       break;

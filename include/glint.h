@@ -311,7 +311,11 @@ typedef struct glint_transform_key {
 /* Moves object `object` (0 for the first added; glint_scene_info.objects
  * counts them) through keyed transforms, interpolated component by
  * component (translate, rotate, scale, pivot) as camera keys are; one key
- * is a still transform. glint_scene_at_time applies them. */
+ * is a still transform. glint_scene_at_time applies them. Catmull-Rom may
+ * overshoot between valid keys (a scale of 1, 0.01 and 3 dips below 0):
+ * glint_scene_at_time and glint_world_commit_at then fail at those times
+ * only, naming the object, the time and the value (glint render --frames
+ * checks every frame's time before it writes one). */
 glint_status glint_scene_set_object_motion(glint_scene *scene, uint32_t object,
                                            const glint_transform_key *keys,
                                            size_t count,
@@ -672,7 +676,9 @@ glint_status glint_world_commit(const glint_scene *scene, glint_world **world,
  * animation (the last frame's): its BVH's tree is kept and refitted to
  * where the objects are now, instead of a new one built, when that costs
  * rays no more (objects that moved without turning); objects that turned
- * get a new tree. The image is the same either way. */
+ * get a new tree. The image is the same either way (with the stream
+ * backends, a few of a film's floats may differ in their last bit, which
+ * 8-bit images do not show). */
 glint_status glint_world_commit_at(const glint_scene *scene, double time,
                                    const glint_world *previous,
                                    glint_world **world, glint_stats *stats,

@@ -1545,6 +1545,34 @@ static void frames_of_an_animation(void **state) {
       run("render", "anim.json", "--frames", "1-3", "-o", "f%02d.png", NULL),
       0);
 
+  /* Two frames whose names lead to one file through a link (the later
+   * frame replaced the earlier, and the run said all were written): a
+   * link to another frame's file, and a frame's folder a link to
+   * another's. */
+  char link[600];
+  snprintf(link, sizeof link, "%s/f03.png", dir);
+  assert_int_equal(remove_in_folder("f03.png"), 0);
+  assert_int_equal(symlink("f01.png", link), 0);
+  EXPECT_USAGE_ERROR_KEEPING("frames 1 and 3 would both be written to ",
+                             "render", "anim.json", "--frames", "1-3", "-o",
+                             "f%02d.png");
+  assert_non_null(strstr(err, "/f01.png (as f01.png and f03.png, through a "
+                              "link); no frame was written"));
+  assert_int_equal(unlink(link), 0);
+  snprintf(link, sizeof link, "%s/shot2", dir);
+  snprintf(folder, sizeof folder, "%s/shot1", dir);
+  assert_int_equal(mkdir(folder, 0755), 0);
+  assert_int_equal(symlink("shot1", link), 0);
+  EXPECT_USAGE_ERROR_KEEPING("frames 1 and 2 would both be written to ",
+                             "render", "anim.json", "--frames", "1-3", "-o",
+                             "shot%d/f.png");
+  assert_false(exists("shot3")); /* made, and taken away again */
+  assert_int_equal(unlink(link), 0);
+  assert_int_equal(rmdir(folder), 0);
+  assert_int_equal(
+      run("render", "anim.json", "--frames", "1-3", "-o", "f%02d.png", NULL),
+      0);
+
   /* A folder in -o that is missing is made. */
   assert_int_equal(run("render", "anim.json", "--frames", "5", "-o",
                        "sub/deeper/f%d.png", "-q", NULL),
@@ -2103,6 +2131,47 @@ static void stopped_frames_leave_no_empty_folders(void **state) {
   assert_true(folder_is_empty());
 }
 
+/* Ctrl-C while --resume reads the frames already written (milliseconds
+ * each: about 10 s for 3 000 of 640x480) stops there: it was noticed only
+ * at the next frame rendered, and with every frame kept not at all (exit
+ * 0, "0 frames written, 3000 kept"). */
+static void stopped_while_resuming(void **state) {
+  (void)state;
+  if (cpu_ticks(getpid()) < 0)
+    skip();
+  char text[2048], scene[600], pattern[600], err_path[600], first[600];
+  const char *frames = strstr(orbit_scene, "[1, 48]");
+  snprintf(text, sizeof text, "%.*s[1, 3000]%s", (int)(frames - orbit_scene),
+           orbit_scene, frames + 7);
+  put_text("kept.json", text);
+  snprintf(scene, sizeof scene, "%s/kept.json", dir);
+  assert_int_equal(run("render", "kept.json", "--frames", "1", "-W", "640",
+                       "-H", "480", "-s", "1", "-q", "-o", "k/f%d.png", NULL),
+                   0);
+  snprintf(first, sizeof first, "%s/k/f1.png", dir);
+  for (int f = 2; f <= 3000; f++) {
+    char name[700];
+    snprintf(name, sizeof name, "%s/k/f%d.png", dir, f);
+    assert_int_equal(link(first, name), 0);
+  }
+  snprintf(pattern, sizeof pattern, "%s/k/f%%d.png", dir);
+  snprintf(err_path, sizeof err_path, "%s/.stderr", dir);
+  const long ticks = sysconf(_SC_CLK_TCK) / 2;
+  char *argv[] = {"glint", "render", scene,   "--frames", "1-3000", "-W",
+                  "640",   "-H",     "480",   "-s",       "1",      "--resume",
+                  "-q",    "-o",     pattern, NULL};
+  pid_t pid = spawn_glint(argv, environ, "/dev/null", err_path);
+  for (int tries = 0; cpu_ticks(pid) < ticks && tries < 30000; tries++)
+    usleep(1000);
+  kill(pid, SIGTERM);
+  assert_int_equal(exit_status(pid, err_path), 130);
+  assert_non_null(strstr(err, "glint: interrupted before frame "));
+  char cmd[1300];
+  snprintf(cmd, sizeof cmd, "rm -rf '%s/k' '%s'", dir, scene);
+  assert_int_equal(system(cmd), 0);
+  assert_true(folder_is_empty());
+}
+
 /* A render killed outright (SIGKILL, the out-of-memory killer, a batch
  * system's hard stop) has no handler to run, and still leaves nothing
  * behind: the image being written has no name until it is complete. */
@@ -2329,6 +2398,7 @@ int main(void) {
       cmocka_unit_test(default_threads_follow_the_affinity),
       cmocka_unit_test(frames_of_an_animation),
       cmocka_unit_test(stopped_frames_leave_no_empty_folders),
+      cmocka_unit_test(stopped_while_resuming),
       cmocka_unit_test(frames_with_moving_objects),
       cmocka_unit_test(interrupt_keeps_the_old_file),
       cmocka_unit_test(an_endless_render_stops_within_the_grace),
