@@ -106,7 +106,7 @@ glint_status gli_bmp_decode(FILE *f, const char *path, glint_image **out,
                     "pixels end at byte %llu)",
                     path, bytes, (long)w, (long)h, (unsigned long long)needed);
   glint_image *im;
-  glint_status st = glint_image_create(w, h, &im, error);
+  glint_status st = gli_image_create_for(path, w, h, &im, error);
   if (st)
     return st;
   uint8_t *row = malloc(stride);

@@ -20,6 +20,14 @@
 #include <sys/stat.h>
 #include <unistd.h>
 
+glint_status gli_image_create_for(const char *path, int w, int h,
+                                  glint_image **image, glint_error *error) {
+  glint_status st = glint_image_create(w, h, image, error);
+  if (st == GLINT_E_MEMORY)
+    gli_fail(error, st, "%s: out of memory for its %dx%d pixels", path, w, h);
+  return st;
+}
+
 glint_status glint_image_create(int w, int h, glint_image **out,
                                 glint_error *error) {
   GLI_NOT_NULL(out, "image", error);

@@ -41,6 +41,10 @@ typedef int (*write_fn)(const void *data, FILE *f);
 /* Whether gli_write_atomically could write `path` now (not a folder, and
  * its folder takes a new file); leaves nothing behind. */
 glint_status gli_check_folder_writable(const char *path, glint_error *error);
+/* glint_image_create for the pixels of file `path`, which its message of
+ * running out of memory names. */
+glint_status gli_image_create_for(const char *path, int w, int h,
+                                  glint_image **image, glint_error *error);
 glint_status gli_write_atomically(const char *path, write_fn write,
                                   const void *data, glint_error *error);
 

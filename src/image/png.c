@@ -238,7 +238,7 @@ glint_status gli_png_decode(FILE *f, const char *path, glint_image **out,
     return GLINT_OK;
   }
   glint_image *tmp;
-  if (glint_image_create((int)w, (int)h, &tmp, error)) {
+  if (gli_image_create_for(path, (int)w, (int)h, &tmp, error)) {
     png_destroy_read_struct(&png, &info, NULL);
     return error ? error->status : GLINT_E_MEMORY;
   }

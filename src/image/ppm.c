@@ -108,7 +108,7 @@ glint_status gli_ppm_decode(FILE *f, const char *path, glint_image **out,
                     "header, where %ld x %ld pixels need %zu)",
                     path, bytes - here, w, h, n);
   glint_image *im;
-  glint_status st = glint_image_create((int)w, (int)h, &im, error);
+  glint_status st = gli_image_create_for(path, (int)w, (int)h, &im, error);
   if (st)
     return st;
   if (fread(im->rgb, 1, n, f) != n) {
