@@ -156,13 +156,6 @@ typedef struct task {
   box4 bounds, cbounds;
 } task;
 
-/* Nodes being appended to: the next free one and the deepest level so far. */
-typedef struct node_array {
-  gli_bvh_node *nodes;
-  uint32_t count;
-  int depth;
-} node_array;
-
 static void store_bounds(gli_bvh_node *n, box4 b) {
   float lo[4], hi[4];
   _mm_storeu_ps(lo, b.lo);
@@ -377,31 +370,58 @@ static void nodes_free(gli_bvh_node *nodes) {
     gli_aligned_free(nodes - 1);
 }
 
-/* ---- growing the tree ------------------------------------------------- */
+/* ---- growing the tree, on one thread or several ------------------------ */
 
-/* The tasks a grow keeps waiting: one per level and side of a path. */
-#define TASK_STACK (4 * GLI_BVH_MAX_DEPTH)
+/* Where a node lies while the tree grows. A subtree over references
+ * [b, e) rooted at slot s owns the 2(e - b) - 1 slots from s (a binary
+ * tree over k leaves-worth of references has at most 2k - 1 nodes): its
+ * left subtree, over [b, mid), starts at s + 1, and its right one at
+ * s + 2(mid - b). So a node's slot depends on the splits alone, not on
+ * which thread made them or when, and threads grow disjoint subtrees (of
+ * disjoint ranges of references) with nothing shared but a queue of tasks.
+ * An inner node's offset holds its right child's slot while it grows (the
+ * left one is the next slot); lay_out then copies the nodes into the order
+ * the depth-first build on one thread gives them, children pairs adjacent:
+ * the tree, node for node, is the same whatever the threads. */
+#define TASK_STACK (4 * GLI_BVH_MAX_DEPTH) /* a thread's own tasks */
+/* Right children of this many references or more go to the queue, for
+ * any thread to take (fewer: one thread, its start costs more). */
+#define SHARE_MIN_REFS 4096
 
-typedef struct parts parts;
-static int defer_part(parts *p, const task *t, gli_bvh_node *node);
+typedef struct grower {
+  builder *b;
+  gli_bvh_node *slots;
+  int threads;
+  task *queue;     /* tasks any thread may take: disjoint ranges of at least */
+  uint32_t queued; /* SHARE_MIN_REFS references, so n / that at most */
+  int busy;        /* threads growing a task */
+  int depth;       /* the deepest level, once every thread has ended */
+  uint32_t splits; /* the inner nodes, likewise */
+  pthread_mutex_t lock;
+  pthread_cond_t more; /* a task queued, or every thread idle */
+} grower;
 
-/* Builds the subtree of task `first` (its node already allocated in out)
- * depth first with an explicit stack, the left child first so that nodes
- * lie close to their parents: each node split gets the next two nodes of
- * out for its children. With `defer`, a task that defer_part takes becomes
- * a part, built apart (see grow_in_parts). */
-static void grow(builder *b, task first, task *stack, node_array *out,
-                 parts *defer) {
+static void share(grower *g, const task *t) {
+  pthread_mutex_lock(&g->lock);
+  g->queue[g->queued++] = *t;
+  pthread_cond_signal(&g->more);
+  pthread_mutex_unlock(&g->lock);
+}
+
+/* Grows the subtree of task `first` depth first, the left child first,
+ * with an explicit stack; *depth: the deepest level seen, *splits counts
+ * the inner nodes. */
+static void grow(grower *g, task first, task *stack, int *depth,
+                 uint32_t *splits) {
+  builder *b = g->b;
   int sp = 0;
   stack[sp++] = first;
   while (sp > 0) {
     task t = stack[--sp];
-    gli_bvh_node *node = &out->nodes[t.node];
+    gli_bvh_node *node = &g->slots[t.node];
     store_bounds(node, t.bounds);
-    if (defer && defer_part(defer, &t, node))
-      continue;
-    if (t.depth > out->depth)
-      out->depth = t.depth;
+    if (t.depth > *depth)
+      *depth = t.depth;
     int axis = 0;
     box4 lb, lc, rb, rc;
     uint32_t mid = t.begin;
@@ -419,183 +439,130 @@ static void grow(builder *b, task first, task *stack, node_array *out,
         continue;
       }
     }
-    uint32_t left = out->count;
-    out->count += 2;
-    node->offset = left;
+    task right = {
+        t.node + 2 * (mid - t.begin), mid, t.end, t.depth + 1, rb, rc};
+    node->offset = right.node;
     node->count = 0;
     node->axis = (uint8_t)axis;
-    stack[sp++] = (task){left + 1, mid, t.end, t.depth + 1, rb, rc};
-    stack[sp++] = (task){left, t.begin, mid, t.depth + 1, lb, lc};
+    ++*splits;
+    if (g->threads > 1 && t.end - mid >= SHARE_MIN_REFS)
+      share(g, &right);
+    else
+      stack[sp++] = right;
+    stack[sp++] = (task){t.node + 1, t.begin, mid, t.depth + 1, lb, lc};
   }
 }
 
-/* ---- on several threads ------------------------------------------------ */
-
-/* A large scene's tree is built on several threads, and is the same tree,
- * node for node, whatever their number. The calling thread splits the top
- * of the tree as one thread would, but a subtree of at most part_refs
- * references becomes a part: its node in the top is marked NODE_PART and
- * any thread may build it. A part's references are a range no other task
- * touches, and its splits depend on nothing else, so it comes out as it
- * would have in place. A part over references [begin, end) is built into
- * nodes [2 begin, 2 end) of one shared array (a subtree of k references
- * has at most 2k - 1 nodes), with no allocation of its own. The parts are
- * taken as soon as they are deferred, while the top is still being split.
- * Finally lay_out copies the nodes into the order the one-threaded build
- * gives them. */
-#define NODE_PART 0x80          /* in flags, during the build only */
-#define PARALLEL_MIN_REFS 32768 /* fewer: one thread (its start costs more) */
-#define PART_MIN_REFS 1024      /* smaller subtrees stay with the top */
-
-struct parts {
-  builder *b;
-  task *list; /* the deferred tasks, in order */
-  uint32_t room, count, taken;
-  uint32_t part_refs;
-  int top_done;      /* no more parts will come */
-  node_array shared; /* every part's nodes (count unused) */
-  uint32_t nodes;    /* the parts' nodes, counted as they finish */
-  int depth;         /* the deepest of them */
-  pthread_mutex_t lock;
-  pthread_cond_t more;
-};
-
-static int defer_part(parts *p, const task *t, gli_bvh_node *node) {
-  uint32_t refs = t->end - t->begin;
-  if (refs > p->part_refs || refs < PART_MIN_REFS)
-    return 0;
-  node->flags = NODE_PART;
-  node->offset = 2 * t->begin; /* the part's root in p->shared */
-  node->count = 0;
-  pthread_mutex_lock(&p->lock);
-  task *q = &p->list[p->count++]; /* room: at most n / PART_MIN_REFS */
-  *q = *t;
-  q->node = 2 * t->begin;
-  pthread_cond_signal(&p->more);
-  pthread_mutex_unlock(&p->lock);
-  return 1;
-}
-
-/* Builds parts until the top is done and none is left. */
-static void build_parts(parts *p, task *stack) {
-  pthread_mutex_lock(&p->lock);
+/* A thread's part: queued tasks until none is queued and none is growing
+ * (which could queue more). */
+static void grow_queued(grower *g, task *stack) {
+  int depth = 0;
+  uint32_t splits = 0;
+  pthread_mutex_lock(&g->lock);
   for (;;) {
-    while (p->taken == p->count && !p->top_done)
-      pthread_cond_wait(&p->more, &p->lock);
-    if (p->taken == p->count)
+    while (g->queued == 0 && g->busy > 0)
+      pthread_cond_wait(&g->more, &g->lock);
+    if (g->queued == 0)
       break;
-    task t = p->list[p->taken++];
-    pthread_mutex_unlock(&p->lock);
-    node_array part = {p->shared.nodes, t.node + 1, 0};
-    grow(p->b, t, stack, &part, NULL);
-    pthread_mutex_lock(&p->lock);
-    p->nodes += part.count - t.node - 1;
-    if (part.depth > p->depth)
-      p->depth = part.depth;
+    task t = g->queue[--g->queued];
+    g->busy++;
+    pthread_mutex_unlock(&g->lock);
+    grow(g, t, stack, &depth, &splits);
+    pthread_mutex_lock(&g->lock);
+    if (--g->busy == 0 && g->queued == 0)
+      pthread_cond_broadcast(&g->more); /* the end: wake the idle */
   }
-  pthread_mutex_unlock(&p->lock);
+  if (depth > g->depth)
+    g->depth = depth;
+  g->splits += splits;
+  pthread_mutex_unlock(&g->lock);
 }
 
-typedef struct part_worker {
-  parts *p;
+typedef struct grow_thread {
+  grower *g;
   task stack[TASK_STACK];
-} part_worker;
+} grow_thread;
 
-static void *part_worker_run(void *arg) {
-  part_worker *w = arg;
-  build_parts(w->p, w->stack);
+static void *grow_thread_run(void *arg) {
+  grow_thread *w = arg;
+  grow_queued(w->g, w->stack);
   return NULL;
 }
 
-/* Copies the tree of top (its parts' nodes in shared) into out in the
- * order of grow on one thread: each node, as it is taken from the stack,
- * gets its children the next two slots. Returns the nodes copied. */
-static uint32_t lay_out(const gli_bvh_node *top, const gli_bvh_node *shared,
-                        gli_bvh_node *out) {
+/* Copies the grown tree from its slots into out in the order of the
+ * depth-first build on one thread: each node, as it is taken from the
+ * stack, gets its children the next two places. */
+static void lay_out(const gli_bvh_node *slots, gli_bvh_node *out) {
   struct {
-    const gli_bvh_node *from; /* the node's array */
-    uint32_t node, to;
+    uint32_t slot, to;
   } stack[2 * GLI_BVH_MAX_DEPTH + 2];
   int sp = 0;
   uint32_t count = 1;
-  stack[sp].from = top, stack[sp].node = 0, stack[sp++].to = 0;
+  stack[sp].slot = 0, stack[sp++].to = 0;
   while (sp > 0) {
     sp--;
-    const gli_bvh_node *from = stack[sp].from;
-    gli_bvh_node n = from[stack[sp].node];
-    uint32_t to = stack[sp].to;
-    if (n.flags & NODE_PART) {
-      from = shared;
-      n = from[n.offset];
-    }
+    uint32_t slot = stack[sp].slot, to = stack[sp].to;
+    gli_bvh_node n = slots[slot];
     if (n.count == 0) {
       uint32_t left = count;
       count += 2;
-      stack[sp].from = from, stack[sp].node = n.offset + 1,
-      stack[sp++].to = left + 1;
-      stack[sp].from = from, stack[sp].node = n.offset, stack[sp++].to = left;
+      stack[sp].slot = n.offset, stack[sp++].to = left + 1;
+      stack[sp].slot = slot + 1, stack[sp++].to = left;
       n.offset = left;
     }
     out[to] = n;
   }
-  return count;
 }
 
-/* grow on `threads` threads (the calling one among them): the tree of
- * `root` into top's nodes; 0, or -1 out of memory (top then freed). */
-static int grow_in_parts(builder *b, task root, task *stack, node_array *top,
-                         uint32_t n, int threads) {
-  parts p = {b,
-             malloc((n / PART_MIN_REFS + 1) * sizeof *p.list),
-             n / PART_MIN_REFS + 1,
-             0,
-             0,
-             /* a few parts a thread, for balance: a split may be uneven */
-             n / (4 * (uint32_t)threads),
-             0,
-             {nodes_alloc(2 * (size_t)n), 0, 0},
-             0,
-             0,
-             PTHREAD_MUTEX_INITIALIZER,
-             PTHREAD_COND_INITIALIZER};
-  if (p.part_refs < PART_MIN_REFS)
-    p.part_refs = PART_MIN_REFS;
-  part_worker *w = malloc((size_t)(threads - 1) * sizeof *w);
-  pthread_t *ids = malloc((size_t)(threads - 1) * sizeof *ids);
-  if (!p.list || !p.shared.nodes || !w || !ids) {
-    free(p.list), nodes_free(p.shared.nodes), free(w), free(ids);
-    nodes_free(top->nodes);
+/* The tree over the n references of b from `root`, grown on up to
+ * `threads` threads (the calling one among them): its nodes in their
+ * final order into *nodes (*count of them), its depth into *depth; -1 out
+ * of memory. */
+static int grow_tree(builder *b, task root, uint32_t n, int threads,
+                     gli_bvh_node **nodes, uint32_t *count, int *depth) {
+  if (threads < 2 || n < 2 * SHARE_MIN_REFS)
+    threads = 1;
+  grower g = {b,
+              nodes_alloc(2 * (size_t)n),
+              threads,
+              malloc((n / SHARE_MIN_REFS + 1) * sizeof(task)),
+              0,
+              0,
+              0,
+              0,
+              PTHREAD_MUTEX_INITIALIZER,
+              PTHREAD_COND_INITIALIZER};
+  task *stack = malloc(TASK_STACK * sizeof *stack);
+  grow_thread *helpers =
+      threads > 1 ? malloc((size_t)(threads - 1) * sizeof *helpers) : NULL;
+  pthread_t *ids =
+      threads > 1 ? malloc((size_t)(threads - 1) * sizeof *ids) : NULL;
+  if (!g.slots || !g.queue || !stack || (threads > 1 && (!helpers || !ids))) {
+    nodes_free(g.slots), free(g.queue), free(stack), free(helpers), free(ids);
     return -1;
   }
+  g.queue[g.queued++] = root;
   int started = 0;
   for (int i = 0; i < threads - 1; i++) {
-    w[started].p = &p;
-    if (gli_thread_start(&ids[started], part_worker_run, &w[started]) == 0)
+    helpers[started].g = &g;
+    if (gli_thread_start(&ids[started], grow_thread_run, &helpers[started]) ==
+        0)
       started++; /* (one refused: the others, and this thread, do its share) */
   }
-  grow(b, root, stack, top, &p);
-  pthread_mutex_lock(&p.lock);
-  p.top_done = 1;
-  pthread_cond_broadcast(&p.more);
-  pthread_mutex_unlock(&p.lock);
-  build_parts(&p, stack);
+  grow_queued(&g, stack);
   for (int i = 0; i < started; i++)
     pthread_join(ids[i], NULL);
-  free(w), free(ids), free(p.list);
-
-  gli_bvh_node *out = nodes_alloc((size_t)top->count + p.nodes);
-  if (!out) {
-    nodes_free(p.shared.nodes), nodes_free(top->nodes);
+  free(g.queue), free(stack), free(helpers), free(ids);
+  pthread_mutex_destroy(&g.lock);
+  pthread_cond_destroy(&g.more);
+  *count = 1 + 2 * g.splits;
+  *nodes = nodes_alloc(*count);
+  if (*nodes)
+    lay_out(g.slots, *nodes);
+  nodes_free(g.slots);
+  if (!*nodes)
     return -1;
-  }
-  top->count = lay_out(top->nodes, p.shared.nodes, out);
-  if (p.depth > top->depth)
-    top->depth = p.depth;
-  nodes_free(p.shared.nodes);
-  nodes_free(top->nodes);
-  top->nodes = out;
-  pthread_mutex_destroy(&p.lock);
-  pthread_cond_destroy(&p.more);
+  *depth = g.depth;
   return 0;
 }
 
@@ -765,13 +732,9 @@ glint_status gli_bvh_build(const glint_scene *scene, int threads, gli_bvh *bvh,
   builder b = {0};
   b.boxes = gli_aligned_calloc(n, sizeof *b.boxes);
   b.refs = malloc(n * sizeof *b.refs);
-  node_array top = {nodes_alloc(2 * n), 1, 0};
-  task *stack = malloc(sizeof *stack * TASK_STACK);
-  if (!b.boxes || !b.refs || !top.nodes || !stack) {
+  if (!b.boxes || !b.refs) {
     gli_aligned_free(b.boxes);
     free(b.refs);
-    nodes_free(top.nodes);
-    free(stack);
     return gli_fail(error, GLINT_E_MEMORY,
                     "out of memory building the BVH of %zu primitives", n);
   }
@@ -798,33 +761,16 @@ glint_status gli_bvh_build(const glint_scene *scene, int threads, gli_bvh *bvh,
 
   task root = {0, 0, (uint32_t)n, 1, box4_empty(), box4_empty()};
   measure(&b, 0, (uint32_t)n, &root.bounds, &root.cbounds);
-  if (threads > 1 && n >= PARALLEL_MIN_REFS) {
-    if (grow_in_parts(&b, root, stack, &top, (uint32_t)n, threads)) {
-      gli_aligned_free(b.boxes);
-      free(b.refs);
-      free(stack);
-      return gli_fail(error, GLINT_E_MEMORY,
-                      "out of memory building the BVH of %zu primitives", n);
-    }
-  } else {
-    grow(&b, root, stack, &top, NULL);
-  }
-  free(stack);
+  int failed = grow_tree(&b, root, (uint32_t)n, threads, &bvh->nodes,
+                         &bvh->node_count, &bvh->depth);
   gli_aligned_free(b.boxes);
-
-  /* (grow_in_parts's nodes are already as many as used) */
-  gli_bvh_node *shrunk =
-      threads > 1 && n >= PARALLEL_MIN_REFS ? NULL : nodes_alloc(top.count);
-  if (shrunk) {
-    memcpy(shrunk, top.nodes, top.count * sizeof *shrunk);
-    nodes_free(top.nodes);
-    top.nodes = shrunk;
+  if (failed) {
+    free(b.refs);
+    return gli_fail(error, GLINT_E_MEMORY,
+                    "out of memory building the BVH of %zu primitives", n);
   }
-  bvh->nodes = top.nodes;
-  bvh->node_count = top.count;
   bvh->refs = b.refs;
   bvh->ref_count = (uint32_t)n;
-  bvh->depth = top.depth;
   bvh->cost = bvh->built_cost = sah_cost(bvh);
   bvh->build_seconds = gli_now() - t0;
   return derive_trees(bvh, scene, error);
