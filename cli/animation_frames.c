@@ -1,9 +1,9 @@
-#define _DEFAULT_SOURCE /* realpath */
 /* The frames of an animation, as glint render --frames and glint-mpi write
  * them: the -o pattern (or the number put before the extension), each
  * frame's file and its folder, and the world at a frame's time. */
 #include "args.h"
 #include "cli.h"
+#include "files.h"
 
 #include <glint.h>
 
@@ -259,42 +259,6 @@ static int check_frames(const glint_scene *scene, const char *scene_name,
     }
   }
   return 0;
-}
-
-/* The file that writing `path` replaces, named without links: glint's
- * image writers write through a link to what it names, so two frames'
- * names can lead to one file (f0003.png a link to f0001.png, or folder
- * shot0002 a link to shot0001), and the later frame replaced the earlier.
- * Links are followed to a name that is not one, whose folder realpath
- * resolves; NULL out of memory. */
-static char *written_file(const char *path) {
-  char at[4096];
-  snprintf(at, sizeof at, "%s", path);
-  for (int hops = 0; hops < 40; hops++) { /* Linux's own limit */
-    struct stat sb;
-    char to[4096];
-    ssize_t n;
-    if (lstat(at, &sb) != 0 || !S_ISLNK(sb.st_mode) ||
-        (n = readlink(at, to, sizeof to - 1)) < 0)
-      break;
-    to[n] = '\0';
-    char *slash = strrchr(at, '/');
-    size_t folder = to[0] == '/' || !slash ? 0 : (size_t)(slash - at) + 1;
-    if (folder + (size_t)n >= sizeof at)
-      break;
-    memmove(at + folder, to, (size_t)n + 1); /* relative to its folder */
-  }
-  char *slash = strrchr(at, '/');
-  const char *base = slash ? slash + 1 : at;
-  if (slash)
-    *slash = '\0';
-  char *folder = realpath(slash ? (at[0] ? at : "/") : ".", NULL);
-  size_t size = (folder ? strlen(folder) : strlen(at)) + strlen(base) + 2;
-  char *file = malloc(size);
-  if (file)
-    snprintf(file, size, "%s/%s", folder ? folder : at, base);
-  free(folder);
-  return file;
 }
 
 /* The frames' files told apart by written_file: a table of `room` (a power

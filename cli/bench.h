@@ -84,10 +84,12 @@ void bench_renderers_close(bench_renderers *renderers);
  * renderers a table keeps at once. */
 int bench_thread_group_end(const bench_column *cols, int ncols, int first);
 
-/* The thesis-style tables over scenes x depths x columns. */
+/* The thesis-style tables over scenes x depths x columns (csv: --csv's
+ * text, written at the end to csv_path; plot_dir: --plot's). */
 int bench_scenes(char **names, int nscenes, const int *depths, int ndepths,
                  const glint_render_settings *base, const bench_column *cols,
-                 int ncols, int runs, FILE *csv, const char *plot_dir);
+                 int ncols, int runs, FILE *csv, const char *csv_path,
+                 const char *plot_dir);
 
 /* glint bench --spd DIR */
 int bench_spd(const char *dir, const glint_render_settings *base,

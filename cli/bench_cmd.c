@@ -688,7 +688,7 @@ int cmd_bench(int argc, char **argv) {
     status = bench_spd(o.spd_dir, &rs, o.cols, o.ncols, o.runs, csv);
   else
     status = bench_scenes(o.scenes, o.nscenes, o.depths, o.ndepths, &rs, o.cols,
-                          o.ncols, o.runs, csv, o.plot_dir);
+                          o.ncols, o.runs, csv, o.csv_path, o.plot_dir);
   if (csv && fclose(csv) != 0 && !status) {
     cli_error("out of memory");
     status = EXIT_MEMORY;
@@ -734,37 +734,59 @@ void bench_csv_row(FILE *csv, const char *scene, int depth,
 
 /* Whether --plot's files for `stem` can be written: each is absent or a
  * regular file (gnuplot waited for ever on a pipe there, and a device
- * took its plot without a word). */
-static int check_plot_files(const char *dir, const char *stem) {
+ * took its plot without a word), and none is, or leads through a link to,
+ * a scene or mesh file (a link there turned a scene into a PNG), a scene
+ * of this benchmark, or --csv's file (`csv`, or NULL). */
+static int check_plot_files(const char *dir, const char *stem, char **scenes,
+                            int nscenes, const char *csv) {
   static const char *const suffixes[] = {"dat", "gp", "png"};
   if (!plot_name_ok("a scene's name", stem))
     return -1;
-  for (int k = 0; k < 3; k++) {
-    char path[8192];
+  char *csv_file = csv ? written_file(csv) : NULL;
+  int refused = 0;
+  for (int k = 0; k < 3 && !refused; k++) {
+    char path[8192], target[PATH_MAX];
+    refused = 1;
     if (snprintf(path, sizeof path, "%s/%s.%s", dir, stem, suffixes[k]) >=
         (int)sizeof path) {
       cli_error("--plot: %s/%s.%s: the name is too long", dir, stem,
                 suffixes[k]);
-      return -1;
+      break;
     }
     struct stat sb;
-    if (stat(path, &sb) == 0 && !S_ISREG(sb.st_mode)) {
+    char *file = written_file(path);
+    int scene = 0;
+    for (int i = 0; i < nscenes && !scene; i++)
+      scene = same_file(scenes[i], path);
+    if (stat(path, &sb) == 0 && !S_ISREG(sb.st_mode))
       cli_error("--plot: %s: not a regular file", path);
-      return -1;
-    }
+    else if (scene)
+      cli_error("--plot: %s is a scene of this benchmark", path);
+    else if (links_to_input(path, target))
+      cli_error("--plot: %s: a link to %s, a scene or mesh file (.nff, .json, "
+                ".obj, .ply): the plot would replace it",
+                path, target);
+    else if (file && csv_file && strcmp(file, csv_file) == 0)
+      cli_error("--plot: %s is --csv's file too", path);
+    else
+      refused = 0;
+    free(file);
   }
-  return 0;
+  free(csv_file);
+  return refused ? -1 : 0;
 }
 
 int bench_scenes(char **names, int nscenes, const int *depths, int ndepths,
                  const glint_render_settings *base, const bench_column *cols,
-                 int ncols, int runs, FILE *csv, const char *plot_dir) {
+                 int ncols, int runs, FILE *csv, const char *csv_path,
+                 const char *plot_dir) {
   glint_scene *scenes[MAX_ITEMS];
   char stems[MAX_ITEMS][CLI_STEM_SIZE];
   for (int i = 0; i < nscenes; i++) {
     int code = EXIT_USAGE;
     scenes[i] = cli_load_scene(names[i], stems[i], sizeof stems[i], &code);
-    if (scenes[i] && plot_dir && check_plot_files(plot_dir, stems[i])) {
+    if (scenes[i] && plot_dir &&
+        check_plot_files(plot_dir, stems[i], names, nscenes, csv_path)) {
       glint_scene_destroy(scenes[i]);
       scenes[i] = NULL;
     }

@@ -13,6 +13,13 @@
 /* Whether paths a and b name one existing file (through links or not). */
 int same_file(const char *a, const char *b);
 
+/* The file that writing `path` replaces, named without links (a malloc'd
+ * string; NULL out of memory): glint's writers write through a link to
+ * what it names, so two names can lead to one file (a link to a file, or
+ * in a folder that is a link). Links are followed to a name that is not
+ * one, whose folder realpath resolves. */
+char *written_file(const char *path);
+
 /* Whether `path` is named as glint's inputs are: a scene or a mesh (.nff,
  * .json, .obj, .ply, each optionally .gz), compared without case as the
  * readers compare them. */

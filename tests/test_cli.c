@@ -969,6 +969,27 @@ static void bench_plot_names_are_not_commands(void **state) {
                              "1", "--backends", "scalar-float", "--plot",
                              "plots");
   remove_in_folder("plots/s.png");
+  /* A plot's file that is a link to a scene file (the plot replaced the
+   * scene with a PNG), or --csv's file too: refused before measuring */
+  char link[600];
+  put_text("victim.json", "{}\n");
+  snprintf(link, sizeof link, "%s/plots/s.dat", dir);
+  assert_int_equal(symlink("../victim.json", link), 0);
+  EXPECT_USAGE_ERROR_KEEPING(
+      "--plot: plots/s.dat: a link to plots/../victim.json, "
+      "a scene or mesh file",
+      "bench", "--scenes", "s.nff", "--depths", "1", "--runs", "1",
+      "--backends", "scalar-float", "--plot", "plots");
+  assert_int_equal(unlink(link), 0);
+  char kept_scene[64];
+  snprintf(link, sizeof link, "%s/victim.json", dir);
+  slurp(link, kept_scene, sizeof kept_scene);
+  assert_string_equal(kept_scene, "{}\n");
+  remove_in_folder("victim.json");
+  EXPECT_USAGE_ERROR_KEEPING("--plot: plots/s.gp is --csv's file too", "bench",
+                             "--scenes", "s.nff", "--depths", "1", "--runs",
+                             "1", "--backends", "scalar-float", "--plot",
+                             "plots", "--csv", "./plots/s.gp");
   /* A run refused for its scene makes no folder (an empty one was left),
    * and a line break, which gnuplot cannot take, is refused before the
    * measurements (the plot failed after them) */
