@@ -5,6 +5,7 @@
 
 #include <math.h>
 #include <stdio.h>
+#include <stdlib.h>
 
 static const double degrees = 3.14159265358979323846 / 180.0;
 
@@ -56,21 +57,13 @@ static glint_vec3 swing(const glint_camera *c, glint_vec3 v, double yaw,
   return rotate(v, right_axis(c, v), target - elevation);
 }
 
-/* A move that would take the camera out of the range glint renders
- * (GLINT_MAX_COORDINATE, finite) is not made: scrolling out for long must
- * leave the view where it was, not end the viewer with an error. */
-static int within_range(glint_vec3 p) {
-  return fabs(p.x) <= GLINT_MAX_COORDINATE &&
-         fabs(p.y) <= GLINT_MAX_COORDINATE && fabs(p.z) <= GLINT_MAX_COORDINATE;
-}
-
-static int renderable(const glint_camera *c) {
-  return within_range(c->from) && within_range(c->at) &&
-         length(sub(c->at, c->from)) > 0;
-}
-
+/* A move that would leave a camera glint does not render (coordinates out
+ * of range after scrolling out for long; from and at rounded into one
+ * point, or the view onto up, after dollying back in from 1e14) is not
+ * made: the view stays where it was, not ending the viewer with an
+ * error. */
 static void keep_renderable(glint_camera *c, const glint_camera *before) {
-  if (!renderable(c))
+  if (glint_camera_check(c, NULL) != GLINT_OK)
     *c = *before;
 }
 
@@ -125,10 +118,26 @@ void view_fly(glint_camera *c, double forward, double right, double up) {
   keep_renderable(c, &before);
 }
 
+/* x in the fewest digits (15 to 17) that read back as x: the camera
+ * printed with 6 read back as another one, or as from and at in one
+ * point, far from the origin. */
+static const char *exact(double x, char buf[32]) {
+  for (int digits = 15; digits < 17; digits++) {
+    snprintf(buf, 32, "%.*g", digits, x);
+    if (strtod(buf, NULL) == x)
+      return buf;
+  }
+  snprintf(buf, 32, "%.17g", x);
+  return buf;
+}
+
 void view_camera_json(const glint_camera *c, char *buf, unsigned long size) {
+  char n[10][32];
   snprintf(buf, size,
-           "\"camera\": {\"from\": [%.6g, %.6g, %.6g], \"at\": [%.6g, %.6g, "
-           "%.6g], \"up\": [%.6g, %.6g, %.6g], \"fov\": %.6g}",
-           c->from.x, c->from.y, c->from.z, c->at.x, c->at.y, c->at.z, c->up.x,
-           c->up.y, c->up.z, c->fov_x_degrees);
+           "\"camera\": {\"from\": [%s, %s, %s], \"at\": [%s, %s, %s], "
+           "\"up\": [%s, %s, %s], \"fov\": %s}",
+           exact(c->from.x, n[0]), exact(c->from.y, n[1]),
+           exact(c->from.z, n[2]), exact(c->at.x, n[3]), exact(c->at.y, n[4]),
+           exact(c->at.z, n[5]), exact(c->up.x, n[6]), exact(c->up.y, n[7]),
+           exact(c->up.z, n[8]), exact(c->fov_x_degrees, n[9]));
 }

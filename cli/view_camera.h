@@ -20,7 +20,8 @@ void view_dolly(glint_camera *camera, double factor);
  * in scene units. */
 void view_fly(glint_camera *camera, double forward, double right, double up);
 /* The camera as a JSON "camera" object for a scene file (docs/scene-format.md),
- * into buf (at least 256 bytes). */
+ * into buf (at least 512 bytes), each number in the fewest digits that
+ * read back as it. */
 void view_camera_json(const glint_camera *camera, char *buf,
                       unsigned long size);
 

@@ -325,6 +325,8 @@ static int copy_file(const view_script *s, const command *c) {
     why = "the destination is not a regular file";
   else if (same_file(c->from, c->to))
     why = "they are the same file";
+  else if (same_file(s->path, c->to))
+    why = "the destination is this script";
   /* Into a file beside TO, renamed over it once whole: a failed copy
    * leaves TO as it was, and a viewer watching TO never reads half of it. */
   file_replacement r;
@@ -415,6 +417,13 @@ int view_script_step(view_script *s, viewer *v) {
       }
       /* (checked now, not when the script was read: a link may appear) */
       glint_status st = cli_check_output_format(c->to, NULL, &err);
+      if (!st && same_file(s->path, c->to)) { /* it was replaced by a PNG */
+        snprintf(err.message, sizeof err.message,
+                 "capture %.900s: that is "
+                 "this script",
+                 c->to);
+        st = GLINT_E_ARGUMENT;
+      }
       if (!st)
         st = glint_image_write(image, c->to, &err);
       glint_image_destroy(image);

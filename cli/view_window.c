@@ -404,14 +404,16 @@ static void reload_if_changed(viewer *v) {
   fprintf(stderr, "glint: reloaded %s\n", v->opt->scene);
 }
 
-/* SCENE-NNNN.png, the first that does not exist, rendered by glint_render
- * at the window's size with the current camera and settings. */
+/* SCENE-NNNN.png, the first name that is not taken (a link to nothing
+ * takes its name too: it blocked every screenshot), rendered by
+ * glint_render at the window's size with the current camera and
+ * settings. */
 static void screenshot(viewer *v) {
   char path[400];
   struct stat sb;
   for (int i = 1; i < 100000; i++) {
     snprintf(path, sizeof path, "%s-%04d.png", v->stem, i);
-    if (stat(path, &sb) != 0 && errno == ENOENT)
+    if (lstat(path, &sb) != 0 && errno == ENOENT)
       break;
   }
   glint_error err;
@@ -428,7 +430,7 @@ static void screenshot(viewer *v) {
       glint_image_write(image, path, &err)) {
     cli_error("screenshot: %s", err.message);
   } else {
-    char json[256];
+    char json[512];
     view_camera_json(&v->camera, json, sizeof json);
     printf("wrote %s (%dx%d, %d spp, depth %d, %s), %s\n", path, rs.width,
            rs.height, rs.spp, rs.max_depth,
@@ -445,7 +447,7 @@ int view_idle(const viewer *v) {
 }
 
 void view_print_camera(const viewer *v) {
-  char json[256];
+  char json[512];
   view_camera_json(&v->camera, json, sizeof json);
   printf("%s\n", json);
   fflush(stdout);

@@ -158,6 +158,12 @@ void glint_free(void *memory);
 glint_status glint_scene_set_camera(glint_scene *scene,
                                     const glint_camera *camera,
                                     glint_error *error);
+/* Whether glint renders from `camera`: the checks glint_scene_set_camera
+ * and a frame's own camera (glint_frame_settings) make. An application
+ * that moves its camera frame by frame keeps the last one that passes (a
+ * camera dollied far out and back in can round from and at into one
+ * point, or its view onto up). */
+glint_status glint_camera_check(const glint_camera *camera, glint_error *error);
 glint_status glint_scene_set_resolution(glint_scene *scene, int width,
                                         int height, glint_error *error);
 glint_status glint_scene_set_background(glint_scene *scene, glint_vec3 color,

@@ -101,6 +101,29 @@ static void turn_pan_fly_and_dolly(void **state) {
                 fabs(ends[i].y) <= GLINT_MAX_COORDINATE &&
                 fabs(ends[i].z) <= GLINT_MAX_COORDINATE);
   assert_true(dist(c.from, c.at) > 1e13); /* it did move far */
+
+  /* Nor a camera glint refuses some other way: 20 000 moves of every kind
+   * with arguments as large as a script's drags, the camera checked after
+   * each (dollied back in from 1e14, from and at rounded into one point or
+   * the view onto up, and the viewer ended with "'up' is zero or parallel
+   * to the view direction"). */
+  c = start;
+  uint64_t seed = 1;
+  for (int i = 0; i < 20000; i++) {
+    seed = seed * 6364136223846793005u + 1442695040888963407u;
+    double a = (double)(int32_t)(seed >> 32) / 2147.483648; /* +-1e6 */
+    double b = (double)(int32_t)(seed & 0xffffffffu) / 2147.483648;
+    switch ((seed >> 29) % 5) {
+    case 0: view_orbit(&c, a, b); break;
+    case 1: view_turn(&c, a, b); break;
+    case 2: view_pan(&c, a / 1e3, b / 1e3, 4.0 / 3.0); break;
+    case 3: view_dolly(&c, pow(10, a / 2e5)); break;
+    default: view_fly(&c, a * 1e8, b * 1e8, a); break;
+    }
+    glint_error e;
+    if (glint_camera_check(&c, &e) != GLINT_OK)
+      fail_msg("move %d: %s", i, e.message);
+  }
 }
 
 static void camera_json_pastes_into_a_scene(void **state) {
@@ -108,18 +131,29 @@ static void camera_json_pastes_into_a_scene(void **state) {
   glint_camera c = start;
   view_orbit(&c, 37, 12);
   c.fov_x_degrees = 47.5;
-  char json[256], scene_text[512];
-  view_camera_json(&c, json, sizeof json);
-  snprintf(scene_text, sizeof scene_text, "{%s, \"objects\": []}", json);
-  glint_scene *scene;
-  ASSERT_OK(glint_scene_load_memory(scene_text, strlen(scene_text),
-                                    "pasted.json", &scene, &e_));
-  glint_scene_info info;
-  glint_scene_get_info(scene, &info);
-  assert_vec(info.camera.from, c.from, 1e-5);
-  assert_vec(info.camera.at, c.at, 1e-5);
-  assert_true(info.camera.fov_x_degrees == 47.5);
-  glint_scene_destroy(scene);
+  /* and far out, where six digits made from and at one point */
+  glint_camera far = {{7.63086016163240e14, -6.389348129689745e14, 1e-300},
+                      {7.630860161632403e14, -6.389348129689746e14, 0.1},
+                      {0, 1, 0},
+                      60};
+  const glint_camera *cams[2] = {&c, &far};
+  for (int k = 0; k < 2; k++) {
+    char json[512], scene_text[1024];
+    view_camera_json(cams[k], json, sizeof json);
+    snprintf(scene_text, sizeof scene_text, "{%s, \"objects\": []}", json);
+    glint_scene *scene;
+    ASSERT_OK(glint_scene_load_memory(scene_text, strlen(scene_text),
+                                      "pasted.json", &scene, &e_));
+    glint_scene_info info;
+    glint_scene_get_info(scene, &info);
+    assert_vec(info.camera.from, cams[k]->from, 0); /* read back exactly */
+    assert_vec(info.camera.at, cams[k]->at, 0);
+    assert_true(info.camera.fov_x_degrees == cams[k]->fov_x_degrees);
+    glint_scene_destroy(scene);
+  }
+  char json[512];
+  view_camera_json(&start, json, sizeof json); /* in the fewest digits */
+  assert_non_null(strstr(json, "\"from\": [0, 2, 6], \"at\": [0, 1, 0]"));
 }
 
 /* Draws `text` at scale 1 into a buffer one cell wider and taller than the

@@ -233,6 +233,23 @@ copy_refused "copy same.json fifo" "the destination is not a regular file"
 copy_refused "copy fifo from-fifo.json" \
   "cannot copy fifo to from-fifo.json: not a regular file"
 [ ! -e from-fifo.json ] || fail "copy from a FIFO made from-fifo.json"
+# ...nor onto the script itself, nor a capture (the script became a PNG).
+copy_refused "copy same.json copy.txt" \
+  "cannot copy same.json to copy.txt: the destination is this script"
+printf 'wait\ncapture self.png\nquit\n' >self.png
+cp self.png self-kept.txt
+script_refused self.png "self.png:2: capture self.png: that is this script"
+cmp -s self.png self-kept.txt || fail "capture replaced the script"
+# A link to nothing takes its screenshot's number (it blocked every
+# screenshot: "cannot write here").
+cp good.json shot.json
+ln -s /nonexistent/x shot-0001.png
+printf 'wait\nkey space\nquit\n' >shot.txt
+timeout 20 "$glint" view shot.json -W 32 -H 24 --script shot.txt \
+  >out.txt 2>err.txt
+rc=$?
+[ $rc -eq 0 ] || fail "screenshot past a dangling link: exit status $rc"
+[ -f shot-0002.png ] || fail "no screenshot past a dangling link"
 # A copy that fails leaves the destination as it was: from a missing file,
 # TO was emptied (and a missing TO created empty).
 cp good.json kept.json

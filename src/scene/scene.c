@@ -126,6 +126,11 @@ glint_status gli_camera_check(const glint_camera *c, glint_error *error) {
   return gli_camera_check_field(c, &unused, error);
 }
 
+glint_status glint_camera_check(const glint_camera *c, glint_error *error) {
+  GLI_NOT_NULL(c, "camera", error);
+  return gli_camera_check(c, error);
+}
+
 glint_status glint_scene_set_camera(glint_scene *s, const glint_camera *c,
                                     glint_error *error) {
   GLI_NOT_NULL(s, "scene", error);
