@@ -462,6 +462,11 @@ int bench_parse(int argc, char **argv, bench_options *o) {
     int n = split_list(backend_list, items, MAX_ITEMS);
     for (int i = 0; i < n; i++) {
       glint_backend b;
+      if (!*items[i]) { /* as --scenes says it ("unknown backend ''") */
+        cli_error("--backends: an empty name in the list (a comma at either "
+                  "end, or two together)");
+        return EXIT_USAGE;
+      }
       if (glint_backend_parse(items[i], &b, &err)) {
         cli_error("--backends: %s", err.message);
         return EXIT_USAGE;

@@ -738,6 +738,8 @@ static void bench_errors(void **state) {
                      "bench", "-t", all_cpus);
   EXPECT_USAGE_ERROR("--backends: sse is in the list twice", "bench",
                      "--backends", "sse,sse");
+  EXPECT_USAGE_ERROR("--backends: an empty name in the list", "bench",
+                     "--backends", "auto,");
   EXPECT_USAGE_ERROR("--depths: '1-2-3' is not a value or a range A-B", "bench",
                      "--depths", "1-2-3");
   EXPECT_USAGE_ERROR("--threads: give a list such as 1 or 1,2", "bench", "-t",
