@@ -29,10 +29,11 @@ typedef struct viewer {
   SDL_Window *window;
   SDL_Renderer *sdl;
   SDL_Texture *texture;
-  int win_w, win_h;  /* the window's pixels: the frame size */
-  double user_scale; /* [ and ] */
-  double auto_scale; /* lowered while moving to keep the budget */
-  int rw, rh;        /* the size rendered at now */
+  int win_w, win_h;           /* the window's pixels: the frame size */
+  int windowed_w, windowed_h; /* its size before F made it fullscreen */
+  double user_scale;          /* [ and ] */
+  double auto_scale;          /* lowered while moving to keep the budget */
+  int rw, rh;                 /* the size rendered at now */
   /* This pass (then the average of all, once added to the sum); the
    * passes so far, summed. */
   glint_film *pass, *sum;

@@ -615,10 +615,17 @@ static int on_key(viewer *v, const SDL_KeyboardEvent *key) {
     v->camera = v->home;
     v->moving = 1;
   } else if (k == SDLK_f) {
-    Uint32 flags = SDL_GetWindowFlags(v->window);
-    SDL_SetWindowFullscreen(v->window, flags & SDL_WINDOW_FULLSCREEN_DESKTOP
-                                           ? 0
-                                           : SDL_WINDOW_FULLSCREEN_DESKTOP);
+    if (SDL_GetWindowFlags(v->window) & SDL_WINDOW_FULLSCREEN_DESKTOP) {
+      /* back to the size it had: without a window manager (or with the
+       * dummy driver) leaving fullscreen kept the screen's size, and sent
+       * no size change, so the view went on rendering at it */
+      SDL_SetWindowFullscreen(v->window, 0);
+      SDL_SetWindowSize(v->window, v->windowed_w, v->windowed_h);
+      view_resize(v, v->windowed_w, v->windowed_h);
+    } else {
+      v->windowed_w = v->win_w, v->windowed_h = v->win_h;
+      SDL_SetWindowFullscreen(v->window, SDL_WINDOW_FULLSCREEN_DESKTOP);
+    }
   } else if (k == SDLK_PAGEUP) {
     v->speed *= 2;
   } else if (k == SDLK_PAGEDOWN) {

@@ -250,6 +250,15 @@ timeout 20 "$glint" view shot.json -W 32 -H 24 --script shot.txt \
 rc=$?
 [ $rc -eq 0 ] || fail "screenshot past a dangling link: exit status $rc"
 [ -f shot-0002.png ] || fail "no screenshot past a dangling link"
+# F twice: back at the window's size (it went on rendering, and capturing,
+# at the screen's).
+printf 'wait\nkey f\nwait\nkey f\nwait\ncapture back.ppm\nquit\n' >full.txt
+timeout 20 "$glint" view shot.json -W 48 -H 36 --script full.txt \
+  >out.txt 2>err.txt
+rc=$?
+[ $rc -eq 0 ] || fail "fullscreen and back: exit status $rc"
+[ "$(head -c 11 back.ppm | tr '\n' ' ')" = "P6 48 36 25" ] ||
+  fail "fullscreen and back: not 48x36 again"
 # A copy that fails leaves the destination as it was: from a missing file,
 # TO was emptied (and a missing TO created empty).
 cp good.json kept.json
