@@ -160,7 +160,9 @@ static int parse_line(view_script *s, char *text, int line, command *c) {
           : want;
   for (int i = first_number; i < want; i++) {
     double x = strtod(word[i], &end);
-    if (*end || end == word[i] || isnan(x))
+    /* (strtod reads hexadecimal, which no other number of glint's is:
+     * sleep 0x2 slept 2 s) */
+    if (*end || end == word[i] || isnan(x) || strpbrk(word[i], "xX"))
       return script_error(s, line, "not a number:", word[i]);
     /* an underflow (ERANGE) reads as 0, as the options read it */
     /* (a script that waits hours is a typo, not a test) */

@@ -183,6 +183,8 @@ printf 'drag left x 5\n' >notnum.txt
 script_refused bignum.txt "bignum.txt:1: a number outside -1e6..1e6: '1e9'"
 script_refused longsleep.txt "longsleep.txt:1: a time past 3600 seconds: '100000'"
 script_refused notnum.txt "notnum.txt:1: not a number: 'x'"
+printf 'sleep 0x2\n' >hex.txt
+script_refused hex.txt "hex.txt:1: not a number: '0x2'"
 # Pixels and notches are whole (wheel 0.5 did nothing, resize 1.5 2.7 made
 # a 1x2 window); a time out of range says so (it said -1e6..1e6).
 printf 'wheel 0.5\n' >halfwheel.txt
