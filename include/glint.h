@@ -669,7 +669,7 @@ glint_status glint_film_check_writable(const char *path, glint_error *error);
 typedef struct glint_world glint_world;
 
 /* Converts the scene and builds its BVH (the cost of a render that does not
- * depend on the camera). The BVH of a scene of 32 768 primitives or more
+ * depend on the camera). The BVH of a scene of 16 384 primitives or more
  * is built on every core this process may use (glint_cpu_count), as
  * Embree's commit does, and is the same tree whatever their number;
  * glint_render builds on its settings' threads. `stats`, when given,
