@@ -299,6 +299,31 @@ static void writes_through_a_link(void **state) {
   glint_image_destroy(small);
 }
 
+/* Runs check(arg) in a child process, which has become nobody where this
+ * one is root, with the test folder open to it; returns whether check
+ * returned 1. */
+static int as_nobody(int (*check)(const void *arg), const void *arg) {
+  chmod(dir, 0777);
+  pid_t pid = fork();
+  if (pid == 0) {
+    if (geteuid() == 0 && (setgid(65534) != 0 || setuid(65534) != 0))
+      _exit(2);
+    _exit(check(arg) ? 0 : 1);
+  }
+  int status;
+  waitpid(pid, &status, 0);
+  chmod(dir, 0700);
+  return WIFEXITED(status) && WEXITSTATUS(status) == 0;
+}
+
+static int read_only_refused(const void *path) {
+  glint_image *small = pattern(3, 3);
+  glint_error e;
+  int st = glint_image_write(small, path, &e);
+  glint_image_destroy(small);
+  return st == GLINT_E_IO && strstr(e.message, "ro.ppm: cannot write");
+}
+
 /* A file its user may not write is refused, not replaced by the rename
  * (which the folder alone allows). As root, the write is tried by a child
  * that has become nobody, on a file of root's. */
@@ -310,22 +335,7 @@ static void read_only_file_is_kept(void **state) {
   fputs("original", f);
   fclose(f);
   chmod(p, 0444);
-  chmod(dir, 0777);
-  pid_t pid = fork();
-  if (pid == 0) {
-    if (geteuid() == 0 && (setgid(65534) != 0 || setuid(65534) != 0))
-      _exit(2);
-    glint_image *small = pattern(3, 3);
-    glint_error e;
-    int st = glint_image_write(small, p, &e);
-    glint_image_destroy(small);
-    _exit(st == GLINT_E_IO && strstr(e.message, "ro.ppm: cannot write") ? 0
-                                                                        : 1);
-  }
-  int status;
-  waitpid(pid, &status, 0);
-  chmod(dir, 0700);
-  assert_true(WIFEXITED(status) && WEXITSTATUS(status) == 0);
+  assert_true(as_nobody(read_only_refused, p));
   assert_still_original(p);
   unlink(p);
 }
@@ -335,6 +345,24 @@ static void read_only_file_is_kept(void **state) {
  * anyone write it: the rename after the render would be refused. Run as
  * root, whose child becomes nobody to write; another user's file cannot be
  * made otherwise: skipped. */
+static int others_refused(const void *folder) {
+  char theirs[160], mine[160];
+  snprintf(theirs, sizeof theirs, "%s/theirs.ppm", (const char *)folder);
+  snprintf(mine, sizeof mine, "%s/mine.ppm", (const char *)folder);
+  glint_image *small = pattern(3, 3);
+  glint_error e;
+  int refused = glint_image_check_writable(theirs, &e) == GLINT_E_IO &&
+                strstr(e.message, "theirs.ppm: cannot replace: it belongs to "
+                                  "another user, in a folder with the sticky "
+                                  "bit") &&
+                glint_image_write(small, theirs, &e) == GLINT_E_IO;
+  /* a new file there, and then replacing one's own, are fine */
+  int written = glint_image_write(small, mine, &e) == GLINT_OK &&
+                glint_image_write(small, mine, &e) == GLINT_OK;
+  glint_image_destroy(small);
+  return refused && written;
+}
+
 static void sticky_folder_keeps_others_files(void **state) {
   (void)state;
   if (geteuid() != 0)
@@ -349,28 +377,7 @@ static void sticky_folder_keeps_others_files(void **state) {
   fputs("original", f);
   fclose(f);
   chmod(p, 0666);
-  chmod(dir, 0777);
-  pid_t pid = fork();
-  if (pid == 0) {
-    if (setgid(65534) != 0 || setuid(65534) != 0)
-      _exit(2);
-    glint_image *small = pattern(3, 3);
-    glint_error e;
-    int refused = glint_image_check_writable(p, &e) == GLINT_E_IO &&
-                  strstr(e.message, "theirs.ppm: cannot replace: it belongs "
-                                    "to another user, in a folder with the "
-                                    "sticky bit") &&
-                  glint_image_write(small, p, &e) == GLINT_E_IO;
-    /* a new file there, and then replacing one's own, are fine */
-    int written = glint_image_write(small, mine, &e) == GLINT_OK &&
-                  glint_image_write(small, mine, &e) == GLINT_OK;
-    glint_image_destroy(small);
-    _exit(refused && written ? 0 : 1);
-  }
-  int status;
-  waitpid(pid, &status, 0);
-  chmod(dir, 0700);
-  assert_true(WIFEXITED(status) && WEXITSTATUS(status) == 0);
+  assert_true(as_nobody(others_refused, folder));
   assert_still_original(p);
   unlink(p);
   unlink(mine);
