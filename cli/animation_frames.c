@@ -262,9 +262,14 @@ static int check_frames(const glint_scene *scene, const char *scene_name,
 }
 
 /* The frames' files told apart by written_file: a table of `room` (a power
- * of two) slots of frame numbers, hashed by the file's name. */
+ * of two) slots, each a file and the frame written to it (NULL: empty). */
+typedef struct frame_target {
+  char *file;
+  int frame;
+} frame_target;
+
 typedef struct frame_targets {
-  int *frame; /* INT_MIN: empty */
+  frame_target *slot;
   size_t room;
 } frame_targets;
 
@@ -275,24 +280,21 @@ static uint64_t name_hash(const char *s) {
   return h;
 }
 
-/* Notes frame f's file `target`; returns the earlier frame whose file it
- * is, or INT_MIN when none. */
-static int note_target(frame_targets *t, const frame_files *files, int f,
-                       const char *target) {
-  size_t i = name_hash(target) & (t->room - 1);
-  for (; t->frame[i] != INT_MIN; i = (i + 1) & (t->room - 1)) {
-    char path[4096];
-    if (frame_path(path, sizeof path, files->name, files->pattern, t->frame[i],
-                   files->digits))
-      continue;
-    char *other = written_file(path);
-    int same = other && strcmp(other, target) == 0;
-    free(other);
-    if (same)
-      return t->frame[i];
-  }
-  t->frame[i] = f;
+/* Notes that frame f is written to `file`: the table takes it, and
+ * INT_MIN; or the earlier frame written there (file stays the caller's). */
+static int note_target(frame_targets *t, int f, char *file) {
+  size_t i = name_hash(file) & (t->room - 1);
+  for (; t->slot[i].file; i = (i + 1) & (t->room - 1))
+    if (strcmp(t->slot[i].file, file) == 0)
+      return t->slot[i].frame;
+  t->slot[i] = (frame_target){file, f};
   return INT_MIN;
+}
+
+static void targets_free(frame_targets *t) {
+  for (size_t i = 0; t->slot && i < t->room; i++)
+    free(t->slot[i].file);
+  free(t->slot);
 }
 
 /* frame_files_path, noting in `made` the folders it makes. */
@@ -361,13 +363,12 @@ int frame_files_init(frame_files *files, const glint_scene *scene,
   frame_targets targets = {NULL, 16};
   while (targets.room < 2 * ((size_t)o->last_frame - o->first_frame + 1))
     targets.room *= 2;
-  if (!refused && !(targets.frame = malloc(targets.room * sizeof(int)))) {
+  if (!refused &&
+      !(targets.slot = calloc(targets.room, sizeof *targets.slot))) {
     cli_error("out of memory checking %d frames' files",
               o->last_frame - o->first_frame + 1);
     refused = 1;
   }
-  for (size_t i = 0; !refused && i < targets.room; i++)
-    targets.frame[i] = INT_MIN;
   for (int f = o->first_frame; f <= o->last_frame && !refused; f++) {
     char path[4096];
     struct stat sb;
@@ -380,17 +381,20 @@ int frame_files_init(frame_files *files, const glint_scene *scene,
     }
     refused = frame_file(files, f, path, sizeof path, made);
     char *target = refused ? NULL : written_file(path);
-    int earlier = target ? note_target(&targets, files, f, target) : INT_MIN;
     if (!refused && !target) {
       cli_error("out of memory checking frame %d's file", f);
       refused = 1;
-    } else if (earlier != INT_MIN) {
+      break;
+    }
+    int earlier = refused ? INT_MIN : note_target(&targets, f, target);
+    if (earlier != INT_MIN) {
       char first[4096];
       if (frame_path(first, sizeof first, files->name, files->pattern, earlier,
                      files->digits) == 0)
         cli_error("frames %d and %d would both be written to %s (as %s and "
                   "%s, through a link); no frame was written",
                   earlier, f, target, first, path);
+      free(target);
       refused = 1;
     } else if (!refused && cli_check_output_format(path, scene_name, &err)) {
       cli_error("frame %d: %s; no frame was written", f, err.message);
@@ -401,9 +405,8 @@ int frame_files_init(frame_files *files, const glint_scene *scene,
       cli_error("frame %d: %s; no frame was written", f, err.message);
       refused = 1;
     }
-    free(target);
   }
-  free(targets.frame);
+  targets_free(&targets);
   if (refused)
     forget_made_folders(made, 1);
   return refused ? -1 : 0;

@@ -1,6 +1,8 @@
 #define _DEFAULT_SOURCE /* realpath */
 #include "files.h"
 
+#include <glint.h>
+
 #include <errno.h>
 #include <fcntl.h>
 #include <stdio.h>
@@ -17,32 +19,23 @@ int same_file(const char *a, const char *b) {
 }
 
 char *written_file(const char *path) {
-  char at[4096];
-  snprintf(at, sizeof at, "%s", path);
-  for (int hops = 0; hops < 40; hops++) { /* Linux's own limit */
-    struct stat sb;
-    char to[4096];
-    ssize_t n;
-    if (lstat(at, &sb) != 0 || !S_ISLNK(sb.st_mode) ||
-        (n = readlink(at, to, sizeof to - 1)) < 0)
-      break;
-    to[n] = '\0';
-    char *slash = strrchr(at, '/');
-    size_t folder = to[0] == '/' || !slash ? 0 : (size_t)(slash - at) + 1;
-    if (folder + (size_t)n >= sizeof at)
-      break;
-    memmove(at + folder, to, (size_t)n + 1); /* relative to its folder */
-  }
+  /* (a loop of links: the name itself, which the writers then refuse) */
+  char *at = glint_output_file(path);
+  if (!at && !(at = strdup(path)))
+    return NULL;
   char *slash = strrchr(at, '/');
   const char *base = slash ? slash + 1 : at;
   if (slash)
     *slash = '\0';
   char *folder = realpath(slash ? (at[0] ? at : "/") : ".", NULL);
-  size_t size = (folder ? strlen(folder) : strlen(at)) + strlen(base) + 2;
+  const char *shown = folder ? folder : at;
+  size_t size = strlen(shown) + strlen(base) + 2;
   char *file = malloc(size);
-  if (file)
-    snprintf(file, size, "%s/%s", folder ? folder : at, base);
+  if (file) /* (the root folder is "/" itself) */
+    snprintf(file, size, "%s%s%s", shown,
+             shown[0] && shown[strlen(shown) - 1] == '/' ? "" : "/", base);
   free(folder);
+  glint_free(at);
   return file;
 }
 

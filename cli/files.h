@@ -14,10 +14,9 @@
 int same_file(const char *a, const char *b);
 
 /* The file that writing `path` replaces, named without links (a malloc'd
- * string; NULL out of memory): glint's writers write through a link to
- * what it names, so two names can lead to one file (a link to a file, or
- * in a folder that is a link). Links are followed to a name that is not
- * one, whose folder realpath resolves. */
+ * string; NULL out of memory): glint_output_file's, its folder resolved
+ * by realpath, so that two names of one file (a link to a file, or in a
+ * folder that is a link) compare equal. */
 char *written_file(const char *path);
 
 /* Whether `path` is named as glint's inputs are: a scene or a mesh (.nff,

@@ -369,6 +369,14 @@ glint_image_format glint_image_format_from_path(const char *path);
 /* Checks that `path` has a known extension and that its folder accepts a new
  * file, without leaving anything behind. Call it before a long render. */
 glint_status glint_image_check_writable(const char *path, glint_error *error);
+/* The file that writing an image or film to `path` replaces: glint's
+ * writers write through a symbolic link to the file it names (as a
+ * shell's > does, the link staying a link), so two names can lead to one
+ * file. `path` itself where it is no link; else where its links lead
+ * (realpath(3) where that exists, else the name the last link gives). A
+ * string to free with glint_free; NULL out of memory or for a loop of
+ * links. */
+char *glint_output_file(const char *path);
 
 /* PNG compression: GLINT_PNG_FAST (the default) writes several times faster
  * than zlib's default at a size 10-90% larger (run-length matches on the
@@ -671,8 +679,8 @@ typedef struct glint_world glint_world;
 /* Converts the scene and builds its BVH (the cost of a render that does not
  * depend on the camera). The BVH of a scene of 16 384 primitives or more
  * is built on every core this process may use (glint_cpu_count), as
- * Embree's commit does, and is the same tree whatever their number;
- * glint_render builds on its settings' threads. `stats`, when given,
+ * Embree's commit does (glint_render's too, whatever its settings'
+ * threads), and is the same tree whatever their number. `stats`, when given,
  * receives prepare_seconds, bvh_nodes, bvh_bytes, bvh_build_seconds and
  * scene_bytes. */
 glint_status glint_world_commit(const glint_scene *scene, glint_world **world,

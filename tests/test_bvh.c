@@ -268,8 +268,8 @@ static void large_scene_packet_tree(void **state) {
   gli_bvh_free(&built);
   glint_scene_destroy(moved);
 
-  /* Built on several threads, the tree is the same, node for node (the
-   * parts that threads build apart, accel/bvh.c, grow_in_parts). */
+  /* Built on several threads, the tree is the same, node for node (grown
+   * in slots placed by the splits alone, accel/bvh.c, grow_tree). */
   gli_bvh one;
   ASSERT_OK(gli_bvh_build(g, 1, &one, &e_));
   for (int threads = 2; threads <= 9; threads += 7) {

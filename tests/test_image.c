@@ -1,5 +1,6 @@
 /* PNG, BMP and PPM written and read back pixel by pixel; the atomic write
  * never leaves a partial file nor destroys an existing one. */
+#define _DEFAULT_SOURCE /* realpath */
 #include "test_util.h"
 
 #include <dirent.h>
@@ -251,6 +252,14 @@ static void writes_through_a_link(void **state) {
   fputs("original", f);
   fclose(f);
   assert_int_equal(symlink("target.ppm", link), 0);
+  /* where a write goes: the link's file, or the name itself */
+  char *to = glint_output_file(link), *real = realpath(target, NULL);
+  assert_string_equal(to, real);
+  glint_free(to);
+  free(real);
+  to = glint_output_file(target);
+  assert_string_equal(to, target);
+  glint_free(to);
   glint_image *small = pattern(3, 3), *back;
   ASSERT_OK(glint_image_write(small, link, &e_));
   struct stat sb;
@@ -290,6 +299,7 @@ static void writes_through_a_link(void **state) {
   /* A loop of links is refused, and stays. */
   unlink(middle);
   assert_int_equal(symlink("link.ppm", middle), 0);
+  assert_null(glint_output_file(link));
   assert_int_equal(glint_image_write(small, link, &e), GLINT_E_IO);
   assert_non_null(strstr(e.message, "Too many levels of symbolic links"));
   assert_int_equal(lstat(link, &sb), 0);
@@ -597,6 +607,10 @@ static void damaged_files_are_refused(void **state) {
   assert_int_equal(glint_image_read(path, &got, &e), GLINT_E_PARSE);
   assert_non_null(strstr(e.message, "c.ppm: bad PPM header: P6 is not "
                                     "followed by white space"));
+  write_bytes(path, "P6", 2);
+  assert_int_equal(glint_image_read(path, &got, &e), GLINT_E_PARSE);
+  assert_non_null(strstr(e.message, "c.ppm: bad PPM header: cut short (the "
+                                    "file ends after P6)"));
   write_bytes(path, "P6\n8", 4);
   assert_int_equal(glint_image_read(path, &got, &e), GLINT_E_PARSE);
   assert_non_null(strstr(e.message, "c.ppm: bad PPM header: the width is cut "

@@ -19,7 +19,7 @@ static const gli_bvh test_no_bvh;
 
 static void *test_view_open(const glint_scene *scene, data_kind kind,
                             glint_accel accel, test_view *tv) {
-  ASSERT_OK(gli_world_create(scene, 0, 1, &tv->world, &e_));
+  ASSERT_OK(gli_world_create(scene, 0, &tv->world, &e_));
   const void *data;
   ASSERT_OK(gli_world_data(tv->world, kind, &data, &e_));
   const gli_bvh *bvh = &test_no_bvh;

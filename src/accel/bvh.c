@@ -534,6 +534,8 @@ static int grow_tree(builder *b, task root, uint32_t n, int threads,
                      gli_bvh_node **nodes, uint32_t *count, int *depth) {
   if (threads < 2 || n < PARALLEL_MIN_REFS)
     threads = 1;
+  else if ((uint32_t)threads > n / SHARE_MIN_REFS) /* more would idle */
+    threads = (int)(n / SHARE_MIN_REFS);
   grower g = {b,
               nodes_alloc(2 * (size_t)n),
               threads,
@@ -567,13 +569,15 @@ static int grow_tree(builder *b, task root, uint32_t n, int threads,
   free(g.queue), free(stack), free(helpers), free(ids);
   pthread_mutex_destroy(&g.lock);
   pthread_cond_destroy(&g.more);
-  *count = 1 + 2 * g.splits;
-  *nodes = nodes_alloc(*count);
-  if (*nodes)
-    lay_out(g.slots, *nodes);
+  uint32_t used = 1 + 2 * g.splits;
+  gli_bvh_node *laid = nodes_alloc(used);
+  if (laid)
+    lay_out(g.slots, laid);
   nodes_free(g.slots);
-  if (!*nodes)
+  if (!laid)
     return -1;
+  *nodes = laid;
+  *count = used;
   *depth = g.depth;
   return 0;
 }

@@ -322,6 +322,15 @@ static char *link_target(const char *path) {
   return real || errno != ENOENT ? real : dangling_target(path);
 }
 
+char *glint_output_file(const char *path) {
+  if (!path)
+    return NULL;
+  struct stat sb;
+  if (lstat(path, &sb) != 0 || !S_ISLNK(sb.st_mode))
+    return strdup(path);
+  return link_target(path);
+}
+
 glint_status gli_check_folder_writable(const char *path, glint_error *error) {
   char *target = link_target(path);
   char *temp;

@@ -66,6 +66,10 @@ glint_status gli_ppm_decode(FILE *f, const char *path, glint_image **out,
     return gli_fail(error, GLINT_E_PARSE, "%s: not a binary PPM (P6) file",
                     path);
   int after = fgetc(f); /* white space or a comment, as after each number */
+  if (after == EOF)
+    return gli_fail(error, GLINT_E_PARSE,
+                    "%s: bad PPM header: cut short (the file ends after P6)",
+                    path);
   if (after != '#' && !isspace(after))
     return gli_fail(error, GLINT_E_PARSE,
                     "%s: bad PPM header: P6 is not followed by white space",

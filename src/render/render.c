@@ -44,7 +44,7 @@ static glint_status render_once(const glint_scene *scene,
   double t0 = gli_now();
   glint_world *world = NULL;
   glint_renderer *renderer = NULL;
-  if ((st = gli_world_create(scene, 1, settings->threads, &world, error)))
+  if ((st = gli_world_create(scene, 1, &world, error)))
     return st;
   st = glint_renderer_create(world, settings, &renderer, error);
   gli_world_release(world); /* the renderer holds its own reference */

@@ -7,7 +7,7 @@
 
 #include <stdlib.h>
 
-glint_status gli_world_create(const glint_scene *scene, int borrow, int threads,
+glint_status gli_world_create(const glint_scene *scene, int borrow,
                               glint_world **out, glint_error *error) {
   if (!scene)
     return gli_fail(error, GLINT_E_ARGUMENT, "no scene to commit");
@@ -26,7 +26,6 @@ glint_status gli_world_create(const glint_scene *scene, int borrow, int threads,
   atomic_init(&w->refs, 1);
   w->extent = gli_scene_extent(w->scene);
   w->epsilon = gli_epsilon_at(w->extent, w->scene->camera.from);
-  w->build_threads = threads > 0 ? threads : glint_cpu_count();
   pthread_mutex_init(&w->lock, NULL);
   *out = w;
   return GLINT_OK;
@@ -53,7 +52,7 @@ glint_status gli_world_bvh(glint_world *w, int wide, const gli_bvh **bvh,
   pthread_mutex_lock(&w->lock);
   double t0 = gli_now();
   if (!w->bvh_built) {
-    st = gli_bvh_build(w->scene, w->build_threads, &w->bvh, error);
+    st = gli_bvh_build(w->scene, glint_cpu_count(), &w->bvh, error);
     w->bvh_built = st == GLINT_OK;
   }
   /* (renderers walking the tree meanwhile read nothing this writes) */
@@ -128,7 +127,7 @@ glint_status glint_world_commit(const glint_scene *scene, glint_world **out,
   GLI_NOT_NULL(scene, "scene", error);
   GLI_NOT_NULL(out, "world", error);
   glint_world *w = NULL;
-  glint_status st = gli_world_create(scene, 0, 0, &w, error);
+  glint_status st = gli_world_create(scene, 0, &w, error);
   if (st)
     return st;
   return finish_commit(w, out, stats, error);
@@ -154,7 +153,7 @@ glint_status glint_world_commit_at(const glint_scene *scene, double time,
   if (st)
     return st;
   glint_world *w = NULL;
-  if ((st = gli_world_create(still, 1, 0, &w, error))) {
+  if ((st = gli_world_create(still, 1, &w, error))) {
     glint_scene_destroy(still);
     return st;
   }

@@ -18,8 +18,7 @@ struct glint_world {
   const glint_scene *scene;
   glint_scene *owned_scene; /* the copy, or NULL when the scene is borrowed */
   double epsilon;           /* docs/specification.md §3, fixed at commit */
-  double extent;     /* the primitives' scale, for a frame camera's epsilon */
-  int build_threads; /* the BVH build's (gli_bvh_build) */
+  double extent; /* the primitives' scale, for a frame camera's epsilon */
   pthread_mutex_t lock;
   int bvh_built;
   gli_bvh bvh;
@@ -31,8 +30,8 @@ struct glint_world {
  * backend and accel use). `borrow` uses the scene itself instead of a copy:
  * only for a world that cannot outlive the call that made it, as
  * glint_render's (a copy of a 32k-triangle mesh costs milliseconds). Its
- * BVH will be built on `threads` threads (0: glint_cpu_count's). */
-glint_status gli_world_create(const glint_scene *scene, int borrow, int threads,
+ * BVH is built on every core the process may use (glint_cpu_count). */
+glint_status gli_world_create(const glint_scene *scene, int borrow,
                               glint_world **world, glint_error *error);
 void gli_world_retain(glint_world *world);
 void gli_world_release(glint_world *world);
