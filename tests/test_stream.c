@@ -146,6 +146,57 @@ static void waiting_shadow_rays_match(void **state) {
   }
 }
 
+/* Coefficients at glint.h's limit (kr = kt = 1e6) overflow a float weight
+ * within a few bounces. The streams add each hit's part times its ray's
+ * weight, where an infinite weight met a shadowed light's zero as NaN and
+ * blacked out the glass sphere where it shows the floor's checks, whose
+ * colours have channels of 0 (7 dB against scalar-double); the ray trees
+ * of the other backends saturate it. Held at GLI_MAX_RAY_WEIGHT, the
+ * streams' weights saturate it too: the same 8-bit image as scalar-double,
+ * at depths where the weight passes 1e38 (8 bounces and more). */
+static void coefficients_at_the_limit_saturate(void **state) {
+  (void)state;
+  static const char json[] =
+      "{\"camera\": {\"from\": [0, 0, 5], \"at\": [0, 0, 0], \"up\": [0, 1, 0],"
+      " \"fov\": 40},"
+      " \"background\": [0.2, 0.3, 0.9],"
+      " \"lights\": [{\"position\": [5, 5, 5], \"color\": [1, 1, 1]}],"
+      " \"materials\": {"
+      "  \"glass\": {\"color\": [1, 1, 1], \"kd\": 0.1, \"ks\": 0.5, \"h\": 20,"
+      "   \"kr\": 1e6, \"kt\": 1e6, \"ior\": 1.5},"
+      "  \"floor\": {\"color\": [0.9, 0.9, 0.9], \"kd\": 0.9, \"texture\":"
+      "   {\"type\": \"checker-planar\", \"odd\": [1, 0, 0], \"even\": [0, 1, "
+      "0],"
+      "    \"size\": 0.5}}},"
+      " \"objects\": ["
+      "  {\"type\": \"plane\", \"material\": \"floor\", \"normal\": [0, 0, 1],"
+      "   \"point\": [0, 0, -2]},"
+      "  {\"type\": \"sphere\", \"material\": \"glass\", \"center\": [0, 0, 0],"
+      "   \"radius\": 1}]}";
+  glint_scene *s;
+  ASSERT_OK(
+      glint_scene_load_memory(json, sizeof json - 1, "limit.json", &s, &e_));
+  static const int depths[] = {5, 10, 20};
+  for (int di = 0; di < 3; di++) {
+    glint_image *ref =
+        render(s, GLINT_BACKEND_SCALAR_DOUBLE, 32, 32, 1, depths[di], 1, NULL);
+    for (size_t k = 0; k < 3; k++) {
+      if (backend_missing(streams[k]))
+        continue;
+      glint_image *im = render(s, streams[k], 32, 32, 1, depths[di], 1, NULL);
+      double psnr = glint_image_psnr(ref, im);
+      printf("kr = kt = 1e6, depth %2d %-13s PSNR %6.2f dB\n", depths[di],
+             glint_backend_name(streams[k]), psnr);
+      if (!isinf(psnr))
+        fail_msg("depth %d %s: PSNR %.2f dB against scalar-double", depths[di],
+                 glint_backend_name(streams[k]), psnr);
+      glint_image_destroy(im);
+    }
+    glint_image_destroy(ref);
+  }
+  glint_scene_destroy(s);
+}
+
 static void identical_across_threads_and_runs(void **state) {
   (void)state;
   glint_scene *s;
@@ -273,6 +324,7 @@ int main(int argc, char **argv) {
       cmocka_unit_test(thesis_scenes_match),
       cmocka_unit_test(spd_scenes_match_shared),
       cmocka_unit_test(waiting_shadow_rays_match),
+      cmocka_unit_test(coefficients_at_the_limit_saturate),
       cmocka_unit_test(identical_across_threads_and_runs),
       cmocka_unit_test(lanes_stay_full),
       cmocka_unit_test(every_ray_is_traced),

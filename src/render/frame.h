@@ -36,6 +36,18 @@ void gli_camera_basis_init(camera_basis *basis, const glint_camera *camera,
  * counts the rays it leaves). */
 #define GLI_MIN_RAY_WEIGHT 0x1p-24
 
+/* The largest weight a ray of the stream backends carries
+ * (render/stream_tracer.c), which add w times what each hit brings to its
+ * pixel rather than summing the ray tree from its leaves. Coefficients of
+ * up to GLINT_MAX_COLOR (kr = kt = 1e6) overflow a float weight in a few
+ * bounces, and an infinite weight times a light's zero term (a shadowed
+ * light, a black channel) is NaN, which turned a whole pixel black where
+ * the other backends saturate it. A hit brings at most a light's colour
+ * times a surface's terms, 1e6 x (1e12 + 1e6), so 2^64 (1.8e19) keeps that
+ * product finite; a weight that large saturates its pixel wherever a hit
+ * brings more than 2^-64, as the ray trees of the other backends do. */
+#define GLI_MAX_RAY_WEIGHT 0x1p64
+
 /* A shadow ray's crossings are looked for short of its light, by the
  * scene's epsilon or 2^-20 of the distance, whichever is more: a light on
  * a surface (a lamp on a wall) has that surface at the segment's very end,

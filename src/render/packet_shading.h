@@ -478,6 +478,14 @@ static ALWAYS_INLINE vmask packet_worth_tracing(vvec3 w) {
   return vf_ge(vf_max(vf_max(w.x, w.y), w.z), vf_set1(GLI_MIN_RAY_WEIGHT));
 }
 
+/* A child ray's weight, w k, held at GLI_MAX_RAY_WEIGHT (render/frame.h). */
+static ALWAYS_INLINE vvec3 packet_child_weight(vvec3 w, vfloat k) {
+  vfloat cap = vf_set1(GLI_MAX_RAY_WEIGHT);
+  vvec3 c = vv_scale(w, k);
+  c.x = vf_min(c.x, cap), c.y = vf_min(c.y, cap), c.z = vf_min(c.z, cap);
+  return c;
+}
+
 /* Beer's law (eq. 2.11) on the lanes of m that travelled inside their
  * object: color exp(-a t) per channel. */
 static ALWAYS_INLINE vvec3 packet_beer(const lane_material *lm,

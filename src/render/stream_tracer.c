@@ -358,7 +358,7 @@ static ALWAYS_INLINE vvec3 shade_hits(
     packet_secondary(&lm, &f, d, hits, &reflected, &kr, &refracted, &refract,
                      &tir);
     t->st->total_internal_reflections += (uint64_t)vm_count(tir);
-    vvec3 wt = vv_scale(w, LANE_SCALAR(&lm, kt));
+    vvec3 wt = packet_child_weight(w, LANE_SCALAR(&lm, kt));
     refract = vm_and(refract, packet_worth_tracing(wt));
     if (vm_any(refract)) {
       t->st->secondary_rays += (uint64_t)vm_count(refract);
@@ -366,7 +366,7 @@ static ALWAYS_INLINE vvec3 shade_hits(
       emit_child(t, level, TRANSMITTED, refract, f.p, refracted, wt, pixel,
                  next);
     }
-    vvec3 wr = vv_scale(w, kr);
+    vvec3 wr = packet_child_weight(w, kr);
     vmask reflect =
         vm_and(vm_and(hits, vf_gt(kr, vf_zero())), packet_worth_tracing(wr));
     if (vm_any(reflect)) {
