@@ -188,24 +188,6 @@ static void obj_triangle_scaled_and_moved(void **state) {
   glint_scene_destroy(s);
 }
 
-static void obj_polygons_are_fans(void **state) {
-  fixture *f = *state;
-  const char *p = write_text(f, "poly.obj",
-                             "v 0 0 0\nv 1 0 0\nv 1 1 0\nv 0 1 0\n"
-                             "v 0 0 1\nv 1 0 1\nv 2 1 1\nv 1 2 1\nv 0 1 1\n"
-                             "f 1 2 3 4\n"     /* quad: 2 triangles */
-                             "f 5 6 7 8 9\n"); /* pentagon: 3 */
-  glint_scene *s = load(p, 1, (V){0, 0, 0});
-  assert_int_equal(s->object_count, 1);
-  assert_int_equal(s->triangle_count, 5);
-  assert_tri(s, 0, (V){0, 0, 0}, (V){1, 0, 0}, (V){1, 1, 0});
-  assert_tri(s, 1, (V){0, 0, 0}, (V){1, 1, 0}, (V){0, 1, 0});
-  assert_tri(s, 2, (V){0, 0, 1}, (V){1, 0, 1}, (V){2, 1, 1});
-  assert_tri(s, 3, (V){0, 0, 1}, (V){2, 1, 1}, (V){1, 2, 1});
-  assert_tri(s, 4, (V){0, 0, 1}, (V){1, 2, 1}, (V){0, 1, 1});
-  glint_scene_destroy(s);
-}
-
 /* The summed signed area (in z = const planes) of triangles [from, to). */
 static double area_xy(const glint_scene *s, size_t from, size_t to) {
   double area = 0;
@@ -218,6 +200,57 @@ static double area_xy(const glint_scene *s, size_t from, size_t to) {
     area += a;
   }
   return area;
+}
+
+/* A quad is two triangles from its first corner; a larger convex face is
+ * bisected (scene/polygon.c), as NFF's polygons are: a fan of a 64-corner
+ * disc is 62 slivers from one corner, each with a box as large as the
+ * disc's, and rendered as one face of 4 096 corners 18-40 times slower
+ * than bisected. */
+static void obj_polygons_are_cut(void **state) {
+  fixture *f = *state;
+  const char *p = write_text(f, "poly.obj",
+                             "v 0 0 0\nv 1 0 0\nv 1 1 0\nv 0 1 0\n"
+                             "v 0 0 1\nv 1 0 1\nv 2 1 1\nv 1 2 1\nv 0 1 1\n"
+                             "f 1 2 3 4\n"     /* quad: 2 triangles */
+                             "f 5 6 7 8 9\n"); /* pentagon: 3 */
+  glint_scene *s = load(p, 1, (V){0, 0, 0});
+  assert_int_equal(s->object_count, 1);
+  assert_int_equal(s->triangle_count, 5);
+  assert_tri(s, 0, (V){0, 0, 0}, (V){1, 0, 0}, (V){1, 1, 0});
+  assert_tri(s, 1, (V){0, 0, 0}, (V){1, 1, 0}, (V){0, 1, 0});
+  assert_tri(s, 2, (V){0, 0, 1}, (V){1, 0, 1}, (V){2, 1, 1});
+  assert_tri(s, 3, (V){2, 1, 1}, (V){1, 2, 1}, (V){0, 1, 1});
+  assert_tri(s, 4, (V){0, 1, 1}, (V){0, 0, 1}, (V){2, 1, 1});
+  glint_scene_destroy(s);
+  /* The disc: its 62 triangles cover it, and no corner is in more than
+   * about twice the bisection's depth (a fan puts its first corner in all). */
+  enum { CORNERS = 64 };
+  const double turn = 6.283185307179586 / CORNERS;
+  char text[CORNERS * 64 + 512], *t = text;
+  for (int i = 0; i < CORNERS; i++)
+    t += sprintf(t, "v %.17g %.17g 0\n", cos(turn * i), sin(turn * i));
+  t += sprintf(t, "f");
+  for (int i = 1; i <= CORNERS; i++)
+    t += sprintf(t, " %d", i);
+  sprintf(t, "\n");
+  s = load(write_text(f, "disc.obj", text), 1, (V){0, 0, 0});
+  assert_int_equal(s->triangle_count, CORNERS - 2);
+  double area = area_xy(s, 0, s->triangle_count);
+  assert_true(fabs(area - CORNERS / 2.0 * sin(turn)) < 1e-9);
+  int most = 0;
+  for (int i = 0; i < CORNERS; i++) {
+    V c = {cos(turn * i), sin(turn * i), 0};
+    int in = 0;
+    for (size_t k = 0; k < s->triangle_count; k++)
+      for (int j = 0; j < 3; j++)
+        in += fabs(s->triangles[k].v[j].x - c.x) < 1e-9 &&
+              fabs(s->triangles[k].v[j].y - c.y) < 1e-9;
+    most = in > most ? in : most;
+  }
+  printf("64-corner disc: at most %d triangles share a corner\n", most);
+  assert_true(most <= 12); /* bisected: 10; fanned: 62 */
+  glint_scene_destroy(s);
 }
 
 /* A concave face is not fanned (a fan from its first corner would cover
@@ -1681,7 +1714,7 @@ static void real_meshes_shared(void **state) {
 int main(int argc, char **argv) {
   const struct CMUnitTest tests[] = {
       cmocka_unit_test(obj_triangle_scaled_and_moved),
-      cmocka_unit_test(obj_polygons_are_fans),
+      cmocka_unit_test(obj_polygons_are_cut),
       cmocka_unit_test(concave_faces_are_ear_clipped),
       cmocka_unit_test(obj_negative_indices),
       cmocka_unit_test(obj_vertex_forms_and_normals),
