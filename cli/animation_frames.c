@@ -305,6 +305,12 @@ static int frame_file(const frame_files *files, int frame, char *path,
   return files->pattern ? make_folders(path, made) : 0;
 }
 
+/* A refused run's exit status: `status`, or EXIT_INTERRUPTED where Ctrl-C
+ * stopped the check. */
+static int refusal(int status) {
+  return cli_stopped() ? EXIT_INTERRUPTED : status;
+}
+
 int frame_files_init(frame_files *files, const glint_scene *scene,
                      const render_options *o, const char *stem,
                      glint_animation *anim) {
@@ -313,15 +319,15 @@ int frame_files_init(frame_files *files, const glint_scene *scene,
     cli_error("%s has no animation: --frames needs an \"animation\" block "
               "(docs/scene-format.md)",
               scene_name);
-    return -1;
+    return refusal(EXIT_USAGE);
   }
   if (o->first_frame < anim->first_frame || o->last_frame > anim->last_frame) {
     cli_error("--frames %d-%d: %s's animation has frames %d-%d", o->first_frame,
               o->last_frame, scene_name, anim->first_frame, anim->last_frame);
-    return -1;
+    return refusal(EXIT_USAGE);
   }
   if (check_frames(scene, scene_name, o->first_frame, o->last_frame, anim))
-    return -1;
+    return refusal(EXIT_USAGE);
   files->name = o->output;
   if (!files->name) {
     /* SCENE.png, read as a pattern: a % of the scene's name as %% */
@@ -336,16 +342,16 @@ int frame_files_init(frame_files *files, const glint_scene *scene,
   }
   files->pattern = check_pattern(files->name);
   if (files->pattern < 0)
-    return -1;
+    return refusal(EXIT_USAGE);
   int digits = snprintf(NULL, 0, "%d", anim->last_frame);
   files->digits = digits < 4 ? 4 : digits;
   char first_path[4096];
   if (frame_path(first_path, sizeof first_path, files->name, files->pattern,
                  o->first_frame, files->digits))
-    return -1;
+    return refusal(EXIT_USAGE);
   if (glint_image_format_from_path(first_path) == GLINT_FORMAT_UNKNOWN) {
     cli_error("%s: --frames writes .png, .bmp or .ppm images", first_path);
-    return -1;
+    return refusal(EXIT_USAGE);
   }
   /* -o out/frame%04d.png makes out/ when it is missing (and a pattern
    * whose number is in a folder's name makes that folder for each frame,
@@ -353,7 +359,7 @@ int frame_files_init(frame_files *files, const glint_scene *scene,
    * made. */
   made_folders *made = &files->made;
   *made = (made_folders){NULL, 0, 0};
-  int refused = make_folders(first_path, made);
+  int refused = make_folders(first_path, made), status = EXIT_USAGE;
   /* Every frame's file can be written, before any is: a folder or a pipe
    * under frame 2's name had frames 0 and 1 written over what was there
    * before the run stopped. A frame --resume keeps is not written; one it
@@ -367,7 +373,7 @@ int frame_files_init(frame_files *files, const glint_scene *scene,
       !(targets.slot = calloc(targets.room, sizeof *targets.slot))) {
     cli_error("out of memory checking %d frames' files",
               o->last_frame - o->first_frame + 1);
-    refused = 1;
+    refused = 1, status = EXIT_MEMORY;
   }
   for (int f = o->first_frame; f <= o->last_frame && !refused; f++) {
     char path[4096];
@@ -383,7 +389,7 @@ int frame_files_init(frame_files *files, const glint_scene *scene,
     char *target = refused ? NULL : written_file(path);
     if (!refused && !target) {
       cli_error("out of memory checking frame %d's file", f);
-      refused = 1;
+      refused = 1, status = EXIT_MEMORY;
       break;
     }
     int earlier = refused ? INT_MIN : note_target(&targets, f, target);
@@ -409,7 +415,7 @@ int frame_files_init(frame_files *files, const glint_scene *scene,
   targets_free(&targets);
   if (refused)
     forget_made_folders(made, 1);
-  return refused ? -1 : 0;
+  return refused ? refusal(status) : 0;
 }
 
 void frame_files_end(frame_files *files, int failed) {

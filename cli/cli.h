@@ -46,7 +46,9 @@ typedef struct frame_files {
 } frame_files;
 /* Checks that `scene` has an animation holding o's --frames, and o's -o (a
  * pattern with one %d, or an image name to put a number in), and makes the
- * output's folder; -1 after a message when something is wrong. */
+ * output's folder; 0, or after a message the exit status: EXIT_USAGE when
+ * something is wrong, EXIT_MEMORY when memory ran out, EXIT_INTERRUPTED
+ * when Ctrl-C stopped the check. */
 int frame_files_init(frame_files *files, const struct glint_scene *scene,
                      const render_options *o, const char *stem,
                      glint_animation *animation);

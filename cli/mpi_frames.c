@@ -149,26 +149,26 @@ static void abandon(void *context) {
   frame_files_end(&j->files, 1); /* the folders made still empty go */
 }
 
-/* Rank 0: the frames to render, those --resume finds written left out;
- * -2 after a message when Ctrl-C stops it (reading the kept frames takes
- * milliseconds each). */
+/* Rank 0: the frames to render, those --resume finds written left out; or
+ * after a message the exit status, negated: -EXIT_INTERRUPTED when Ctrl-C
+ * stops it (reading the kept frames takes milliseconds each). */
 static int plan(frame_job *j, int *kept) {
   const render_options *o = &j->options->render;
   int count = o->last_frame - o->first_frame + 1, n = 0;
   *kept = 0;
   if (!(j->frames = malloc((size_t)count * sizeof *j->frames))) {
     cli_error("out of memory");
-    return -1;
+    return -EXIT_MEMORY;
   }
   for (int f = o->first_frame; f <= o->last_frame; f++) {
     char path[4096];
     if (cli_stopped()) {
       cli_error("interrupted while looking for the frames written "
                 "(--resume); no frame was written");
-      return -2;
+      return -EXIT_INTERRUPTED;
     }
     if (frame_files_path(&j->files, f, path, sizeof path))
-      return -1;
+      return -EXIT_USAGE;
     if (o->resume && frame_file_kept(path, f, j->width, j->height, o->quiet)) {
       (*kept)++;
       continue;
@@ -199,10 +199,9 @@ int mpi_render_frames(const mpi_world *w, const mpi_options *o,
    * alone speaks, makes folders and looks for written frames. */
   int count = -1, kept = 0;
   if (w->rank == 0) {
-    if (frame_files_init(&j.files, scene, &o->render, stem, &j.animation) == 0)
-      count = plan(&j, &kept);
-    else if (cli_stopped())
-      count = -2; /* Ctrl-C while checking the files */
+    int refused =
+        frame_files_init(&j.files, scene, &o->render, stem, &j.animation);
+    count = refused ? -refused : plan(&j, &kept);
   } else {
     glint_scene_get_animation(scene, &j.animation);
   }
@@ -214,7 +213,7 @@ int mpi_render_frames(const mpi_world *w, const mpi_options *o,
     free(j.frames);
     if (w->rank == 0)
       frame_files_end(&j.files, 1); /* (none made when the check failed) */
-    return count == -2 ? EXIT_INTERRUPTED : EXIT_USAGE;
+    return -count;                  /* the exit status */
   }
   if (w->rank != 0 && count &&
       !(j.frames = malloc((size_t)count * sizeof *j.frames)))

@@ -29,9 +29,10 @@ int render_frames(glint_scene *scene, const render_options *o,
   frame_files files;
   /* Ctrl-C from here: checking 10^5 frames' files takes a while */
   cli_catch_stop_signals();
-  if (frame_files_init(&files, scene, o, stem, &anim)) {
+  int refused = frame_files_init(&files, scene, o, stem, &anim);
+  if (refused) {
     glint_scene_destroy(scene);
-    return cli_stopped() ? EXIT_INTERRUPTED : EXIT_USAGE;
+    return refused;
   }
   const glint_render_settings *rs = &o->settings;
   glint_world *world = NULL;

@@ -1236,7 +1236,8 @@ static void a_small_stack_limit(void **state) {
 }
 
 /* Memory that cannot be had is exit status 1 (glint --help), from every
- * place that asks for it: the image, a scene's meshes. A BMP is held whole
+ * place that asks for it: the image, a scene's meshes, the check of
+ * --frames' files. A BMP is held whole
  * (bottom row first); a PNG would need only bands of it. (Not under
  * AddressSanitizer, which reserves terabytes of address space.) */
 static void out_of_memory_exits_1(void **state) {
@@ -1259,7 +1260,24 @@ static void out_of_memory_exits_1(void **state) {
       run("bench", "--time-to-image", "--scenes", "whitted", "-W", "16384",
           "-H", "16384", "--depths", "1", "--runs", "1", NULL);
   snprintf(bench_err[1], sizeof bench_err[1], "%s", err);
+  /* checking 4 million frames' files: a table of 128 MiB (it exited 2) */
+  put_text("many.json",
+           "{\"camera\": {\"from\": [0, 2, 6], \"at\": [0, 1, 0]},"
+           " \"materials\": {\"m\": {}}, \"objects\": [{\"type\": \"sphere\","
+           " \"center\": [0, 1, 0], \"radius\": 1, \"material\": \"m\"}],"
+           " \"animation\": {\"fps\": 24, \"frames\": [1,"
+           " 99999999], \"camera\": {\"orbit\": {\"center\": [0, 1, 0],"
+           " \"radius\": 6}}}}");
+  small.rlim_cur = (rlim_t)100 << 20;
+  setrlimit(RLIMIT_AS, &small);
+  int many = run("render", "many.json", "--frames", "1-4000000", "-W", "8",
+                 "-H", "8", "-o", "f%08d.png", NULL);
+  char many_err[sizeof err];
+  snprintf(many_err, sizeof many_err, "%s", err);
   setrlimit(RLIMIT_AS, &saved);
+  assert_int_equal(remove_in_folder("many.json"), 0);
+  assert_int_equal(many, 1);
+  assert_non_null(strstr(many_err, "out of memory checking 4000000 frames"));
   assert_int_equal(rc, 1);
   assert_int_equal(frames, 1);
   assert_non_null(strstr(bench_err[0], "out of memory for a 16384x16384 film"));
