@@ -4,6 +4,7 @@
 #include "test_util.h"
 
 #include <dirent.h>
+#include <limits.h>
 #include <math.h>
 #include <signal.h>
 #include <stdio.h>
@@ -152,6 +153,22 @@ static void bad_paths_are_refused(void **state) {
   assert_int_equal(glint_image_check_writable(path("sub.png"), &e), GLINT_E_IO);
   assert_non_null(strstr(e.message, "directory"));
   rmdir(path("sub.png"));
+  /* A name longer than the kernel takes in a folder that is not: refused
+   * by the check, before a render (the file failed to be named after it). */
+  static char deep[PATH_MAX + 256];
+  int levels = 0, n = snprintf(deep, sizeof deep, "%s", dir);
+  while (n < PATH_MAX - 300) {
+    n += snprintf(deep + n, sizeof deep - (size_t)n, "/%0200d", 0);
+    assert_int_equal(mkdir(deep, 0755), 0);
+    levels++;
+  }
+  snprintf(deep + n, sizeof deep - (size_t)n, "/%0250d.png", 0);
+  assert_int_equal(glint_image_check_writable(deep, &e), GLINT_E_IO);
+  assert_non_null(strstr(e.message, "File name too long"));
+  for (; levels > 0; levels--) {
+    *strrchr(deep, '/') = '\0';
+    assert_int_equal(rmdir(deep), 0);
+  }
   /* Reading: missing, and not an image. */
   glint_image *r = NULL;
   assert_int_equal(glint_image_read(path("missing.png"), &r, &e), GLINT_E_IO);

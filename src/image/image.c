@@ -333,6 +333,13 @@ char *glint_output_file(const char *path) {
 
 glint_status gli_check_folder_writable(const char *path, glint_error *error) {
   char *target = link_target(path);
+  /* A name the kernel takes no longer than PATH_MAX: its folder may be
+   * shorter, and be written, and the file then fail to be named once
+   * rendered (or a benchmark's results lost after the whole run). */
+  if (strlen(target ? target : path) >= PATH_MAX) {
+    free(target);
+    return gli_fail(error, GLINT_E_IO, "%s: %s", path, strerror(ENAMETOOLONG));
+  }
   char *temp;
   /* Unnamed where the file system allows: a process killed between the
    * creation and the unlink left a named one (glint render --frames checks
