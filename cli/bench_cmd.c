@@ -284,40 +284,52 @@ static void put_gnuplot_path(FILE *f, const char *dir, const char *scene,
   fprintf(f, ".%s'", suffix);
 }
 
-/* Seconds against depth, one line per column, like the thesis's figures
- * 5.4-5.6: DIR/SCENE.dat (the data), DIR/SCENE.gp (the script) and
- * DIR/SCENE.png (the plot). */
-static int plot_scene(const char *dir, const char *scene, const int *depths,
-                      int ndepths, const bench_column *cols, int ncols,
-                      const double *medians, const glint_stats *st) {
-  char path[8192];
-  if (snprintf(path, sizeof path, "%s/%s.dat", dir, scene) >= (int)sizeof path)
-    return -1;
-  FILE *f = fopen(path, "w");
-  if (!f)
-    return -1;
-  fprintf(f, "# depth");
-  for (int c = 0; c < ncols; c++)
-    fprintf(f, " %s", cols[c].name);
-  fprintf(f, "\n");
-  for (int d = 0; d < ndepths; d++) {
-    fprintf(f, "%d", depths[d]);
-    for (int c = 0; c < ncols; c++)
-      fprintf(f, " %.6f", medians[d * ncols + c]);
-    fprintf(f, "\n");
+/* Writes `size` bytes of text to `path` whole, or leaves what was there;
+ * 0, or -1 after a message naming the file and the error. */
+static int write_whole(const char *path, const char *text, size_t size) {
+  file_replacement r;
+  int saved = replace_begin(&r, path);
+  if (!saved) {
+    saved = replace_write(&r, text, size);
+    int ended = replace_end(&r, !saved);
+    saved = saved ? saved : ended;
   }
-  if (fclose(f) != 0)
-    return -1;
-  if (snprintf(path, sizeof path, "%s/%s.gp", dir, scene) >= (int)sizeof path)
-    return -1;
-  if (!(f = fopen(path, "w")))
-    return -1;
+  if (saved)
+    cli_error("--plot: %s: writing failed: %s", path, strerror(saved));
+  return saved ? -1 : 0;
+}
+
+/* Whether the file at `path` is a PNG from its signature to its IEND
+ * chunk, as a whole one ends. */
+static int png_is_whole(const char *path) {
+  static const unsigned char signature[8] = {0x89, 'P',  'N',  'G',
+                                             '\r', '\n', 0x1a, '\n'};
+  static const unsigned char iend[12] = {0,   0,   0,    0,    'I',  'E',
+                                         'N', 'D', 0xae, 0x42, 0x60, 0x82};
+  unsigned char head[8], tail[12];
+  FILE *f = fopen(path, "rb");
+  int whole = f && fread(head, 1, 8, f) == 8 && fseek(f, -12, SEEK_END) == 0 &&
+              fread(tail, 1, 12, f) == 12 && !memcmp(head, signature, 8) &&
+              !memcmp(tail, iend, 12);
+  if (f)
+    fclose(f);
+  return whole;
+}
+
+/* The gnuplot script of the plot of `scene`, drawing into `output`. */
+static char *plot_script(const char *dir, const char *scene, const char *output,
+                         const bench_column *cols, int ncols,
+                         const glint_stats *st, size_t *size) {
+  char *text = NULL;
+  FILE *f = open_memstream(&text, size);
+  if (!f)
+    return NULL;
   /* Names go into gnuplot's single-quoted strings, quotes doubled; and
    * gnuplot runs without a shell, so no name is ever a command. */
   fprintf(f, "set terminal pngcairo size 800,500 font 'sans,11'\n"
-             "set output ");
-  put_gnuplot_path(f, dir, scene, "png");
-  fprintf(f, "\nset title 'Scene \"");
+             "set output '");
+  put_gnuplot_text(f, output);
+  fprintf(f, "'\nset title 'Scene \"");
   put_gnuplot_text(f, scene);
   fprintf(f,
           "\": render time against recursion depth (%dx%d, %d spp)'\n"
@@ -332,11 +344,101 @@ static int plot_scene(const char *dir, const char *scene, const int *depths,
             cols[c].name);
   }
   fprintf(f, "\n");
-  if (fclose(f) != 0)
+  if (fclose(f) != 0) {
+    free(text);
+    return NULL;
+  }
+  return text;
+}
+
+/* Seconds against depth, one line per column, like the thesis's figures
+ * 5.4-5.6: DIR/SCENE.dat (the data), DIR/SCENE.gp (the script) and
+ * DIR/SCENE.png (the plot). Each is written whole or not at all: gnuplot
+ * draws into a file beside the plot, which takes the plot's place once it
+ * reads as a whole PNG (gnuplot exits 0 when its output cannot be written:
+ * on a full disk a good plot was replaced by a truncated one). 0, or -1
+ * after a message. */
+static int plot_scene(const char *dir, const char *scene, const int *depths,
+                      int ndepths, const bench_column *cols, int ncols,
+                      const double *medians, const glint_stats *st) {
+  char path[PATH_MAX], png[PATH_MAX];
+  if (snprintf(path, sizeof path, "%s/%s.dat", dir, scene) >=
+          (int)sizeof path ||
+      snprintf(png, sizeof png, "%s/%s.png", dir, scene) >= (int)sizeof png) {
+    cli_error("--plot: %s/%s.png: %s", dir, scene, strerror(ENAMETOOLONG));
     return -1;
-  char *argv[] = {"gnuplot", path, NULL};
-  char output[4096]; /* gnuplot's words, unused: its status says it all */
-  return bench_run_capture(argv, output, sizeof output) == 0 ? 0 : -1;
+  }
+  char *text = NULL;
+  size_t size = 0;
+  FILE *f = open_memstream(&text, &size);
+  if (!f) {
+    cli_error("--plot: out of memory");
+    return -1;
+  }
+  fprintf(f, "# depth");
+  for (int c = 0; c < ncols; c++)
+    fprintf(f, " %s", cols[c].name);
+  fprintf(f, "\n");
+  for (int d = 0; d < ndepths; d++) {
+    fprintf(f, "%d", depths[d]);
+    for (int c = 0; c < ncols; c++)
+      fprintf(f, " %.6f", medians[d * ncols + c]);
+    fprintf(f, "\n");
+  }
+  int failed = fclose(f) != 0;
+  if (failed)
+    cli_error("--plot: out of memory");
+  failed = failed || write_whole(path, text, size);
+  free(text);
+  text = NULL;
+  /* the script kept (drawing into SCENE.png), and the one run */
+  if (snprintf(path, sizeof path, "%s/%s.gp", dir, scene) >= (int)sizeof path) {
+    cli_error("--plot: %s/%s.gp: %s", dir, scene, strerror(ENAMETOOLONG));
+    failed = 1;
+  }
+  char *kept = NULL;
+  if (!failed) {
+    kept = plot_script(dir, scene, png, cols, ncols, st, &size);
+    if (!kept)
+      cli_error("--plot: out of memory");
+    failed = !kept || write_whole(path, kept, size);
+  }
+  free(kept);
+  if (failed)
+    return -1;
+  file_replacement plot, run;
+  int saved = replace_begin(&plot, png);
+  if (saved) {
+    cli_error("--plot: %s: writing failed: %s", png, strerror(saved));
+    return -1;
+  }
+  int drawn = 0;
+  saved = replace_begin(&run, path);
+  if (saved) {
+    cli_error("--plot: %s: writing failed: %s", path, strerror(saved));
+  } else {
+    char *script = plot_script(dir, scene, plot.temp, cols, ncols, st, &size);
+    saved = script ? replace_write(&run, script, size) : ENOMEM;
+    free(script);
+    if (saved) {
+      cli_error("--plot: %s: writing failed: %s", path, strerror(saved));
+    } else {
+      char *argv[] = {"gnuplot", run.temp, NULL};
+      char output[4096]; /* gnuplot's words: what it drew is checked */
+      drawn = bench_run_capture(argv, output, sizeof output) == 0;
+      if (!drawn)
+        cli_error("--plot: gnuplot could not draw %s", png);
+      else if (!(drawn = png_is_whole(plot.temp)))
+        cli_error("--plot: gnuplot could not write %s whole (is the disk "
+                  "full?)",
+                  png);
+    }
+    replace_end(&run, 0); /* the script run goes */
+  }
+  int ended = replace_end(&plot, drawn);
+  if (drawn && ended)
+    cli_error("--plot: %s: writing failed: %s", png, strerror(ended));
+  return drawn && !ended ? 0 : -1;
 }
 
 static void print_header(const char *title, const char *scene,
@@ -993,10 +1095,12 @@ int bench_scenes(char **names, int nscenes, const int *depths, int ndepths,
       for (int c = 0; c < ncols; c++)
         med[d * ncols + c] = bench_median(SECONDS(s, d, c), runs);
     if (plot_scene(plot_dir, stems[s], depths, ndepths, cols, ncols, med,
-                   &stats[IDX(s, 0, 0)])) {
-      cli_error("--plot: gnuplot could not draw %s/%s.png", plot_dir, stems[s]);
+                   &stats[IDX(s, 0, 0)]))
       status = EXIT_USAGE;
-    }
+  }
+  if (plot_dir && !med) {
+    cli_error("--plot: out of memory");
+    status = EXIT_MEMORY;
   }
   free(med);
   for (int s = 0; csv && s < nscenes && !status; s++)

@@ -1160,6 +1160,61 @@ static void a_file_past_the_size_limit_is_an_error(void **state) {
   assert_true(folder_is_empty()); /* no temporary file */
 }
 
+/* A plot that cannot be written whole (here past the size limit, as on a
+ * full disk) is an error, and the old plot stays: gnuplot exits 0 when its
+ * output fails, and a good plot was replaced by a truncated one with exit
+ * status 0 and no word. */
+static void a_plot_past_the_size_limit_is_an_error(void **state) {
+  (void)state;
+  if (system("command -v gnuplot >/dev/null 2>&1") != 0)
+    skip(); /* gnuplot-nox: scripts/install-deps.sh */
+  char plots[600];
+  snprintf(plots, sizeof plots, "%s/plots", dir);
+  assert_int_equal(mkdir(plots, 0755), 0);
+  put_text("plots/whitted.png", "old");
+  pid_t pid = fork();
+  assert_true(pid >= 0);
+  if (pid == 0) {
+    struct rlimit limit = {8 * 1024, 8 * 1024}; /* the plot: about 26 KiB */
+    int null = open("/dev/null", O_WRONLY);
+    if (chdir(dir) != 0 || null < 0 || dup2(null, 1) < 0)
+      _exit(99);
+    int err = open("plot.err", O_WRONLY | O_CREAT | O_TRUNC, 0600);
+    if (err < 0 || dup2(err, 2) < 0 || setrlimit(RLIMIT_FSIZE, &limit) != 0)
+      _exit(99);
+    execl(GLINT_EXE, "glint", "bench", "--scenes", "whitted", "--depths", "1,2",
+          "--backends", "scalar-float", "--runs", "1", "-W", "8", "-H", "6",
+          "-s", "1", "--plot", "plots", (char *)NULL);
+    _exit(98);
+  }
+  int status;
+  assert_int_equal(waitpid(pid, &status, 0), pid);
+  if (!WIFEXITED(status))
+    fail_msg("glint was killed by signal %d", WTERMSIG(status));
+  assert_int_equal(WEXITSTATUS(status), 2);
+  char kept[16], path[700], said[1024];
+  snprintf(path, sizeof path, "%s/plot.err", dir);
+  slurp(path, said, sizeof said);
+  assert_int_equal(remove_in_folder("plot.err"), 0);
+  assert_non_null(strstr(said, "--plot: gnuplot could not write plots/"
+                               "whitted.png whole"));
+  snprintf(path, sizeof path, "%s/whitted.png", plots);
+  slurp(path, kept, sizeof kept);
+  assert_string_equal(kept, "old");
+  DIR *d = opendir(plots);
+  assert_non_null(d);
+  int entries = 0;
+  for (struct dirent *e; (e = readdir(d));)
+    if (e->d_name[0] != '.' || strstr(e->d_name, ".tmp"))
+      entries++, printf("plots/%s\n", e->d_name);
+  closedir(d);
+  assert_int_equal(entries, 3); /* whitted.png, .dat and .gp: no temporary */
+  assert_int_equal(remove_in_folder("plots/whitted.png"), 0);
+  assert_int_equal(remove_in_folder("plots/whitted.dat"), 0);
+  assert_int_equal(remove_in_folder("plots/whitted.gp"), 0);
+  assert_int_equal(rmdir(plots), 0);
+}
+
 /* Whether glint runs under AddressSanitizer (gcc's macro, clang's
  * feature), which reserves terabytes of address space at start-up. */
 #if defined(__SANITIZE_ADDRESS__)
@@ -2434,6 +2489,7 @@ int main(void) {
       cmocka_unit_test(closed_standard_streams),
       cmocka_unit_test(resume_checks_the_frames_it_renders_again),
       cmocka_unit_test(a_file_past_the_size_limit_is_an_error),
+      cmocka_unit_test(a_plot_past_the_size_limit_is_an_error),
       cmocka_unit_test(a_small_stack_limit),
       cmocka_unit_test(written_files_keep_their_permissions),
       cmocka_unit_test(out_of_memory_exits_1),
