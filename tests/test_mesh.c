@@ -1126,6 +1126,13 @@ static void ply_header_errors(void **state) {
   expect_fail(f, "version.ply", "ply\nformat ascii 2.0\nend_header\n",
               GLINT_E_PARSE, "version.ply:2: unsupported PLY version '2.0'",
               NULL);
+  /* a second format replaced the first, and the body was read as it */
+  expect_fail(f, "formats.ply",
+              "ply\nformat ascii 1.0\ncomment x\n"
+              "format binary_little_endian 1.0\nend_header\n",
+              GLINT_E_PARSE,
+              "formats.ply:4: a second format line (the first is on line 2)",
+              NULL);
   expect_fail(f, "type.ply",
               "ply\nformat ascii 1.0\nelement vertex 1\n"
               "property int64 x\nend_header\n",
@@ -1243,6 +1250,10 @@ static void obj_errors(void **state) {
   /* a continuation on the last line: the face is line 4's */
   expect_fail(f, "cont.obj", "v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 \\\n",
               GLINT_E_PARSE, "cont.obj:4: ", NULL);
+  /* ... and as the file's very last byte: the face is short, not '\' */
+  expect_fail(
+      f, "cont-end.obj", "v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 \\", GLINT_E_PARSE,
+      "cont-end.obj:4: a face needs at least 3 vertices, found 2", NULL);
   expect_fail(f, "long.obj", "v 0 0 0 1 1 1 1 1\n", GLINT_E_PARSE,
               "long.obj:1: unexpected '1' after the vertex's coordinates",
               NULL);

@@ -26,8 +26,10 @@ typedef struct obj_reader {
   mesh_data *m;
 } obj_reader;
 
+/* A '\\' that ends its line, or the file (which joins no next line). */
 static int obj_continuation(const char *p) {
-  return p[0] == '\\' && (p[1] == '\n' || (p[1] == '\r' && p[2] == '\n'));
+  return p[0] == '\\' &&
+         (p[1] == '\n' || p[1] == '\0' || (p[1] == '\r' && p[2] == '\n'));
 }
 
 /* Skips blanks, '\' line continuations and a comment; stops at a newline. */
@@ -36,7 +38,7 @@ static void obj_skip_blanks(obj_reader *r) {
     if (gli_text_is_blank(*r->p)) {
       r->p++;
     } else if (obj_continuation(r->p)) {
-      r->p += r->p[1] == '\n' ? 2 : 3;
+      r->p += r->p[1] == '\r' ? 3 : r->p[1] ? 2 : 1;
       /* a continuation at the file's end joins no next line */
       if (*r->p)
         r->line++;

@@ -776,7 +776,7 @@ static glint_status ply_header(ply_reader *r, glint_error *e) {
   const char *data = (const char *)r->data, *end = data + r->size;
   const char *b = data;
   size_t line = 1;
-  int has_format = 0;
+  size_t has_format = 0; /* the format line's number */
   char q[48];
   if (r->size == 0)
     return gli_fail(e, GLINT_E_PARSE, "%s: the file is empty", r->path);
@@ -817,6 +817,13 @@ static glint_status ply_header(ply_reader *r, glint_error *e) {
       break;
     }
     if (span_is(tok[0], "format")) {
+      /* one format: a second replaced the first without a word, and its
+       * body was then read as the other */
+      if (has_format)
+        return gli_fail(e, GLINT_E_PARSE,
+                        "%s:%zu: a second format line (the first is on line "
+                        "%zu): a file has one",
+                        r->path, line, has_format);
       if (ntok != 3)
         return gli_fail(e, GLINT_E_PARSE, "%s:%zu: expected 'format TYPE 1.0'",
                         r->path, line);
@@ -834,7 +841,7 @@ static glint_status ply_header(ply_reader *r, glint_error *e) {
         return gli_fail(e, GLINT_E_PARSE,
                         "%s:%zu: unsupported PLY version '%s'", r->path, line,
                         gli_text_quote(q, sizeof q, tok[2].s, tok[2].n));
-      has_format = 1;
+      has_format = line;
     } else if (span_is(tok[0], "element")) {
       if ((st = ply_element_line(r, line, tok, ntok, e)))
         return st;
