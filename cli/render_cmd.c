@@ -276,6 +276,14 @@ glint_scene *cli_load_animation(const char *arg, char *stem,
                                 unsigned long stem_size, int *exit_code) {
   glint_error err;
   glint_scene *scene = NULL;
+  if (strcmp(arg, "-") == 0 && access(arg, F_OK) != 0) {
+    /* a file's name decides its format, and a JSON scene's meshes lie
+     * beside it: a scene is a file or a built-in, never standard input */
+    cli_error("-: a scene is a file (.nff or .json, optionally .gz) or a "
+              "built-in scene's name, not standard input");
+    *exit_code = EXIT_USAGE;
+    return NULL;
+  }
   int is_file = cli_scene_is_file(arg);
   glint_status st = is_file ? glint_scene_load(arg, &scene, &err)
                             : glint_scene_builtin(arg, &scene, &err);

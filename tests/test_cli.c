@@ -199,6 +199,9 @@ static void usage_errors(void **state) {
   (void)state;
   EXPECT_USAGE_ERROR("unknown command 'paint'", "paint");
   EXPECT_USAGE_ERROR("unknown scene 'cornell'", "render", "cornell");
+  EXPECT_USAGE_ERROR("-: a scene is a file (.nff or .json, optionally .gz) or "
+                     "a built-in scene's name, not standard input",
+                     "render", "-");
   EXPECT_USAGE_ERROR("unknown backend 'gpu'", "render", "-b", "gpu");
   /* What a message quotes reaches the terminal without its control
    * characters (an escape sequence is a terminal command). */
