@@ -397,6 +397,107 @@ static void refit_follows_moved_objects(void **state) {
   glint_scene_destroy(g);
 }
 
+/* A tree deeper than the levels the heuristic splits: 140 000 copies of
+ * one triangle (whose boxes' centres coincide, so only halving splits
+ * them) under 99 specks 16 times apart along each axis, each of which the
+ * heuristic peels off one level at a time. The nodes below those levels,
+ * still holding more references than a leaf takes, are halved on; every
+ * walk's stack holds the deepest (the scalar backends' shadow walk wrote
+ * past its stack of GLI_BVH_MAX_DEPTH: a crash in a release build, and
+ * AddressSanitizer's stack-buffer-overflow). Every backend renders the
+ * scene as scalar-double does. */
+static void the_deepest_tree_is_walked(void **state) {
+  (void)state;
+  enum { COPIES = 140000 };
+  glint_scene *g;
+  ASSERT_OK(glint_scene_create(&g, &e_));
+  glint_material mat;
+  glint_material_default(&mat);
+  uint32_t m;
+  ASSERT_OK(glint_scene_add_material(g, &mat, &m, &e_));
+  ASSERT_OK(glint_scene_add_light(g, (glint_vec3){300, 400, 3000},
+                                  (glint_vec3){1, 1, 1}, &e_));
+  glint_vec3 v[3] = {{-1000, -1000, 0}, {1000, -1000, 0}, {0, 1000, 0}};
+  uint32_t *ix = malloc(3 * sizeof *ix * COPIES);
+  assert_non_null(ix);
+  for (size_t i = 0; i < 3 * (size_t)COPIES; i++)
+    ix[i] = (uint32_t)(i % 3);
+  glint_mesh mesh = {v, NULL, 3, ix, COPIES};
+  ASSERT_OK(glint_scene_add_mesh(g, &mesh, m, &e_));
+  free(ix);
+  for (int a = 0; a < 3; a++)
+    for (int k = 0; k < 33; k++) {
+      double p = 500 / pow(16, k), t[3][3] = {{0}};
+      t[0][a] = t[1][a] = t[2][a] = p;
+      t[1][a] *= 1.001;
+      t[2][(a + 1) % 3] = p * 1e-3;
+      ASSERT_OK(glint_scene_add_triangle(
+          g, (glint_vec3){t[0][0], t[0][1], t[0][2]},
+          (glint_vec3){t[1][0], t[1][1], t[1][2]},
+          (glint_vec3){t[2][0], t[2][1], t[2][2]}, m, &e_));
+    }
+  ASSERT_OK(glint_scene_add_plane(g, (glint_vec3){0, 0, 1},
+                                  (glint_vec3){0, 0, -100}, m, &e_));
+  glint_camera cam = {{0, 0, 3000}, {0, 0, 0}, {0, 1, 0}, 60};
+  ASSERT_OK(glint_scene_set_camera(g, &cam, &e_));
+  gli_bvh built;
+  ASSERT_OK(gli_bvh_build(g, 1, &built, &e_));
+  printf("depth %d of at most %d split by the heuristic\n", built.depth,
+         GLI_BVH_MAX_DEPTH);
+  assert_true(built.depth >= GLI_BVH_MAX_DEPTH);
+  gli_bvh_free(&built);
+  /* one world, its tree built once, for every backend and walk */
+  glint_world *world;
+  ASSERT_OK(glint_world_commit(g, &world, NULL, &e_));
+  glint_image *ref = NULL;
+  static const glint_accel walks[] = {GLINT_ACCEL_BVH, GLINT_ACCEL_BVH2,
+                                      GLINT_ACCEL_BVH8};
+  static const glint_backend order[] = {
+      GLINT_BACKEND_SCALAR_DOUBLE, GLINT_BACKEND_SCALAR_FLOAT,
+      GLINT_BACKEND_SSE,           GLINT_BACKEND_AVX2,
+      GLINT_BACKEND_AVX512,        GLINT_BACKEND_STREAM_SSE,
+      GLINT_BACKEND_STREAM_AVX2,   GLINT_BACKEND_STREAM_AVX512};
+  for (size_t i = 0; i < sizeof order / sizeof *order; i++) {
+    glint_backend b = order[i];
+    if (backend_missing(b))
+      continue;
+    for (int k = 0; k < 3; k++) {
+      if (b == GLINT_BACKEND_SCALAR_DOUBLE && k)
+        break; /* the reference */
+      glint_render_settings rs;
+      glint_render_settings_default(&rs);
+      rs.width = rs.height = 16;
+      rs.spp = 1;
+      rs.threads = 1;
+      rs.max_depth = 2;
+      rs.backend = b;
+      rs.accel = walks[k];
+      glint_renderer *r;
+      glint_film *film;
+      glint_image *im;
+      ASSERT_OK(glint_renderer_create(world, &rs, &r, &e_));
+      ASSERT_OK(glint_film_create(16, 16, &film, &e_));
+      ASSERT_OK(glint_image_create(16, 16, &im, &e_));
+      ASSERT_OK(glint_renderer_render(r, NULL, film, NULL, &e_));
+      ASSERT_OK(glint_film_to_image(film, 1, im, &e_));
+      glint_film_destroy(film);
+      glint_renderer_destroy(r);
+      if (!ref) {
+        ref = im;
+        continue;
+      }
+      double psnr = glint_image_psnr(ref, im);
+      if (psnr < 40)
+        fail_msg("%s, accel %d: PSNR %.2f dB against scalar-double",
+                 glint_backend_name(b), (int)walks[k], psnr);
+      glint_image_destroy(im);
+    }
+  }
+  glint_image_destroy(ref);
+  glint_world_destroy(world);
+  glint_scene_destroy(g);
+}
+
 int main(int argc, char **argv) {
   const struct CMUnitTest tests[] = {
       {"nearest_hits_equal_brute_force", nearest_hits_equal_brute_force, NULL,
@@ -405,6 +506,8 @@ int main(int argc, char **argv) {
       {"refit_follows_moved_objects", refit_follows_moved_objects, NULL, NULL,
        NULL},
       {"large_scene_packet_tree", large_scene_packet_tree, NULL, NULL, NULL},
+      {"the_deepest_tree_is_walked", the_deepest_tree_is_walked, NULL, NULL,
+       NULL},
       {"nearest_hits_equal_brute_force_shared", nearest_hits_equal_brute_force,
        NULL, NULL, (void *)&spd},
       {"renders_equal_shared", renders_equal, NULL, NULL, (void *)&spd},

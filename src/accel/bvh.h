@@ -33,7 +33,18 @@ typedef struct gli_bvh_node {
  * through the wide tree (accel/packet_traverse.h, accel/wide_bvh.h). */
 #define GLI_NODE_HAND_OVER 1
 
-#define GLI_BVH_MAX_DEPTH 64 /* traversal stacks are this deep */
+/* The levels the surface area heuristic splits (bvh.c); below them a node
+ * of more references than a leaf holds (UINT16_MAX) is still halved, at
+ * most GLI_BVH_FORCED_SPLITS times for GLI_MAX_BVH_PRIMS references (2^30
+ * halved 15 times fits a leaf). */
+#define GLI_BVH_MAX_DEPTH 64
+#define GLI_BVH_FORCED_SPLITS 16
+/* What a walk's stack holds: one waiting child for each level of the
+ * deepest tree, and both children of its deepest node (a segment walk
+ * pushes them before testing them). Sized for the split levels alone, a
+ * scene of 140 000 copies of one triangle overran the scalar backends'
+ * shadow walk. */
+#define GLI_BVH_STACK (GLI_BVH_MAX_DEPTH + GLI_BVH_FORCED_SPLITS + 2)
 #define GLI_BVH_MIN_PRIMS 16 /* fewer bounded primitives: no hierarchy */
 /* As many or more: the packets walk a cut of the tree (bvh.c, cut_costs). */
 #define GLI_BVH_PACKET_CUT_PRIMS 40000

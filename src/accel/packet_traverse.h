@@ -245,12 +245,12 @@ packet_bvh_closest(const gli_bvh *bvh, const packet_origin *po, vvec3 d,
   int lanes = vm_count(active);
   packet_inv r = packet_inverse(po, d, active, newton);
   const gli_bvh_node *nodes = bvh->packet_nodes;
-  uint32_t stack[GLI_BVH_MAX_DEPTH];
+  uint32_t stack[GLI_BVH_STACK];
   /* +inf in the lanes that miss the box: popped, it is compared with the
    * nearest hits widened and held to FLT_MAX (a lane without a hit has
    * FLT_MAX, widened to +inf), which no lane's entry passes but one it
    * entered; no NaN, whose comparison SSE's cmpleps signals. */
-  vfloat entry[GLI_BVH_MAX_DEPTH];
+  vfloat entry[GLI_BVH_STACK];
   int sp = 0;
   uint64_t box_tests = 1; /* each of `lanes` lanes */
   test_count prims = {0, 0};
@@ -330,8 +330,8 @@ packet_bvh_segment(const gli_bvh *bvh, const packet_origin *po, vvec3 d,
     return;
   packet_inv r = packet_inverse(po, d, *alive, newton);
   const gli_bvh_node *nodes = bvh->packet_nodes;
-  uint32_t stack[GLI_BVH_MAX_DEPTH];
-  vmask entered[GLI_BVH_MAX_DEPTH];
+  uint32_t stack[GLI_BVH_STACK];
+  vmask entered[GLI_BVH_STACK];
   int sp = 0;
   test_count boxes = {1, (uint64_t)vm_count(*alive)}, prims = {0, 0};
   uint32_t node = 0;

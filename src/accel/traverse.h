@@ -62,7 +62,7 @@ bvh_closest(const gli_bvh *bvh, vec3 o, vec3 d, real tmin, real *tmax,
   struct {
     uint32_t node;
     real entry;
-  } stack[GLI_BVH_MAX_DEPTH];
+  } stack[GLI_BVH_STACK];
   int sp = 0;
   uint32_t node = 0;
   if (box_entry(&nodes[0], o, inv, tmin, *tmax) > *tmax)
@@ -110,7 +110,7 @@ bvh_segment(const gli_bvh *bvh, vec3 o, vec3 d, real tmin, real tmax,
             bvh_segment_fn leaf, void *ctx) {
   const gli_bvh_node *nodes = bvh->nodes;
   vec3 inv = safe_inverse(d);
-  uint32_t stack[GLI_BVH_MAX_DEPTH];
+  uint32_t stack[GLI_BVH_STACK];
   int sp = 0;
   stack[sp++] = 0;
   while (sp > 0) {
