@@ -20,8 +20,8 @@
 
 typedef struct primary_beams {
   vfloat lane_x, lane_y; /* each lane's pixel offset in its block */
-  vfloat sx, ox, sy, oy; /* pixel -> image plane: x = px sx + ox */
-  vvec3 from, d, r, u;   /* the camera, splatted */
+  vfloat width, height, tan_x, tan_y; /* the image plane (camera.h) */
+  vvec3 from, d, r, u;                /* the camera, splatted */
 } primary_beams;
 
 static ALWAYS_INLINE primary_beams primary_beams_init(const camera *cam) {
@@ -33,12 +33,10 @@ static ALWAYS_INLINE primary_beams primary_beams_init(const camera *cam) {
   }
   pb.lane_x = vf_load(lx);
   pb.lane_y = vf_load(ly);
-  /* docs/specification.md §2: x = (2 px / W - 1) tan_x, y = (1 - 2 py / H)
-   * tan_y */
-  pb.sx = vf_set1(2 * cam->tan_x / cam->width);
-  pb.ox = vf_set1(-cam->tan_x);
-  pb.sy = vf_set1(-2 * cam->tan_y / cam->height);
-  pb.oy = vf_set1(cam->tan_y);
+  pb.width = vf_set1(cam->width);
+  pb.height = vf_set1(cam->height);
+  pb.tan_x = vf_set1(cam->tan_x);
+  pb.tan_y = vf_set1(cam->tan_y);
   pb.from = vv_set1(cam->from);
   pb.d = vv_set1(cam->d);
   pb.r = vv_set1(cam->r);
@@ -62,8 +60,16 @@ static ALWAYS_INLINE vmask primary_block(const primary_beams *pb,
 static ALWAYS_INLINE vvec3 primary_dir(const primary_beams *pb, vfloat px,
                                        vfloat py, const float sample[2],
                                        int newton) {
-  vfloat x = vf_fmadd(vf_add(px, vf_set1(0.5f + sample[0])), pb->sx, pb->ox);
-  vfloat y = vf_fmadd(vf_add(py, vf_set1(0.5f + sample[1])), pb->sy, pb->oy);
+  /* docs/specification.md §2: x = (2 px / W - 1) tan_x, y = (1 - 2 py / H)
+   * tan_y, in camera_dir's operations (render/camera.h): exactly 0 at the
+   * image's centre, where px sx + ox, its terms rounded apart, was 1e-8
+   * and a ray level with a plane through the eye hit it 1e7 away (the
+   * middle column or row of an odd-sized image drawn as the plane). */
+  vfloat one = vf_set1(1);
+  vfloat sx = vf_add(px, vf_set1(0.5f + sample[0]));
+  vfloat sy = vf_add(py, vf_set1(0.5f + sample[1]));
+  vfloat x = vf_mul(vf_sub(vf_div(vf_add(sx, sx), pb->width), one), pb->tan_x);
+  vfloat y = vf_mul(vf_sub(one, vf_div(vf_add(sy, sy), pb->height)), pb->tan_y);
   return vv_normalize(vv_madd(vv_madd(pb->d, x, pb->r), y, pb->u), newton);
 }
 
