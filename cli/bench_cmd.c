@@ -287,13 +287,7 @@ static void put_gnuplot_path(FILE *f, const char *dir, const char *scene,
 /* Writes `size` bytes of text to `path` whole, or leaves what was there;
  * 0, or -1 after a message naming the file and the error. */
 static int write_whole(const char *path, const char *text, size_t size) {
-  file_replacement r;
-  int saved = replace_begin(&r, path);
-  if (!saved) {
-    saved = replace_write(&r, text, size);
-    int ended = replace_end(&r, !saved);
-    saved = saved ? saved : ended;
-  }
+  int saved = replace_whole(path, text, size);
   if (saved)
     cli_error("--plot: %s: writing failed: %s", path, strerror(saved));
   return saved ? -1 : 0;
@@ -681,13 +675,7 @@ static int check_csv_path(const char *path, char **scenes, int nscenes,
 /* Writes the CSV's `size` bytes to `path` whole, or not at all. Stop
  * signals wait until the file is in place. */
 static int write_csv(const char *path, const char *text, size_t size) {
-  file_replacement r;
-  int saved = replace_begin(&r, path);
-  if (!saved) {
-    saved = replace_write(&r, text, size);
-    int ended = replace_end(&r, !saved);
-    saved = saved ? saved : ended;
-  }
+  int saved = replace_whole(path, text, size);
   if (saved) {
     cli_error("%s: writing the CSV file failed: %s", path, strerror(saved));
     return -1;

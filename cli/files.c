@@ -166,3 +166,14 @@ int replace_end(file_replacement *r, int keep) {
   sigprocmask(SIG_SETMASK, &r->signals, NULL);
   return saved;
 }
+
+int replace_whole(const char *path, const void *data, size_t size) {
+  file_replacement r;
+  int saved = replace_begin(&r, path);
+  if (!saved) {
+    saved = replace_write(&r, data, size);
+    int ended = replace_end(&r, !saved);
+    saved = saved ? saved : ended;
+  }
+  return saved;
+}

@@ -53,5 +53,9 @@ int replace_write(file_replacement *r, const void *data, size_t size);
  * keep = 0: it is removed. Returns 0, or an errno value (the file then
  * removed and the destination as it was). */
 int replace_end(file_replacement *r, int keep);
+/* Replaces `path` with the `size` bytes of `data` whole, or leaves it as
+ * it was: replace_begin, replace_write and replace_end. Returns 0, or an
+ * errno value. */
+int replace_whole(const char *path, const void *data, size_t size);
 
 #endif
